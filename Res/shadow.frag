@@ -1,0 +1,6 @@
+#version 450
+
+// Depth only: nothing to write.
+void main()
+{
+}

@@ -1,0 +1,52 @@
+#version 450
+
+layout(location=0) in vec3 inPosition;
+layout(location=1) in vec2 inTexcoord;
+layout(location=2) in vec3 inNormal;
+layout(location=3) in vec3 inShadowTexcoord;
+
+layout(binding=2) uniform sampler2DShadow texShadow;
+
+layout(location=100) uniform vec4 objectColor;
+layout(location=101) uniform vec3 lightDirection; // from the surface towards the light
+layout(location=102) uniform vec3 lightColor;
+layout(location=103) uniform vec3 ambientColor;
+layout(location=104) uniform int shadowEnabled;
+
+out vec4 outColor;
+
+float Shadow(vec3 normal)
+{
+  if (shadowEnabled == 0) {
+    return 1.0;
+  }
+  vec3 st = inShadowTexcoord;
+  // Outside the light's box: lit.
+  if (any(lessThan(st, vec3(0))) || any(greaterThan(st, vec3(1)))) {
+    return 1.0;
+  }
+  // 3x3 PCF over hardware 2x2 comparisons: soft edges without acne.
+  vec2 texel = 1.0 / vec2(textureSize(texShadow, 0));
+  float sum = 0;
+  for (int y = -1; y <= 1; ++y) {
+    for (int x = -1; x <= 1; ++x) {
+      sum += texture(texShadow, vec3(st.xy + vec2(x, y) * texel, st.z - 0.0015));
+    }
+  }
+  return sum / 9.0;
+}
+
+void main()
+{
+  vec3 n = inNormal;
+  float len2 = dot(n, n);
+  // Guard normalize(0) (degenerate normals in a mesh).
+  n = len2 > 1e-12 ? n * inversesqrt(len2) : vec3(0, 1, 0);
+  if (!gl_FrontFacing) {
+    n = -n;
+  }
+  float diffuse = max(dot(n, normalize(lightDirection)), 0.0) * Shadow(n);
+  // Hemispherical ambient: a little brighter from the sky than from the ground.
+  vec3 ambient = ambientColor * (0.75 + 0.25 * n.y);
+  outColor = vec4(objectColor.rgb * (ambient + lightColor * diffuse), objectColor.a);
+}

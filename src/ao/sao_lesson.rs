@@ -1,0 +1,274 @@
+//! The AO lesson's pipeline (`Engine::DrawAmbientOcclusion` in the course), errata fixed:
+//! restore linear depth at half size → 4-level min mip chain → SAO into R8 → 9×9 bilateral blur →
+//! blend over the main image with the swizzled R8 texture.
+//!
+//! Shaders: `Res/sao_restore_depth.frag`, `Res/sao_down_sampling.frag`, `Res/sao.frag`,
+//! `Res/sao_blur.frag`, composited with `Res/simple.frag`.
+
+use crate::config::{self, loc, SAO_DEPTH_LEVELS};
+use crate::engine::Camera;
+use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc};
+use crate::res::ResDirs;
+use anyhow::Result;
+use glow::HasContext;
+use serde::{Deserialize, Serialize};
+use std::rc::Rc;
+
+/// The lesson's SAO parameters (the course hard-codes radius 1 m, bias 0.012, intensity 5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SaoParams {
+    pub enabled: bool,
+    /// World-space sampling radius (m).
+    pub radius: f32,
+    /// Distance (m) along the normal below which a sample does not occlude (removes self-occlusion).
+    pub bias: f32,
+    pub intensity: f32,
+    pub samples: u32,
+    pub spiral_turns: u32,
+    pub blur: bool,
+}
+
+impl Default for SaoParams {
+    fn default() -> Self {
+        SaoParams { enabled: true, radius: 1.0, bias: 0.012, intensity: 5.0, samples: 11, spiral_turns: 3, blur: true }
+    }
+}
+
+impl SaoParams {
+    /// Clamps absurd values into a range the shaders handle, and says what was changed.
+    pub fn sanitized(mut self) -> (SaoParams, Vec<String>) {
+        let mut notes = Vec::new();
+        let mut fix = |name: &str, v: &mut f32, lo: f32, hi: f32| {
+            let old = *v;
+            *v = if v.is_finite() { v.clamp(lo, hi) } else { lo.max(hi.min(1.0)) };
+            if *v != old {
+                notes.push(format!("AO {name} {old} is out of range, using {}", *v));
+            }
+        };
+        fix("radius", &mut self.radius, 1e-3, 100.0);
+        fix("bias", &mut self.bias, 0.0, 10.0);
+        fix("intensity", &mut self.intensity, 0.0, 1000.0);
+        if !(1..=256).contains(&self.samples) {
+            notes.push(format!("AO samples {} is out of range, using {}", self.samples, self.samples.clamp(1, 256)));
+            self.samples = self.samples.clamp(1, 256);
+        }
+        if !(1..=64).contains(&self.spiral_turns) {
+            self.spiral_turns = self.spiral_turns.clamp(1, 64);
+        }
+        (self, notes)
+    }
+}
+
+pub struct SaoLesson {
+    gl: Gl,
+    pub prog_restore_depth: ProgramObject,
+    pub prog_down_sampling: ProgramObject,
+    pub prog_sao: ProgramObject,
+    pub prog_blur: ProgramObject,
+    pub prog_simple: ProgramObject,
+    /// `texSAODepth`: R32F linear depth, half size, `SAO_DEPTH_LEVELS` levels.
+    pub tex_depth: Rc<Texture>,
+    pub fbo_depth: Vec<FramebufferObject>,
+    pub fbo_sao: FramebufferObject,
+    pub fbo_blur: FramebufferObject,
+}
+
+/// Half of the main size, never 0.
+pub fn half_size(width: u32, height: u32) -> (u32, u32) {
+    ((width / 2).max(1), (height / 2).max(1))
+}
+
+impl SaoLesson {
+    pub fn new(gl: &Gl, res: &ResDirs, width: u32, height: u32, camera: &Camera, params: &SaoParams) -> Result<SaoLesson, anyhow::Error> {
+        let planes = camera_defines(camera);
+        let prog_restore_depth = ProgramObject::from_res(gl, res, "simple.vert", "sao_restore_depth.frag", &planes)?;
+        let prog_down_sampling = ProgramObject::from_res(gl, res, "simple.vert", "sao_down_sampling.frag", &planes)?;
+        let prog_sao = ProgramObject::from_res(gl, res, "simple.vert", "sao.frag", &sao_defines(camera, params))?;
+        let prog_blur = ProgramObject::from_res(gl, res, "simple.vert", "sao_blur.frag", &planes)?;
+        let prog_simple = ProgramObject::from_res(gl, res, "simple.vert", "simple.frag", &[])?;
+        let (tex_depth, fbo_depth, fbo_sao, fbo_blur) = create_targets(gl, width, height)?;
+        Ok(SaoLesson { gl: gl.clone(), prog_restore_depth, prog_down_sampling, prog_sao, prog_blur, prog_simple, tex_depth, fbo_depth, fbo_sao, fbo_blur })
+    }
+
+    /// Re-creates the half-size targets for a new main size.
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        let (t, d, s, b) = create_targets(&self.gl, width, height)?;
+        self.tex_depth = t;
+        self.fbo_depth = d;
+        self.fbo_sao = s;
+        self.fbo_blur = b;
+        Ok(())
+    }
+
+    /// Rebuilds programs whose files changed (or all when `force`); returns the errors, keeping the
+    /// previous programs running.
+    pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
+        let mut errors = Vec::new();
+        for p in [&mut self.prog_restore_depth, &mut self.prog_down_sampling, &mut self.prog_sao, &mut self.prog_blur, &mut self.prog_simple] {
+            if force || p.sources_changed() {
+                if let Err(e) = p.reload() {
+                    errors.push(e);
+                }
+            }
+        }
+        errors
+    }
+
+    /// Makes the injected camera planes and sampling constants follow the scene.
+    pub fn update_defines(&mut self, camera: &Camera, params: &SaoParams) -> Result<(), ProgramError> {
+        let planes = camera_defines(camera);
+        self.prog_restore_depth.set_defines(&planes)?;
+        self.prog_down_sampling.set_defines(&planes)?;
+        self.prog_blur.set_defines(&planes)?;
+        self.prog_sao.set_defines(&sao_defines(camera, params))
+    }
+
+    /// Common state of every full-screen AO pass: no cull, no depth test, no blend.
+    fn fullscreen_state(&self) {
+        unsafe {
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::DEPTH_TEST);
+            self.gl.depth_mask(false);
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::SCISSOR_TEST);
+        }
+    }
+
+    /// main depth → `texSAODepth` level 0 (linear metres, half size, nearest of 2×2).
+    pub fn restore_depth(&self, meshes: &MeshBuffer, main_depth: &Texture) {
+        self.fullscreen_state();
+        self.prog_restore_depth.use_program();
+        self.fbo_depth[0].bind();
+        main_depth.bind(0);
+        meshes.draw_plane_xy();
+    }
+
+    /// Levels 1.. of `texSAODepth`, each the min of 2×2 texels of the level above.
+    pub fn down_sample(&self, meshes: &MeshBuffer) {
+        self.fullscreen_state();
+        self.prog_down_sampling.use_program();
+        self.tex_depth.bind(0);
+        for i in 1..self.fbo_depth.len() {
+            // Limit sampling to the levels already written so that the level being written is not
+            // also readable (no feedback loop), keeping the lesson's texelFetch(…, mipLevel) valid.
+            self.tex_depth.set_level_range(0, i as u32 - 1);
+            self.fbo_depth[i].bind();
+            self.prog_down_sampling.set_i32(loc::SAO_MIP_LEVEL, i as i32 - 1);
+            meshes.draw_plane_xy();
+        }
+        self.tex_depth.set_level_range(0, self.tex_depth.levels() - 1);
+    }
+
+    /// `sao.frag` → `texSAO` (occlusion, R8).
+    pub fn compute_sao(&self, meshes: &MeshBuffer, camera: &Camera, params: &SaoParams) {
+        self.fullscreen_state();
+        let p = &self.prog_sao;
+        let fov_scale = config::fov_scale(camera.fov_y_deg);
+        let r = params.radius;
+        p.set_vec4(loc::SAO_INFO, [r * r, 0.5 * r * fov_scale, params.bias, params.intensity / r.powi(6)]);
+        // The aspect ratio of the buffer actually sampled (the course used a fixed 1920×1080).
+        let (w, h) = (self.fbo_depth[0].width() as f32, self.fbo_depth[0].height() as f32);
+        p.set_vec2(loc::SAO_NDC_TO_VIEW, [w / h / fov_scale, 1.0 / fov_scale]);
+        p.use_program();
+        self.fbo_sao.bind();
+        self.tex_depth.bind(0);
+        meshes.draw_plane_xy();
+    }
+
+    /// `sao_blur.frag`: `texSAO` → `texSAOBlur`.
+    pub fn blur(&self, meshes: &MeshBuffer) {
+        self.fullscreen_state();
+        self.prog_blur.use_program();
+        self.fbo_blur.bind();
+        self.sao_texture().bind(0);
+        self.tex_depth.bind(1);
+        meshes.draw_plane_xy();
+    }
+
+    /// The occlusion texture the composite uses: blurred, or raw when blur is off.
+    pub fn result_texture(&self, blurred: bool) -> &Rc<Texture> {
+        if blurred {
+            self.fbo_blur.color_texture().unwrap()
+        } else {
+            self.sao_texture()
+        }
+    }
+    pub fn sao_texture(&self) -> &Rc<Texture> {
+        self.fbo_sao.color_texture().unwrap()
+    }
+
+    /// Darkens the main image: colour × (1 − occlusion) by blending a texture whose RGB reads 0 and A
+    /// reads the occlusion. Sets its own viewport (the printed listing lost it).
+    pub fn composite(&self, meshes: &MeshBuffer, main: &FramebufferObject, blurred: bool) {
+        self.fullscreen_state();
+        let tex = self.result_texture(blurred);
+        tex.set_swizzle([glow::ZERO, glow::ZERO, glow::ZERO, glow::RED]);
+        unsafe {
+            self.gl.enable(glow::BLEND);
+            self.gl.blend_equation(glow::FUNC_ADD);
+            self.gl.blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+        }
+        self.prog_simple.use_program();
+        main.bind();
+        tex.bind(0);
+        meshes.draw_plane_xy();
+        // Other readers (debug views, tests) see plain R again.
+        tex.set_swizzle([glow::RED, glow::GREEN, glow::BLUE, glow::ALPHA]);
+        unsafe { self.gl.disable(glow::BLEND) };
+    }
+
+    /// The whole chain: restore → down-sample → SAO → blur (when on).
+    pub fn run(&self, meshes: &MeshBuffer, main_depth: &Texture, camera: &Camera, params: &SaoParams) {
+        self.restore_depth(meshes, main_depth);
+        self.down_sample(meshes);
+        self.compute_sao(meshes, camera, params);
+        if params.blur {
+            self.blur(meshes);
+        }
+    }
+}
+
+fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    vec![("CAMERA_NEAR", glsl_float(camera.near)), ("CAMERA_FAR", glsl_float(camera.far))]
+}
+
+fn sao_defines(camera: &Camera, params: &SaoParams) -> Vec<(&'static str, String)> {
+    let mut d = camera_defines(camera);
+    d.push(("SAO_SAMPLE_COUNT", params.samples.to_string()));
+    d.push(("SAO_SPIRAL_TURNS", params.spiral_turns.to_string()));
+    d
+}
+
+/// A float literal GLSL accepts, exact for f32 (Rust's shortest round-trip form plus a '.0' if needed).
+pub fn glsl_float(v: f32) -> String {
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') || s.contains("inf") || s.contains("NaN") {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+type Targets = (Rc<Texture>, Vec<FramebufferObject>, FramebufferObject, FramebufferObject);
+
+fn create_targets(gl: &Gl, width: u32, height: u32) -> Result<Targets> {
+    let (hw, hh) = half_size(width, height);
+    // A mipmap filter: with the course's GL_LINEAR, textureLod(…, level) reads level 0 for every level.
+    let tex_depth = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(sao depth)", hw, hh, glow::R32F)
+            .levels(SAO_DEPTH_LEVELS as u32)
+            .filter(glow::NEAREST_MIPMAP_NEAREST, glow::NEAREST),
+    )?);
+    let fbo_depth = (0..tex_depth.levels())
+        .map(|level| FramebufferObject::new(gl, Some(tex_depth.clone()), None, level, 0))
+        .collect::<Result<Vec<_>>>()?;
+    let tex_sao = Rc::new(Texture::new(gl, TextureDesc::target("FBO(sao)", hw, hh, glow::R8))?);
+    let fbo_sao = FramebufferObject::new(gl, Some(tex_sao), None, 0, 0)?;
+    // Linear filter: the composite upsamples this half-size texture to the main size.
+    let tex_blur = Rc::new(Texture::new(gl, TextureDesc::target("FBO(sao blur)", hw, hh, glow::R8).filter(glow::LINEAR, glow::LINEAR))?);
+    let fbo_blur = FramebufferObject::new(gl, Some(tex_blur), None, 0, 0)?;
+    let _ = unsafe { gl.get_error() };
+    Ok((tex_depth, fbo_depth, fbo_sao, fbo_blur))
+}

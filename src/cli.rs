@@ -1,0 +1,235 @@
+//! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
+
+use crate::context::{self, HeadlessContext};
+use crate::engine::{Engine, View};
+use crate::res::ResDirs;
+use crate::scene::SceneDesc;
+use anyhow::{bail, Context as _, Result};
+use clap::{Args, Parser, Subcommand, ValueEnum};
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+
+#[derive(Parser, Debug)]
+#[command(name = "opengl3d", version, about = "OpenGL 4.5 course engine with screen-space ambient occlusion (SAO)")]
+pub struct Cli {
+    /// Folder searched for shaders and meshes before the project's own Res/ (a student's working copy).
+    #[arg(long, global = true, value_name = "DIR")]
+    pub res: Option<PathBuf>,
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render one frame headless and write it to a PNG or PFM file.
+    Render(RenderArgs),
+    /// Open the interactive window (WASD + mouse, Space: AO, V: view, B: blur, R: reload shaders).
+    Window(WindowArgs),
+    /// Regenerate the demo meshes in Res/meshes.
+    GenDemo,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OnOff {
+    On,
+    Off,
+}
+
+#[derive(Args, Debug, Clone, Default)]
+pub struct SceneArgs {
+    /// Scene file (TOML); default: Res/scenes/demo.toml.
+    #[arg(long, value_name = "FILE", conflicts_with = "obj")]
+    pub scene: Option<PathBuf>,
+    /// Load one OBJ as the whole scene (identity transform, demo lighting and AO).
+    #[arg(long, value_name = "FILE")]
+    pub obj: Option<PathBuf>,
+    /// Camera position, "x,y,z".
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<Vec3>,
+    /// Point the camera looks at, "x,y,z" (up is +Y).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<Vec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long)]
+    pub fov: Option<f32>,
+    #[arg(long)]
+    pub near: Option<f32>,
+    #[arg(long)]
+    pub far: Option<f32>,
+    #[arg(long)]
+    pub width: Option<u32>,
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Ambient occlusion on or off.
+    #[arg(long, value_enum)]
+    pub ao: Option<OnOff>,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 = open).
+    #[arg(long, value_enum, default_value_t = View::Composite)]
+    pub view: View,
+    /// Output file: .png (8-bit) or .pfm (raw floats).
+    #[arg(long, default_value = "out/frame.png")]
+    pub out: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct WindowArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[arg(long, value_enum, default_value_t = View::Composite)]
+    pub view: View,
+    /// Close after this many frames (for scripted runs and tests).
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Save the last frame shown to this PNG (with --frames).
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+}
+
+fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .collect::<Result<_, _>>()?;
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("expected three finite numbers 'x,y,z', got '{s}'"));
+    }
+    Ok(Vec3::new(v[0], v[1], v[2]))
+}
+
+/// Loads the scene the arguments describe, with overrides applied and checked.
+pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
+    let mut desc = if let Some(obj) = &args.obj {
+        let path = obj.canonicalize().with_context(|| format!("{}: OBJ file not found", obj.display()))?;
+        let mut d = SceneDesc::single_obj(&path.display().to_string());
+        // Frame the object unless the camera is given.
+        let data = crate::gl::mesh::MeshData::load_obj(&path)?;
+        if let Some((lo, hi)) = data.bounds() {
+            let c = (lo + hi) * 0.5;
+            let r = ((hi - lo).length() * 0.5).max(0.01);
+            let dist = r / (d.camera.fov_y.to_radians() * 0.5).sin() * 1.1;
+            d.camera.target = c.to_array();
+            d.camera.eye = (c + Vec3::new(0.55, 0.45, 1.0).normalize() * dist).to_array();
+            d.camera.near = (dist - r).max(0.01).min(crate::config::NEAR);
+        }
+        d
+    } else {
+        let path = match &args.scene {
+            Some(p) => p.clone(),
+            None => res.find("scenes/demo.toml").map_err(|e| anyhow::anyhow!("{e}"))?,
+        };
+        SceneDesc::load(&path)?
+    };
+    let c = &mut desc.camera;
+    if let Some(v) = args.eye {
+        c.eye = v.to_array();
+    }
+    if let Some(v) = args.target {
+        c.target = v.to_array();
+    }
+    if let Some(v) = args.fov {
+        c.fov_y = v;
+    }
+    if let Some(v) = args.near {
+        c.near = v;
+    }
+    if let Some(v) = args.far {
+        c.far = v;
+    }
+    if let Some(w) = args.width {
+        desc.output.width = w;
+    }
+    if let Some(h) = args.height {
+        desc.output.height = h;
+    }
+    if let Some(ao) = args.ao {
+        desc.ao.enabled = ao == OnOff::On;
+    }
+    desc.validate()?;
+    Ok(desc)
+}
+
+pub fn run() -> Result<()> {
+    let cli = Cli::parse();
+    let res = ResDirs::with_override(cli.res.as_deref());
+    match cli.command {
+        Some(Command::Render(args)) => render(&res, &args),
+        Some(Command::Window(args)) => {
+            let scene = load_scene(&args.scene, &res)?;
+            context::window::run(res, scene, args.view, args.frames, args.screenshot)
+        }
+        Some(Command::GenDemo) => {
+            let dir = crate::res::project_res_dir().join("meshes");
+            for p in crate::scene::shapes::write_demo_meshes(&dir)? {
+                println!("wrote {}", p.display());
+            }
+            Ok(())
+        }
+        None => {
+            if context::display_available() {
+                let scene = load_scene(&SceneArgs::default(), &res)?;
+                match context::window::run(res.clone(), scene, View::Composite, None, None) {
+                    Ok(()) => return Ok(()),
+                    Err(e) => eprintln!("could not open a window ({e:#}); rendering headless instead"),
+                }
+            } else {
+                eprintln!("no display found (DISPLAY / WAYLAND_DISPLAY unset): rendering one frame headless");
+            }
+            let args = RenderArgs { scene: SceneArgs::default(), view: View::Composite, out: PathBuf::from("out/frame.png") };
+            render(&res, &args)
+        }
+    }
+}
+
+/// Renders one frame headless per `args` and writes it.
+pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
+    let scene = load_scene(&args.scene, res)?;
+    let ctx = HeadlessContext::new()?;
+    let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, scene.output.width, scene.output.height)?;
+    engine.view = args.view;
+    write_view(&mut engine, args.view, &args.out)?;
+    println!("wrote {} ({}x{}, {}, {})", args.out.display(), scene.output.width, scene.output.height, args.view.label(), ctx.renderer);
+    Ok(())
+}
+
+/// Renders `view` and writes it as PNG or PFM depending on the extension.
+pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
+    if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create folder {}", dir.display()))?;
+    }
+    let ext = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let (w, h) = engine.size();
+    match (ext.as_deref(), view) {
+        (Some("png"), View::Composite) => {
+            let img = engine.render_image()?;
+            image::DynamicImage::ImageRgba8(img).to_rgb8().save(out).with_context(|| format!("cannot write {}", out.display()))?;
+        }
+        (Some("png"), View::LinearDepth) => {
+            let v = engine.render_values(view)?;
+            // Scale by the farthest non-sky distance so the picture uses the whole grey range.
+            let far = engine.camera.far;
+            let max = v.iter().copied().filter(|d| *d < far).fold(0.0f32, f32::max).max(1e-6);
+            crate::io::gray_to_png(out, w, h, &v, 1.0 / max)?;
+        }
+        (Some("png"), _) => {
+            let v = engine.render_values(view)?;
+            crate::io::gray_to_png(out, w, h, &v, 1.0)?;
+        }
+        (Some("pfm"), View::Composite) => {
+            let img = engine.render_image()?;
+            let rgb: Vec<f32> = img.pixels().flat_map(|p| [p[0], p[1], p[2]].map(|c| c as f32 / 255.0)).collect();
+            crate::io::write_pfm_rgb(out, w, h, &rgb)?;
+        }
+        (Some("pfm"), _) => {
+            let v = engine.render_values(view)?;
+            crate::io::write_pfm_gray(out, w, h, &v)?;
+        }
+        _ => bail!("{}: output must end in .png or .pfm", out.display()),
+    }
+    Ok(())
+}

@@ -1,0 +1,604 @@
+//! `Engine`: owns the scene, the render targets and the passes, and renders a frame in the course's
+//! order: shadow map → main FBO (opaque) → ambient occlusion → sky → transparent → bloom → image
+//! processing into the output (the window's default framebuffer or a headless FBO).
+
+pub mod camera;
+pub mod game_object;
+
+pub use camera::{linear_depth_exact, Camera};
+pub use game_object::GameObject;
+
+use crate::ao::{SaoLesson, SaoParams};
+use crate::config::{binding, loc};
+use crate::gl::{mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc};
+use crate::res::ResDirs;
+use crate::scene::{BloomDesc, LightDesc, SceneDesc};
+use anyhow::{bail, Context as _, Result};
+use glam::{Mat3, Mat4, Vec3, Vec4};
+use glow::HasContext;
+use std::rc::Rc;
+
+/// What the frame shows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, clap::ValueEnum)]
+pub enum View {
+    /// The lit scene with AO blended in.
+    #[default]
+    Composite,
+    /// The half-size linear depth buffer (metres).
+    LinearDepth,
+    /// The SAO buffer before the blur, as visibility (1 = open).
+    AoRaw,
+    /// The blurred SAO buffer, as visibility.
+    Ao,
+}
+
+impl View {
+    pub const ALL: [View; 4] = [View::Composite, View::LinearDepth, View::AoRaw, View::Ao];
+    pub fn next(self) -> View {
+        let i = View::ALL.iter().position(|v| *v == self).unwrap_or(0);
+        View::ALL[(i + 1) % View::ALL.len()]
+    }
+    pub fn label(self) -> &'static str {
+        match self {
+            View::Composite => "composite",
+            View::LinearDepth => "linear depth",
+            View::AoRaw => "raw SAO",
+            View::Ao => "blurred SAO",
+        }
+    }
+}
+
+/// "vendor / renderer / version" of the current context.
+pub fn describe_renderer(gl: &glow::Context) -> String {
+    unsafe {
+        format!(
+            "{} {} (OpenGL {})",
+            gl.get_parameter_string(glow::VENDOR),
+            gl.get_parameter_string(glow::RENDERER),
+            gl.get_parameter_string(glow::VERSION)
+        )
+    }
+}
+
+const SHADOW_MAP_SIZE: u32 = 2048;
+const BLOOM_LEVELS: usize = 6;
+
+pub struct Engine {
+    gl: Gl,
+    res: ResDirs,
+    pub meshes: MeshBuffer,
+    pub objects: Vec<GameObject>,
+    pub camera: Camera,
+    pub light: LightDesc,
+    pub bloom: BloomDesc,
+    pub ao_params: SaoParams,
+    pub view: View,
+    prog_standard: ProgramObject,
+    prog_shadow: ProgramObject,
+    prog_sky: ProgramObject,
+    prog_bloom_bright: ProgramObject,
+    prog_bloom_down: ProgramObject,
+    prog_bloom_up: ProgramObject,
+    prog_image: ProgramObject,
+    prog_debug: ProgramObject,
+    pub ao: SaoLesson,
+    width: u32,
+    height: u32,
+    pub fbo_main: FramebufferObject,
+    fbo_shadow: FramebufferObject,
+    fbo_bloom: Vec<FramebufferObject>,
+    /// Headless output (RGBA8), created on demand.
+    fbo_output: Option<FramebufferObject>,
+    /// Scratch R32F target for value read-back.
+    fbo_values: Option<FramebufferObject>,
+    black: Texture,
+}
+
+impl Engine {
+    /// Loads every shader and mesh of `scene` and creates targets of `width`×`height`.
+    pub fn new(gl: &Gl, res: ResDirs, scene: &SceneDesc, width: u32, height: u32) -> Result<Engine> {
+        scene.validate()?;
+        let (width, height) = (width.max(1), height.max(1));
+        let camera = Camera {
+            eye: Vec3::from(scene.camera.eye),
+            target: Vec3::from(scene.camera.target),
+            up: Vec3::Y,
+            fov_y_deg: scene.camera.fov_y,
+            near: scene.camera.near,
+            far: scene.camera.far,
+        };
+        let (ao_params, notes) = scene.ao.sanitized();
+        for n in notes {
+            log::warn!("{n}");
+        }
+        let p = |v: &str, f: &str| ProgramObject::from_res(gl, &res, v, f, &[]);
+        let prog_standard = p("standard.vert", "standard.frag")?;
+        let prog_shadow = p("shadow.vert", "shadow.frag")?;
+        let prog_sky = p("sky.vert", "sky.frag")?;
+        let prog_bloom_bright = p("simple.vert", "bloom_bright.frag")?;
+        let prog_bloom_down = p("simple.vert", "bloom_down.frag")?;
+        let prog_bloom_up = p("simple.vert", "bloom_up.frag")?;
+        let prog_image = p("simple.vert", "image_processing.frag")?;
+        let prog_debug = p("simple.vert", "debug_view.frag")?;
+        let ao = SaoLesson::new(gl, &res, width, height, &camera, &ao_params)?;
+
+        let mut meshes = MeshBuffer::new(gl)?;
+        let mut objects = Vec::new();
+        for (i, o) in scene.objects.iter().enumerate() {
+            let path = res.resolve_data(&o.mesh);
+            let mesh = meshes.load_obj(&o.mesh, &path).with_context(|| format!("scene object {} ({})", i + 1, o.mesh))?;
+            let data = meshes.data(&o.mesh).unwrap();
+            let mut obj = GameObject {
+                name: o.mesh.clone(),
+                mesh,
+                position: Vec3::from(o.position),
+                rotation: Vec3::from(o.rotation),
+                scale: Vec3::from(o.scale),
+                color: Vec4::from(o.color),
+                bounds: (Vec3::ZERO, Vec3::ZERO),
+            };
+            obj.bounds = world_bounds(data, &obj.model());
+            objects.push(obj);
+        }
+        // Draw parameters move when meshes are added: refresh them.
+        for (o, d) in objects.iter_mut().zip(&scene.objects) {
+            o.mesh = meshes.get(&d.mesh).unwrap();
+        }
+
+        let fbo_main = create_main_fbo(gl, width, height)?;
+        let shadow_tex = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target("FBO(shadow)", SHADOW_MAP_SIZE, SHADOW_MAP_SIZE, glow::DEPTH_COMPONENT32)
+                .filter(glow::LINEAR, glow::LINEAR)
+                .compare(true),
+        )?);
+        let fbo_shadow = FramebufferObject::new(gl, None, Some(shadow_tex), 0, 0)?;
+        let fbo_bloom = create_bloom_fbos(gl, width, height)?;
+        let black = Texture::new(gl, TextureDesc::target("black", 1, 1, glow::RGBA8))?;
+        black.upload_f32(0, 4, &[0.0, 0.0, 0.0, 1.0])?;
+
+        let engine = Engine {
+            gl: gl.clone(),
+            res,
+            meshes,
+            objects,
+            camera,
+            light: scene.light.clone(),
+            bloom: scene.bloom.clone(),
+            ao_params,
+            view: View::Composite,
+            prog_standard,
+            prog_shadow,
+            prog_sky,
+            prog_bloom_bright,
+            prog_bloom_down,
+            prog_bloom_up,
+            prog_image,
+            prog_debug,
+            ao,
+            width,
+            height,
+            fbo_main,
+            fbo_shadow,
+            fbo_bloom,
+            fbo_output: None,
+            fbo_values: None,
+            black,
+        };
+        if let Some(e) = crate::gl::take_error(gl) {
+            bail!("{e} while creating the engine");
+        }
+        Ok(engine)
+    }
+
+    pub fn gl(&self) -> &Gl {
+        &self.gl
+    }
+    pub fn res(&self) -> &ResDirs {
+        &self.res
+    }
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Re-creates size-dependent targets. A 0×0 size (minimised window) keeps the old targets.
+    pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
+        if width == 0 || height == 0 || (width, height) == (self.width, self.height) {
+            return Ok(());
+        }
+        self.fbo_main = create_main_fbo(&self.gl, width, height)?;
+        self.fbo_bloom = create_bloom_fbos(&self.gl, width, height)?;
+        self.ao.resize(width, height)?;
+        self.fbo_output = None;
+        self.fbo_values = None;
+        self.width = width;
+        self.height = height;
+        Ok(())
+    }
+
+    /// Applies changed camera planes or AO sample counts to the shaders (they are compile-time constants).
+    pub fn sync_shader_constants(&mut self) -> Result<(), ProgramError> {
+        self.ao.update_defines(&self.camera, &self.ao_params)
+    }
+
+    /// Rebuilds shaders whose files changed; errors are returned, the last working programs stay.
+    pub fn hot_reload(&mut self, force: bool) -> Vec<ProgramError> {
+        let mut errors = self.ao.reload(force);
+        for p in [
+            &mut self.prog_standard,
+            &mut self.prog_shadow,
+            &mut self.prog_sky,
+            &mut self.prog_bloom_bright,
+            &mut self.prog_bloom_down,
+            &mut self.prog_bloom_up,
+            &mut self.prog_image,
+            &mut self.prog_debug,
+        ] {
+            if force || p.sources_changed() {
+                if let Err(e) = p.reload() {
+                    errors.push(e);
+                }
+            }
+        }
+        errors
+    }
+
+    fn aspect(&self) -> f32 {
+        self.width as f32 / self.height as f32
+    }
+
+    fn light_direction(&self) -> Vec3 {
+        Vec3::from(self.light.direction).try_normalize().unwrap_or(Vec3::Y)
+    }
+
+    /// Light's view-projection: an orthographic box around every object's bounds.
+    fn shadow_matrix(&self) -> Mat4 {
+        let (lo, hi) = self
+            .objects
+            .iter()
+            .map(|o| o.bounds)
+            .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+            .unwrap_or((Vec3::splat(-1.0), Vec3::splat(1.0)));
+        let center = (lo + hi) * 0.5;
+        let r = ((hi - lo).length() * 0.5).max(0.1);
+        let dir = self.light_direction();
+        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+        let view = Mat4::look_at_rh(center + dir * r * 2.0, center, up);
+        Mat4::orthographic_rh_gl(-r, r, -r, r, 0.01, r * 4.0) * view
+    }
+
+    fn draw_objects(&self, prog: &ProgramObject, transparent: bool) {
+        self.meshes.bind();
+        for o in self.objects.iter().filter(|o| o.is_transparent() == transparent) {
+            prog.set_mat4(loc::MODEL, &o.model());
+            prog.set_vec4(loc::OBJECT_COLOR, o.color.to_array());
+            self.meshes.draw(&o.mesh);
+        }
+    }
+
+    fn draw_shadow_map(&self, shadow: &Mat4) {
+        self.fbo_shadow.bind();
+        unsafe {
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(true);
+            self.gl.disable(glow::BLEND);
+            // Both faces: the demo meshes are not all closed.
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.clear_depth_f32(1.0);
+            self.gl.clear(glow::DEPTH_BUFFER_BIT);
+            self.gl.enable(glow::POLYGON_OFFSET_FILL);
+            self.gl.polygon_offset(1.5, 2.0);
+        }
+        self.prog_shadow.set_mat4(loc::VIEW_PROJECTION, shadow);
+        self.prog_shadow.use_program();
+        self.draw_objects(&self.prog_shadow, false);
+        unsafe { self.gl.disable(glow::POLYGON_OFFSET_FILL) };
+    }
+
+    fn setup_standard(&self, shadow: &Mat4) {
+        let p = &self.prog_standard;
+        p.set_mat4(loc::VIEW_PROJECTION, &self.camera.view_projection(self.aspect()));
+        p.set_mat4(loc::SHADOW_MATRIX, shadow);
+        p.set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
+        p.set_vec3(loc::LIGHT_COLOR, self.light.color);
+        p.set_vec3(loc::AMBIENT_COLOR, self.light.ambient);
+        p.set_i32(loc::SHADOW_ENABLED, self.light.shadow as i32);
+        p.use_program();
+        if self.light.shadow {
+            self.fbo_shadow.depth_texture().unwrap().bind(binding::SHADOW_MAP);
+        } else {
+            // A sampler2DShadow must not see a non-depth texture even when unused.
+            self.fbo_shadow.depth_texture().unwrap().bind(binding::SHADOW_MAP);
+        }
+    }
+
+    fn draw_opaque(&self, shadow: &Mat4) {
+        self.fbo_main.bind();
+        unsafe {
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::SCISSOR_TEST);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(true);
+            // Some demo meshes are open (planes), so both faces are drawn.
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.clear_color(0.0, 0.0, 0.0, 1.0);
+            self.gl.clear_depth_f32(1.0);
+            self.gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+        }
+        self.setup_standard(shadow);
+        self.draw_objects(&self.prog_standard, false);
+    }
+
+    fn draw_sky(&self) {
+        self.fbo_main.bind();
+        unsafe {
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(false);
+        }
+        let inv = self.camera.view_projection(self.aspect()).inverse();
+        self.prog_sky.set_mat4(loc::INVERSE_VIEW_PROJECTION, &inv);
+        self.prog_sky.set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
+        self.prog_sky.use_program();
+        self.meshes.draw_plane_xy();
+    }
+
+    fn draw_transparent(&self, shadow: &Mat4) {
+        if !self.objects.iter().any(|o| o.is_transparent()) {
+            return;
+        }
+        self.fbo_main.bind();
+        unsafe {
+            self.gl.enable(glow::BLEND);
+            self.gl.blend_equation(glow::FUNC_ADD);
+            self.gl.blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(false);
+            self.gl.disable(glow::CULL_FACE);
+        }
+        self.setup_standard(shadow);
+        self.draw_objects(&self.prog_standard, true);
+        unsafe { self.gl.depth_mask(true) };
+    }
+
+    fn draw_bloom(&self) {
+        if !self.bloom.enabled || self.fbo_bloom.is_empty() {
+            return;
+        }
+        unsafe {
+            self.gl.disable(glow::DEPTH_TEST);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::BLEND);
+        }
+        self.prog_bloom_bright.set_f32(loc::BLOOM_THRESHOLD, self.bloom.threshold);
+        self.prog_bloom_bright.use_program();
+        self.fbo_bloom[0].bind();
+        self.fbo_main.color_texture().unwrap().bind(0);
+        self.meshes.draw_plane_xy();
+        self.prog_bloom_down.use_program();
+        for i in 1..self.fbo_bloom.len() {
+            self.fbo_bloom[i].bind();
+            self.fbo_bloom[i - 1].color_texture().unwrap().bind(0);
+            self.meshes.draw_plane_xy();
+        }
+        unsafe {
+            self.gl.enable(glow::BLEND);
+            self.gl.blend_func(glow::ONE, glow::ONE);
+        }
+        self.prog_bloom_up.use_program();
+        for i in (1..self.fbo_bloom.len()).rev() {
+            self.fbo_bloom[i - 1].bind();
+            self.fbo_bloom[i].color_texture().unwrap().bind(0);
+            self.meshes.draw_plane_xy();
+        }
+        unsafe { self.gl.disable(glow::BLEND) };
+    }
+
+    /// Binds the output: `None` = the default framebuffer (window) at the engine's size.
+    fn bind_output(&self, target: Option<&FramebufferObject>) {
+        match target {
+            Some(f) => f.bind(),
+            None => unsafe {
+                self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
+                self.gl.viewport(0, 0, self.width as i32, self.height as i32);
+            },
+        }
+        unsafe {
+            self.gl.disable(glow::DEPTH_TEST);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::FRAMEBUFFER_SRGB);
+            self.gl.disable(glow::DITHER);
+        }
+    }
+
+    fn draw_image_processing(&self, target: Option<&FramebufferObject>) {
+        self.bind_output(target);
+        self.prog_image.set_mat3(loc::COLOR_MATRIX, &Mat3::IDENTITY);
+        let bloom_on = self.bloom.enabled && !self.fbo_bloom.is_empty();
+        self.prog_image.set_f32(loc::BLOOM_STRENGTH, if bloom_on { self.bloom.strength } else { 0.0 });
+        self.prog_image.use_program();
+        self.fbo_main.color_texture().unwrap().bind(0);
+        if bloom_on {
+            self.fbo_bloom[0].color_texture().unwrap().bind(1);
+        } else {
+            self.black.bind(1);
+        }
+        self.meshes.draw_plane_xy();
+    }
+
+    /// Shows one AO buffer as grey (window and PNG of the debug views).
+    fn draw_debug_view(&self, target: Option<&FramebufferObject>, view: View, raw_values: bool) {
+        self.bind_output(target);
+        let (mode, tex, scale) = match view {
+            View::LinearDepth => (0, &self.ao.tex_depth, 0.02),
+            View::AoRaw => (1, self.ao.sao_texture(), 1.0),
+            _ => (1, self.ao.result_texture(self.ao_params.blur), 1.0),
+        };
+        self.prog_debug.set_i32(loc::DEBUG_VIEW_MODE, mode);
+        self.prog_debug.set_f32(loc::DEBUG_VIEW_SCALE, if raw_values { 1.0 } else { scale });
+        self.prog_debug.use_program();
+        tex.bind(0);
+        self.meshes.draw_plane_xy();
+    }
+
+    /// Renders one frame into `target` (`None` = default framebuffer) showing `self.view`.
+    pub fn render(&self, target: Option<&FramebufferObject>) {
+        self.render_inner(target, self.view, false);
+    }
+
+    fn render_inner(&self, target: Option<&FramebufferObject>, view: View, raw_values: bool) {
+        let shadow = self.shadow_matrix();
+        let need_ao = self.ao_params.enabled || view != View::Composite;
+        if self.light.shadow && view == View::Composite {
+            self.draw_shadow_map(&shadow);
+        }
+        self.draw_opaque(&shadow);
+        if need_ao {
+            let depth = self.fbo_main.depth_texture().unwrap();
+            match view {
+                View::LinearDepth => {
+                    self.ao.restore_depth(&self.meshes, depth);
+                    self.ao.down_sample(&self.meshes);
+                }
+                View::AoRaw => {
+                    let mut p = self.ao_params;
+                    p.blur = false;
+                    self.ao.run(&self.meshes, depth, &self.camera, &p);
+                }
+                _ => self.ao.run(&self.meshes, depth, &self.camera, &self.ao_params),
+            }
+            if view == View::Composite {
+                self.ao.composite(&self.meshes, &self.fbo_main, self.ao_params.blur);
+            }
+        }
+        if view != View::Composite {
+            self.draw_debug_view(target, view, raw_values);
+            return;
+        }
+        self.draw_sky();
+        self.draw_transparent(&shadow);
+        self.draw_bloom();
+        self.draw_image_processing(target);
+    }
+
+    /// Renders into the headless RGBA8 output and reads it back (rows top-down).
+    pub fn render_image(&mut self) -> Result<image::RgbaImage> {
+        if self.fbo_output.is_none() {
+            let tex = Rc::new(Texture::new(&self.gl, TextureDesc::target("FBO(output)", self.width, self.height, glow::RGBA8))?);
+            self.fbo_output = Some(FramebufferObject::new(&self.gl, Some(tex), None, 0, 0)?);
+        }
+        let out = self.fbo_output.as_ref().unwrap();
+        self.render(Some(out));
+        let img = read_rgba8(&self.gl, Some(out.id()), self.width, self.height);
+        if let Some(e) = crate::gl::take_error(&self.gl) {
+            bail!("{e} while rendering");
+        }
+        Ok(img)
+    }
+
+    /// Renders `view` as raw values at the output size (rows top-down): linear depth in metres or
+    /// ambient visibility (1 = open). For `Composite`, the luminance-free RGB is not available: use `render_image`.
+    pub fn render_values(&mut self, view: View) -> Result<Vec<f32>> {
+        if view == View::Composite {
+            bail!("the composite view has colour, not values: write it as PNG");
+        }
+        if self.fbo_values.is_none() {
+            let tex = Rc::new(Texture::new(&self.gl, TextureDesc::target("FBO(values)", self.width, self.height, glow::R32F))?);
+            self.fbo_values = Some(FramebufferObject::new(&self.gl, Some(tex), None, 0, 0)?);
+        }
+        let fbo = self.fbo_values.as_ref().unwrap();
+        self.render_inner(Some(fbo), view, true);
+        let mut v = fbo.color_texture().unwrap().read_f32(0, 1);
+        flip_rows(&mut v, self.width as usize, self.height as usize);
+        if let Some(e) = crate::gl::take_error(&self.gl) {
+            bail!("{e} while rendering");
+        }
+        Ok(v)
+    }
+
+    /// Runs the frame's passes up to the AO chain without drawing the output (tests inspect buffers).
+    pub fn render_to_ao(&self) {
+        let shadow = self.shadow_matrix();
+        if self.light.shadow {
+            self.draw_shadow_map(&shadow);
+        }
+        self.draw_opaque(&shadow);
+        self.ao.run(&self.meshes, self.fbo_main.depth_texture().unwrap(), &self.camera, &self.ao_params);
+    }
+
+    /// Triangles of every opaque object in world space (for the ray-traced reference).
+    pub fn world_triangles(&self) -> Vec<[Vec3; 3]> {
+        let mut out = Vec::new();
+        for o in &self.objects {
+            let m = o.model();
+            if let Some(d) = self.meshes.data(&o.name) {
+                out.extend(d.triangles().map(|t| t.map(|p| m.transform_point3(p))));
+            }
+        }
+        out
+    }
+}
+
+fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
+    let (lo, hi) = data.bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO));
+    let mut b = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
+    for i in 0..8 {
+        let c = Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        );
+        let p = m.transform_point3(c);
+        b = (b.0.min(p), b.1.max(p));
+    }
+    b
+}
+
+/// The main FBO: RGBA16F colour + DEPTH_COMPONENT32 depth, compare mode off (the AO passes read raw depth).
+fn create_main_fbo(gl: &Gl, width: u32, height: u32) -> Result<FramebufferObject> {
+    let color = Rc::new(Texture::new(gl, TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F).filter(glow::LINEAR, glow::LINEAR))?);
+    let depth = Rc::new(Texture::new(gl, TextureDesc::target("FBO(main depth)", width, height, glow::DEPTH_COMPONENT32).compare(false))?);
+    FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)
+}
+
+fn create_bloom_fbos(gl: &Gl, width: u32, height: u32) -> Result<Vec<FramebufferObject>> {
+    let mut out = Vec::new();
+    let (mut w, mut h) = (width / 2, height / 2);
+    while out.len() < BLOOM_LEVELS && w >= 4 && h >= 4 {
+        let tex = Rc::new(Texture::new(gl, TextureDesc::target(&format!("FBO(bloom {})", out.len()), w, h, glow::RGBA16F).filter(glow::LINEAR, glow::LINEAR))?);
+        out.push(FramebufferObject::new(gl, Some(tex), None, 0, 0)?);
+        w /= 2;
+        h /= 2;
+    }
+    Ok(out)
+}
+
+/// Reads RGBA8 pixels of a framebuffer (`None` = default) and returns them top-down.
+pub fn read_rgba8(gl: &glow::Context, fbo: Option<glow::Framebuffer>, width: u32, height: u32) -> image::RgbaImage {
+    let mut data = vec![0u8; (width * height * 4) as usize];
+    unsafe {
+        gl.bind_framebuffer(glow::READ_FRAMEBUFFER, fbo);
+        if fbo.is_none() {
+            gl.read_buffer(glow::BACK);
+        }
+        gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
+        gl.read_pixels(0, 0, width as i32, height as i32, glow::RGBA, glow::UNSIGNED_BYTE, glow::PixelPackData::Slice(Some(&mut data)));
+        gl.bind_framebuffer(glow::READ_FRAMEBUFFER, None);
+    }
+    flip_rows(&mut data, (width * 4) as usize, height as usize);
+    image::RgbaImage::from_raw(width, height, data).expect("buffer size matches")
+}
+
+/// GL rows are bottom-up; images are top-down.
+pub fn flip_rows<T: Copy>(data: &mut [T], row_len: usize, rows: usize) {
+    for y in 0..rows / 2 {
+        let (a, b) = data.split_at_mut((rows - 1 - y) * row_len);
+        a[y * row_len..(y + 1) * row_len].swap_with_slice(&mut b[..row_len]);
+    }
+}
