@@ -71,6 +71,11 @@ void main()
   // The disc is round on screen: texture coordinates are stretched by the aspect ratio horizontally.
   vec2 aspectFix = vec2(size.y / size.x, 1);
 
+  // How much the depth changes per level-0 texel here, and the distance of this surface's plane
+  // from the camera (both for the mip bias below).
+  float slopePerTexel = abs(dpdx.z) + abs(dpdy.z);
+  float planeDistance = abs(dot(positionVS, normalVS));
+
   float occlusion = 0;
   if (!isSky && hasNormal) {
     for (int i = 0; i < int(samplingCount); ++i) {
@@ -78,18 +83,26 @@ void main()
       float angle = ratio * (spiralTurns * twoPi) + startAngle;
       vec2 unitOffset = vec2(cos(angle), sin(angle));
       vec2 uv = inTexcoord + ratio * radiusTS * unitOffset * aspectFix;
+      // Rebuild the sample at the centre of the texel whose depth is read: off-centre, a sloped
+      // surface would look up to half a texel's slope above itself.
+      uv = (floor(clamp(uv, vec2(0), vec2(1)) * size) + 0.5) / size;
 
       // Farther samples read coarser levels (fewer cache misses). The level must really exist and
       // the sampler must use a mipmap filter, or every level reads level 0.
       int mipLevel = clamp(findMSB(int(ratio * pixelsSS)) - logMipOffset, 0, maxMipLevel);
-      float sampleDepth = textureLod(texDepth, clamp(uv, vec2(0), vec2(1)), float(mipLevel)).x;
+      float sampleDepth = textureLod(texDepth, uv, float(mipLevel)).x;
       vec3 samplePositionVS = GetViewSpacePosition(uv, sampleDepth);
 
       vec3 v = samplePositionVS - positionVS;
       float vn = dot(v, normalVS);
       float vv = dot(v, v);
       float f = max(RADIUS2 - vv, 0);
-      occlusion += f * f * f * max((vn - BIAS) / (vv + 0.001), 0);
+      // A level-L texel holds the nearest depth of its 2^L x 2^L block, up to (2^L - 1) texels of
+      // slope closer than the surface at uv; along the normal that fakes a height of
+      // depthError * planeDistance / sampleDepth. Raise the bias by it so slopes don't self-occlude.
+      float depthError = float((1 << mipLevel) - 1) * slopePerTexel;
+      float mipBias = depthError * planeDistance / max(sampleDepth, 1e-6);
+      occlusion += f * f * f * max((vn - BIAS - mipBias) / (vv + 0.001), 0);
     }
   }
   occlusion = min(1.0, occlusion / samplingCount * INTENSITY);

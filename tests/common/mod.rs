@@ -1,0 +1,79 @@
+//! Shared helpers for the GL tests: a headless context per test thread, scenes built from generated
+//! meshes in a temporary folder, and projection of world points to pixels.
+#![allow(dead_code)]
+
+use glam::{Vec3, Vec4};
+use opengl3d::context::HeadlessContext;
+use opengl3d::engine::Engine;
+use opengl3d::gl::mesh::MeshData;
+use opengl3d::res::ResDirs;
+use opengl3d::scene::{shapes, ObjectDesc, SceneDesc};
+use std::path::{Path, PathBuf};
+
+pub fn context() -> HeadlessContext {
+    HeadlessContext::new().expect("headless GL 4.5 context (Mesa EGL)")
+}
+
+/// A fresh temporary folder under the target dir (kept for inspection after a failure).
+pub fn temp_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Writes `mesh` as OBJ into `dir` and returns an object description for it.
+pub fn object(dir: &Path, name: &str, mesh: &MeshData, position: Vec3, scale: Vec3) -> ObjectDesc {
+    let p = dir.join(format!("{name}.obj"));
+    if !p.exists() {
+        std::fs::write(&p, shapes::to_obj(mesh, name)).unwrap();
+    }
+    ObjectDesc { mesh: p.display().to_string(), position: position.to_array(), rotation: [0.0; 3], scale: scale.to_array(), color: [0.8, 0.8, 0.8, 1.0] }
+}
+
+/// A floor (y = 0) and a wall (the plane x = 0, extending to −x): a 90° crease along the Z axis.
+pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> SceneDesc {
+    let mut wall = MeshData::default();
+    shapes::add_box(&mut wall, Vec3::new(-1.0, 0.0, -50.0), Vec3::new(0.0, 4.0, 50.0));
+    let mut s = SceneDesc::default();
+    s.objects.push(object(dir, "floor", &shapes::ground(50.0, 10), Vec3::ZERO, Vec3::ONE));
+    s.objects.push(object(dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
+    s.camera.eye = eye.to_array();
+    s.camera.target = target.to_array();
+    s.output.width = w;
+    s.output.height = h;
+    s.bloom.enabled = false;
+    s
+}
+
+pub fn engine(ctx: &HeadlessContext, scene: &SceneDesc) -> Engine {
+    Engine::new(&ctx.gl, ResDirs::default(), scene, scene.output.width, scene.output.height).expect("engine")
+}
+
+/// Pixel (x, y from the bottom, GL convention) of world point `p` in a `w`×`h` buffer.
+pub fn project(engine: &Engine, p: Vec3, w: u32, h: u32) -> (usize, usize) {
+    let (ew, eh) = engine.size();
+    let clip = engine.camera.view_projection(ew as f32 / eh as f32) * Vec4::new(p.x, p.y, p.z, 1.0);
+    let ndc = clip.truncate() / clip.w;
+    let x = ((ndc.x * 0.5 + 0.5) * w as f32).floor().clamp(0.0, w as f32 - 1.0) as usize;
+    let y = ((ndc.y * 0.5 + 0.5) * h as f32).floor().clamp(0.0, h as f32 - 1.0) as usize;
+    (x, y)
+}
+
+/// Mean of a square window of radius `r` around (x, y) in a row-major bottom-up buffer.
+pub fn mean_around(data: &[f32], w: usize, h: usize, x: usize, y: usize, r: usize) -> f32 {
+    let mut sum = 0.0;
+    let mut n = 0.0;
+    for yy in y.saturating_sub(r)..=(y + r).min(h - 1) {
+        for xx in x.saturating_sub(r)..=(x + r).min(w - 1) {
+            sum += data[yy * w + xx];
+            n += 1.0;
+        }
+    }
+    sum / n
+}
+
+pub fn assert_finite(label: &str, data: &[f32]) {
+    let bad = data.iter().filter(|v| !v.is_finite()).count();
+    assert_eq!(bad, 0, "{label}: {bad} of {} values are NaN or Inf", data.len());
+}
