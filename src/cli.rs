@@ -25,8 +25,26 @@ pub enum Command {
     Render(RenderArgs),
     /// Open the interactive window (WASD + mouse, Space: AO, V: view, B: blur, R: reload shaders).
     Window(WindowArgs),
+    /// Run the AO lesson at step N (1-12) showing that step's view, or `lesson start DIR` to write a
+    /// starting folder whose lesson shaders are stubs.
+    Lesson(LessonArgs),
     /// Regenerate the demo meshes in Res/meshes.
     GenDemo,
+}
+
+#[derive(Args, Debug)]
+pub struct LessonArgs {
+    /// Step number 1-12, or `start`.
+    pub step: String,
+    /// With `start`: the folder to create (then use it with --res).
+    pub dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Render the step's view to --out instead of opening a window.
+    #[arg(long)]
+    pub headless: bool,
+    #[arg(long, default_value = "out/lesson.png")]
+    pub out: PathBuf,
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -163,6 +181,7 @@ pub fn run() -> Result<()> {
             let scene = load_scene(&args.scene, &res)?;
             context::window::run(res, scene, args.view, args.frames, args.screenshot)
         }
+        Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
         Some(Command::GenDemo) => {
             let dir = crate::res::project_res_dir().join("meshes");
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {
@@ -232,4 +251,36 @@ pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
         _ => bail!("{}: output must end in .png or .pfm", out.display()),
     }
     Ok(())
+}
+
+fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
+    if args.step == "start" {
+        let dir = args.dir.as_ref().context("usage: opengl3d lesson start DIR")?;
+        let files = crate::lesson::start(dir)?;
+        println!("wrote {} files to {}", files.len(), dir.display());
+        println!("the four lesson shaders are stubs: follow lessons/README.md, then run");
+        println!("  opengl3d lesson 2 --res {}", dir.display());
+        return Ok(());
+    }
+    let n: u32 = args.step.parse().map_err(|_| anyhow::anyhow!("'{}' is not a step: use 1-{} or start", args.step, crate::lesson::STEPS))?;
+    let view = crate::lesson::view_for_step(n)?;
+    if let Some(dir) = student {
+        for f in crate::lesson::shaders_for_step(n) {
+            if !dir.join(f).is_file() {
+                eprintln!("note: {} has no {f}; using the project's own", dir.display());
+            }
+        }
+    }
+    println!("lesson step {n}: showing {}", view.label());
+    let scene = load_scene(&args.scene, res)?;
+    if args.headless || !context::display_available() {
+        let ctx = HeadlessContext::new()?;
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, scene.output.width, scene.output.height)?;
+        engine.view = view;
+        write_view(&mut engine, view, &args.out)?;
+        println!("wrote {}", args.out.display());
+        Ok(())
+    } else {
+        context::window::run(res.clone(), scene, view, None, None)
+    }
 }

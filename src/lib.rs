@@ -12,5 +12,6 @@ pub mod context;
 pub mod engine;
 pub mod gl;
 pub mod io;
+pub mod lesson;
 pub mod res;
 pub mod scene;

@@ -139,3 +139,31 @@ fn window_frame_under_xvfb_equals_headless_render() {
     let max_diff = win.pixels().zip(hl.pixels()).flat_map(|(a, b)| (0..3).map(move |i| (a[i] as i32 - b[i] as i32).abs())).max().unwrap();
     assert_eq!(max_diff, 0, "window and headless frames differ (max channel difference {max_diff})");
 }
+
+#[test]
+fn lesson_start_writes_stubs_that_run_and_never_overwrites() {
+    let dir = common::temp_dir("lesson-start");
+    let student = dir.join("my-res");
+    std::fs::create_dir_all(&student).unwrap();
+    std::fs::write(student.join("sao.frag"), "// my own work\n").unwrap();
+    let o = run(&["lesson", "start", student.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(student.join("sao.frag")).unwrap(), "// my own work\n", "existing work must be kept");
+    let stub = std::fs::read_to_string(student.join("sao_restore_depth.frag")).unwrap();
+    assert!(stub.contains("Lesson step 2"), "restore shader should be the stub");
+    std::fs::remove_file(student.join("sao.frag")).unwrap();
+    let o = run(&["lesson", "start", student.to_str().unwrap()]);
+    assert!(o.status.success());
+    // With the stubs every step runs; step 2's linear depth is the stub's 0 everywhere.
+    let out = dir.join("step2.pfm");
+    let o = run(&["--res", student.to_str().unwrap(), "lesson", "2", "--headless", "--width", "32", "--height", "24", "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let (_, _, _, v) = read_pfm(&out).unwrap();
+    assert!(v.iter().all(|d| *d == 0.0));
+    for step in ["6", "11", "12"] {
+        let out = dir.join(format!("step{step}.png"));
+        let o = run(&["--res", student.to_str().unwrap(), "lesson", step, "--headless", "--width", "32", "--height", "24", "--out", out.to_str().unwrap()]);
+        assert!(o.status.success(), "step {step}: {}", stderr(&o));
+    }
+    assert_fails_naming(&["lesson", "13", "--headless"], &["1 to 12"]);
+}
