@@ -10,7 +10,11 @@ use glam::Vec3;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser, Debug)]
-#[command(name = "opengl3d", version, about = "OpenGL 4.5 course engine with screen-space ambient occlusion (SAO)")]
+#[command(
+    name = "opengl3d",
+    version,
+    about = "OpenGL 4.5 course engine with screen-space ambient occlusion (SAO)"
+)]
 pub struct Cli {
     /// Folder searched for shaders and meshes before the project's own Res/ (a student's working copy).
     #[arg(long, global = true, value_name = "DIR")]
@@ -28,8 +32,31 @@ pub enum Command {
     /// Run the AO lesson at step N (1-12) showing that step's view, or `lesson start DIR` to write a
     /// starting folder whose lesson shaders are stubs.
     Lesson(LessonArgs),
+    /// World-space ray-traced ambient occlusion of the scene on the CPU (the ground truth).
+    Reference(ReferenceArgs),
     /// Regenerate the demo meshes in Res/meshes.
     GenDemo,
+}
+
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Ray length (m): a ray that hits nothing within it counts as open.
+    #[arg(long, default_value_t = 1.0)]
+    pub radius: f32,
+    /// Cosine-weighted rays per pixel.
+    #[arg(long, default_value_t = 256)]
+    pub rays: u32,
+    /// Ambient obscurance (hits weighted by (t/R)²) instead of binary visibility.
+    #[arg(long)]
+    pub obscurance: bool,
+    /// Output: .pfm (raw visibility) or .png.
+    #[arg(long, default_value = "out/reference.pfm")]
+    pub out: PathBuf,
+    /// Folder of cached results (keyed by scene, camera, size and parameters).
+    #[arg(long, default_value = "out/reference-cache")]
+    pub cache: PathBuf,
 }
 
 #[derive(Args, Debug)]
@@ -93,6 +120,9 @@ pub struct RenderArgs {
     /// Output file: .png (8-bit) or .pfm (raw floats).
     #[arg(long, default_value = "out/frame.png")]
     pub out: PathBuf,
+    /// Print each pass of the frame (name, group, ms, draw calls) as JSON on stdout.
+    #[arg(long)]
+    pub stats: bool,
 }
 
 #[derive(Args, Debug)]
@@ -112,7 +142,11 @@ pub struct WindowArgs {
 fn parse_vec3(s: &str) -> Result<Vec3, String> {
     let v: Vec<f32> = s
         .split(',')
-        .map(|p| p.trim().parse::<f32>().map_err(|_| format!("'{p}' is not a number")))
+        .map(|p| {
+            p.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("'{p}' is not a number"))
+        })
         .collect::<Result<_, _>>()?;
     if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
         return Err(format!("expected three finite numbers 'x,y,z', got '{s}'"));
@@ -123,7 +157,9 @@ fn parse_vec3(s: &str) -> Result<Vec3, String> {
 /// Loads the scene the arguments describe, with overrides applied and checked.
 pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
     let mut desc = if let Some(obj) = &args.obj {
-        let path = obj.canonicalize().with_context(|| format!("{}: OBJ file not found", obj.display()))?;
+        let path = obj
+            .canonicalize()
+            .with_context(|| format!("{}: OBJ file not found", obj.display()))?;
         let mut d = SceneDesc::single_obj(&path.display().to_string());
         // Frame the object unless the camera is given.
         let data = crate::gl::mesh::MeshData::load_obj(&path)?;
@@ -139,7 +175,9 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
     } else {
         let path = match &args.scene {
             Some(p) => p.clone(),
-            None => res.find("scenes/demo.toml").map_err(|e| anyhow::anyhow!("{e}"))?,
+            None => res
+                .find("scenes/demo.toml")
+                .map_err(|e| anyhow::anyhow!("{e}"))?,
         };
         SceneDesc::load(&path)?
     };
@@ -182,6 +220,7 @@ pub fn run() -> Result<()> {
             context::window::run(res, scene, args.view, args.frames, args.screenshot)
         }
         Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
+        Some(Command::Reference(args)) => reference(&res, &args),
         Some(Command::GenDemo) => {
             let dir = crate::res::project_res_dir().join("meshes");
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {
@@ -194,12 +233,19 @@ pub fn run() -> Result<()> {
                 let scene = load_scene(&SceneArgs::default(), &res)?;
                 match context::window::run(res.clone(), scene, View::Composite, None, None) {
                     Ok(()) => return Ok(()),
-                    Err(e) => eprintln!("could not open a window ({e:#}); rendering headless instead"),
+                    Err(e) => {
+                        eprintln!("could not open a window ({e:#}); rendering headless instead")
+                    }
                 }
             } else {
                 eprintln!("no display found (DISPLAY / WAYLAND_DISPLAY unset): rendering one frame headless");
             }
-            let args = RenderArgs { scene: SceneArgs::default(), view: View::Composite, out: PathBuf::from("out/frame.png") };
+            let args = RenderArgs {
+                scene: SceneArgs::default(),
+                view: View::Composite,
+                out: PathBuf::from("out/frame.png"),
+                stats: false,
+            };
             render(&res, &args)
         }
     }
@@ -209,30 +255,68 @@ pub fn run() -> Result<()> {
 pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let scene = load_scene(&args.scene, res)?;
     let ctx = HeadlessContext::new()?;
-    let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, scene.output.width, scene.output.height)?;
+    let mut engine = Engine::new(
+        &ctx.gl,
+        res.clone(),
+        &scene,
+        scene.output.width,
+        scene.output.height,
+    )?;
     engine.view = args.view;
+    engine.collect_stats = args.stats;
     write_view(&mut engine, args.view, &args.out)?;
-    println!("wrote {} ({}x{}, {}, {})", args.out.display(), scene.output.width, scene.output.height, args.view.label(), ctx.renderer);
+    let msg = format!(
+        "wrote {} ({}x{}, {}, {})",
+        args.out.display(),
+        scene.output.width,
+        scene.output.height,
+        args.view.label(),
+        ctx.renderer
+    );
+    if args.stats {
+        eprintln!("{msg}");
+        let timing = if ctx.software {
+            "wall clock around glFinish (llvmpipe)"
+        } else {
+            "wall clock around glFinish"
+        };
+        let json = serde_json::json!({ "renderer": ctx.renderer, "timing": timing, "passes": engine.last_stats() });
+        println!("{json}");
+    } else {
+        println!("{msg}");
+    }
     Ok(())
 }
 
 /// Renders `view` and writes it as PNG or PFM depending on the extension.
 pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
     if let Some(dir) = out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).with_context(|| format!("cannot create folder {}", dir.display()))?;
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("cannot create folder {}", dir.display()))?;
     }
-    let ext = out.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
+    let ext = out
+        .extension()
+        .and_then(|e| e.to_str())
+        .map(str::to_ascii_lowercase);
     let (w, h) = engine.size();
     match (ext.as_deref(), view) {
         (Some("png"), View::Composite) => {
             let img = engine.render_image()?;
-            image::DynamicImage::ImageRgba8(img).to_rgb8().save(out).with_context(|| format!("cannot write {}", out.display()))?;
+            image::DynamicImage::ImageRgba8(img)
+                .to_rgb8()
+                .save(out)
+                .with_context(|| format!("cannot write {}", out.display()))?;
         }
         (Some("png"), View::LinearDepth) => {
             let v = engine.render_values(view)?;
             // Scale by the farthest non-sky distance so the picture uses the whole grey range.
             let far = engine.camera.far;
-            let max = v.iter().copied().filter(|d| *d < far).fold(0.0f32, f32::max).max(1e-6);
+            let max = v
+                .iter()
+                .copied()
+                .filter(|d| *d < far)
+                .fold(0.0f32, f32::max)
+                .max(1e-6);
             crate::io::gray_to_png(out, w, h, &v, 1.0 / max)?;
         }
         (Some("png"), _) => {
@@ -241,7 +325,10 @@ pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
         }
         (Some("pfm"), View::Composite) => {
             let img = engine.render_image()?;
-            let rgb: Vec<f32> = img.pixels().flat_map(|p| [p[0], p[1], p[2]].map(|c| c as f32 / 255.0)).collect();
+            let rgb: Vec<f32> = img
+                .pixels()
+                .flat_map(|p| [p[0], p[1], p[2]].map(|c| c as f32 / 255.0))
+                .collect();
             crate::io::write_pfm_rgb(out, w, h, &rgb)?;
         }
         (Some("pfm"), _) => {
@@ -255,19 +342,31 @@ pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
 
 fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
     if args.step == "start" {
-        let dir = args.dir.as_ref().context("usage: opengl3d lesson start DIR")?;
+        let dir = args
+            .dir
+            .as_ref()
+            .context("usage: opengl3d lesson start DIR")?;
         let files = crate::lesson::start(dir)?;
         println!("wrote {} files to {}", files.len(), dir.display());
         println!("the four lesson shaders are stubs: follow lessons/README.md, then run");
         println!("  opengl3d lesson 2 --res {}", dir.display());
         return Ok(());
     }
-    let n: u32 = args.step.parse().map_err(|_| anyhow::anyhow!("'{}' is not a step: use 1-{} or start", args.step, crate::lesson::STEPS))?;
+    let n: u32 = args.step.parse().map_err(|_| {
+        anyhow::anyhow!(
+            "'{}' is not a step: use 1-{} or start",
+            args.step,
+            crate::lesson::STEPS
+        )
+    })?;
     let view = crate::lesson::view_for_step(n)?;
     if let Some(dir) = student {
         for f in crate::lesson::shaders_for_step(n) {
             if !dir.join(f).is_file() {
-                eprintln!("note: {} has no {f}; using the project's own", dir.display());
+                eprintln!(
+                    "note: {} has no {f}; using the project's own",
+                    dir.display()
+                );
             }
         }
     }
@@ -275,7 +374,13 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !context::display_available() {
         let ctx = HeadlessContext::new()?;
-        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, scene.output.width, scene.output.height)?;
+        let mut engine = Engine::new(
+            &ctx.gl,
+            res.clone(),
+            &scene,
+            scene.output.width,
+            scene.output.height,
+        )?;
         engine.view = view;
         write_view(&mut engine, view, &args.out)?;
         println!("wrote {}", args.out.display());
@@ -283,4 +388,55 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     } else {
         context::window::run(res.clone(), scene, view, None, None)
     }
+}
+
+fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
+    use crate::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
+    let scene = load_scene(&args.scene, res)?;
+    if !(args.radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
+        bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
+    }
+    let tris = scene.world_triangles(res)?;
+    let bvh = Scene::new(tris)?;
+    let c = &scene.camera;
+    let cam = RefCamera {
+        eye: c.eye.into(),
+        target: c.target.into(),
+        up: Vec3::Y,
+        fov_y_deg: c.fov_y,
+        near: c.near,
+        far: c.far,
+    };
+    let params = RefParams {
+        radius: args.radius,
+        rays: args.rays,
+        variant: if args.obscurance {
+            AoVariant::Obscurance
+        } else {
+            AoVariant::Visibility
+        },
+        seed: 1,
+        progress: true,
+    };
+    let (w, h) = (scene.output.width, scene.output.height);
+    let img = load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?;
+    if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)?;
+    }
+    match args.out.extension().and_then(|e| e.to_str()) {
+        Some("pfm") => crate::io::write_pfm_gray(&args.out, w, h, &img.ao)?,
+        Some("png") => crate::io::gray_to_png(&args.out, w, h, &img.ao, 1.0)?,
+        _ => bail!("{}: output must end in .png or .pfm", args.out.display()),
+    }
+    let sky = img.sky_mask().iter().filter(|s| **s).count();
+    println!(
+        "wrote {} ({w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
+        args.out.display(),
+        bvh.triangle_count(),
+        args.radius,
+        args.rays,
+        img.mean_std_error(),
+        sky
+    );
+    Ok(())
 }

@@ -10,7 +10,12 @@ use std::path::{Path, PathBuf};
 pub const STEPS: u32 = 12;
 
 /// The four shaders the lesson has students write.
-pub const LESSON_SHADERS: [&str; 4] = ["sao_restore_depth.frag", "sao_down_sampling.frag", "sao.frag", "sao_blur.frag"];
+pub const LESSON_SHADERS: [&str; 4] = [
+    "sao_restore_depth.frag",
+    "sao_down_sampling.frag",
+    "sao.frag",
+    "sao_blur.frag",
+];
 
 /// What step `n` shows: steps 1–5 the linear depth (restore + down-sampling only), 6–10 the raw SAO
 /// buffer, 11 the blurred buffer, 12 the composite.
@@ -38,14 +43,16 @@ pub fn shaders_for_step(n: u32) -> &'static [&'static str] {
 /// replaced by stubs that compile. Existing files are never overwritten. Returns the files written.
 pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
     let res = project_res_dir();
-    std::fs::create_dir_all(dir.join("scenes")).with_context(|| format!("cannot create {}", dir.display()))?;
+    std::fs::create_dir_all(dir.join("scenes"))
+        .with_context(|| format!("cannot create {}", dir.display()))?;
     let mut written = Vec::new();
     let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
         if to.exists() {
             eprintln!("kept existing {}", to.display());
             return Ok(());
         }
-        std::fs::copy(&from, &to).with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))?;
+        std::fs::copy(&from, &to)
+            .with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))?;
         written.push(to);
         Ok(())
     };

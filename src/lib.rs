@@ -13,5 +13,6 @@ pub mod engine;
 pub mod gl;
 pub mod io;
 pub mod lesson;
+pub mod reference;
 pub mod res;
 pub mod scene;

@@ -16,7 +16,10 @@ pub fn project_res_dir() -> PathBuf {
         return built;
     }
     // A moved binary: look beside it and in the working directory.
-    if let Some(dir) = std::env::current_exe().ok().and_then(|p| p.parent().map(|d| d.join("Res"))) {
+    if let Some(dir) = std::env::current_exe()
+        .ok()
+        .and_then(|p| p.parent().map(|d| d.join("Res")))
+    {
         if dir.is_dir() {
             return dir;
         }
@@ -26,7 +29,9 @@ pub fn project_res_dir() -> PathBuf {
 
 impl Default for ResDirs {
     fn default() -> Self {
-        ResDirs { dirs: vec![project_res_dir()] }
+        ResDirs {
+            dirs: vec![project_res_dir()],
+        }
     }
 }
 
@@ -57,7 +62,12 @@ impl ResDirs {
         }
         Err(ProgramError::NotFound {
             name: name.to_string(),
-            searched: self.dirs.iter().map(|d| d.display().to_string()).collect::<Vec<_>>().join(", "),
+            searched: self
+                .dirs
+                .iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(", "),
         })
     }
     /// Resolves a data path: absolute or existing relative to the working directory as given, else in `Res/`.

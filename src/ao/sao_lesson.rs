@@ -7,7 +7,9 @@
 
 use crate::config::{self, loc, SAO_DEPTH_LEVELS};
 use crate::engine::Camera;
-use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc};
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc,
+};
 use crate::res::ResDirs;
 use anyhow::Result;
 use glow::HasContext;
@@ -31,7 +33,15 @@ pub struct SaoParams {
 
 impl Default for SaoParams {
     fn default() -> Self {
-        SaoParams { enabled: true, radius: 1.0, bias: 0.012, intensity: 5.0, samples: 11, spiral_turns: 3, blur: true }
+        SaoParams {
+            enabled: true,
+            radius: 1.0,
+            bias: 0.012,
+            intensity: 5.0,
+            samples: 11,
+            spiral_turns: 3,
+            blur: true,
+        }
     }
 }
 
@@ -41,7 +51,11 @@ impl SaoParams {
         let mut notes = Vec::new();
         let mut fix = |name: &str, v: &mut f32, lo: f32, hi: f32| {
             let old = *v;
-            *v = if v.is_finite() { v.clamp(lo, hi) } else { lo.max(hi.min(1.0)) };
+            *v = if v.is_finite() {
+                v.clamp(lo, hi)
+            } else {
+                lo.max(hi.min(1.0))
+            };
             if *v != old {
                 notes.push(format!("AO {name} {old} is out of range, using {}", *v));
             }
@@ -50,7 +64,11 @@ impl SaoParams {
         fix("bias", &mut self.bias, 0.0, 10.0);
         fix("intensity", &mut self.intensity, 0.0, 1000.0);
         if !(1..=256).contains(&self.samples) {
-            notes.push(format!("AO samples {} is out of range, using {}", self.samples, self.samples.clamp(1, 256)));
+            notes.push(format!(
+                "AO samples {} is out of range, using {}",
+                self.samples,
+                self.samples.clamp(1, 256)
+            ));
             self.samples = self.samples.clamp(1, 256);
         }
         if !(1..=64).contains(&self.spiral_turns) {
@@ -80,15 +98,41 @@ pub fn half_size(width: u32, height: u32) -> (u32, u32) {
 }
 
 impl SaoLesson {
-    pub fn new(gl: &Gl, res: &ResDirs, width: u32, height: u32, camera: &Camera, params: &SaoParams) -> Result<SaoLesson, anyhow::Error> {
+    pub fn new(
+        gl: &Gl,
+        res: &ResDirs,
+        width: u32,
+        height: u32,
+        camera: &Camera,
+        params: &SaoParams,
+    ) -> Result<SaoLesson, anyhow::Error> {
         let planes = camera_defines(camera);
-        let prog_restore_depth = ProgramObject::from_res(gl, res, "simple.vert", "sao_restore_depth.frag", &planes)?;
-        let prog_down_sampling = ProgramObject::from_res(gl, res, "simple.vert", "sao_down_sampling.frag", &planes)?;
-        let prog_sao = ProgramObject::from_res(gl, res, "simple.vert", "sao.frag", &sao_defines(camera, params))?;
+        let prog_restore_depth =
+            ProgramObject::from_res(gl, res, "simple.vert", "sao_restore_depth.frag", &planes)?;
+        let prog_down_sampling =
+            ProgramObject::from_res(gl, res, "simple.vert", "sao_down_sampling.frag", &planes)?;
+        let prog_sao = ProgramObject::from_res(
+            gl,
+            res,
+            "simple.vert",
+            "sao.frag",
+            &sao_defines(camera, params),
+        )?;
         let prog_blur = ProgramObject::from_res(gl, res, "simple.vert", "sao_blur.frag", &planes)?;
         let prog_simple = ProgramObject::from_res(gl, res, "simple.vert", "simple.frag", &[])?;
         let (tex_depth, fbo_depth, fbo_sao, fbo_blur) = create_targets(gl, width, height)?;
-        Ok(SaoLesson { gl: gl.clone(), prog_restore_depth, prog_down_sampling, prog_sao, prog_blur, prog_simple, tex_depth, fbo_depth, fbo_sao, fbo_blur })
+        Ok(SaoLesson {
+            gl: gl.clone(),
+            prog_restore_depth,
+            prog_down_sampling,
+            prog_sao,
+            prog_blur,
+            prog_simple,
+            tex_depth,
+            fbo_depth,
+            fbo_sao,
+            fbo_blur,
+        })
     }
 
     /// Re-creates the half-size targets for a new main size.
@@ -105,7 +149,13 @@ impl SaoLesson {
     /// previous programs running.
     pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
         let mut errors = Vec::new();
-        for p in [&mut self.prog_restore_depth, &mut self.prog_down_sampling, &mut self.prog_sao, &mut self.prog_blur, &mut self.prog_simple] {
+        for p in [
+            &mut self.prog_restore_depth,
+            &mut self.prog_down_sampling,
+            &mut self.prog_sao,
+            &mut self.prog_blur,
+            &mut self.prog_simple,
+        ] {
             if force || p.sources_changed() {
                 if let Err(e) = p.reload() {
                     errors.push(e);
@@ -116,7 +166,11 @@ impl SaoLesson {
     }
 
     /// Makes the injected camera planes and sampling constants follow the scene.
-    pub fn update_defines(&mut self, camera: &Camera, params: &SaoParams) -> Result<(), ProgramError> {
+    pub fn update_defines(
+        &mut self,
+        camera: &Camera,
+        params: &SaoParams,
+    ) -> Result<(), ProgramError> {
         let planes = camera_defines(camera);
         self.prog_restore_depth.set_defines(&planes)?;
         self.prog_down_sampling.set_defines(&planes)?;
@@ -154,10 +208,12 @@ impl SaoLesson {
             // also readable (no feedback loop), keeping the lesson's texelFetch(…, mipLevel) valid.
             self.tex_depth.set_level_range(0, i as u32 - 1);
             self.fbo_depth[i].bind();
-            self.prog_down_sampling.set_i32(loc::SAO_MIP_LEVEL, i as i32 - 1);
+            self.prog_down_sampling
+                .set_i32(loc::SAO_MIP_LEVEL, i as i32 - 1);
             meshes.draw_plane_xy();
         }
-        self.tex_depth.set_level_range(0, self.tex_depth.levels() - 1);
+        self.tex_depth
+            .set_level_range(0, self.tex_depth.levels() - 1);
     }
 
     /// `sao.frag` → `texSAO` (occlusion, R8).
@@ -166,9 +222,20 @@ impl SaoLesson {
         let p = &self.prog_sao;
         let fov_scale = config::fov_scale(camera.fov_y_deg);
         let r = params.radius;
-        p.set_vec4(loc::SAO_INFO, [r * r, 0.5 * r * fov_scale, params.bias, params.intensity / r.powi(6)]);
+        p.set_vec4(
+            loc::SAO_INFO,
+            [
+                r * r,
+                0.5 * r * fov_scale,
+                params.bias,
+                params.intensity / r.powi(6),
+            ],
+        );
         // The aspect ratio of the buffer actually sampled (the course used a fixed 1920×1080).
-        let (w, h) = (self.fbo_depth[0].width() as f32, self.fbo_depth[0].height() as f32);
+        let (w, h) = (
+            self.fbo_depth[0].width() as f32,
+            self.fbo_depth[0].height() as f32,
+        );
         p.set_vec2(loc::SAO_NDC_TO_VIEW, [w / h / fov_scale, 1.0 / fov_scale]);
         p.use_program();
         self.fbo_sao.bind();
@@ -207,7 +274,8 @@ impl SaoLesson {
         unsafe {
             self.gl.enable(glow::BLEND);
             self.gl.blend_equation(glow::FUNC_ADD);
-            self.gl.blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+            self.gl
+                .blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
         }
         self.prog_simple.use_program();
         main.bind();
@@ -219,7 +287,13 @@ impl SaoLesson {
     }
 
     /// The whole chain: restore → down-sample → SAO → blur (when on).
-    pub fn run(&self, meshes: &MeshBuffer, main_depth: &Texture, camera: &Camera, params: &SaoParams) {
+    pub fn run(
+        &self,
+        meshes: &MeshBuffer,
+        main_depth: &Texture,
+        camera: &Camera,
+        params: &SaoParams,
+    ) {
         self.restore_depth(meshes, main_depth);
         self.down_sample(meshes);
         self.compute_sao(meshes, camera, params);
@@ -230,7 +304,10 @@ impl SaoLesson {
 }
 
 fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
-    vec![("CAMERA_NEAR", glsl_float(camera.near)), ("CAMERA_FAR", glsl_float(camera.far))]
+    vec![
+        ("CAMERA_NEAR", glsl_float(camera.near)),
+        ("CAMERA_FAR", glsl_float(camera.far)),
+    ]
 }
 
 fn sao_defines(camera: &Camera, params: &SaoParams) -> Vec<(&'static str, String)> {
@@ -250,7 +327,12 @@ pub fn glsl_float(v: f32) -> String {
     }
 }
 
-type Targets = (Rc<Texture>, Vec<FramebufferObject>, FramebufferObject, FramebufferObject);
+type Targets = (
+    Rc<Texture>,
+    Vec<FramebufferObject>,
+    FramebufferObject,
+    FramebufferObject,
+);
 
 fn create_targets(gl: &Gl, width: u32, height: u32) -> Result<Targets> {
     let (hw, hh) = half_size(width, height);
@@ -264,10 +346,16 @@ fn create_targets(gl: &Gl, width: u32, height: u32) -> Result<Targets> {
     let fbo_depth = (0..tex_depth.levels())
         .map(|level| FramebufferObject::new(gl, Some(tex_depth.clone()), None, level, 0))
         .collect::<Result<Vec<_>>>()?;
-    let tex_sao = Rc::new(Texture::new(gl, TextureDesc::target("FBO(sao)", hw, hh, glow::R8))?);
+    let tex_sao = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(sao)", hw, hh, glow::R8),
+    )?);
     let fbo_sao = FramebufferObject::new(gl, Some(tex_sao), None, 0, 0)?;
     // Linear filter: the composite upsamples this half-size texture to the main size.
-    let tex_blur = Rc::new(Texture::new(gl, TextureDesc::target("FBO(sao blur)", hw, hh, glow::R8).filter(glow::LINEAR, glow::LINEAR))?);
+    let tex_blur = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(sao blur)", hw, hh, glow::R8).filter(glow::LINEAR, glow::LINEAR),
+    )?);
     let fbo_blur = FramebufferObject::new(gl, Some(tex_blur), None, 0, 0)?;
     let _ = unsafe { gl.get_error() };
     Ok((tex_depth, fbo_depth, fbo_sao, fbo_blur))

@@ -58,7 +58,11 @@ impl HeadlessContext {
         Err(anyhow!(
             "could not create a headless OpenGL 4.5 core context on any EGL device ({} found): {}",
             devices.len(),
-            if errors.is_empty() { "none usable".to_string() } else { errors.join("; ") }
+            if errors.is_empty() {
+                "none usable".to_string()
+            } else {
+                errors.join("; ")
+            }
         ))
     }
 
@@ -86,6 +90,12 @@ impl HeadlessContext {
         let gl = glow::Context::from_loader_function_cstr(|s: &CStr| display.get_proc_address(s));
         let gl = Rc::new(gl);
         let renderer = crate::engine::describe_renderer(&gl);
-        Ok(HeadlessContext { gl, renderer, software, _context: context, _display: display })
+        Ok(HeadlessContext {
+            gl,
+            renderer,
+            software,
+            _context: context,
+            _display: display,
+        })
     }
 }

@@ -11,7 +11,9 @@ use crate::scene::SceneDesc;
 use anyhow::{anyhow, Context as _, Result};
 use glam::Vec3;
 use glutin::config::{ConfigTemplateBuilder, GlConfig};
-use glutin::context::{ContextApi, ContextAttributesBuilder, GlProfile, PossiblyCurrentContext, Version};
+use glutin::context::{
+    ContextApi, ContextAttributesBuilder, GlProfile, PossiblyCurrentContext, Version,
+};
 use glutin::display::GetGlDisplay;
 use glutin::prelude::*;
 use glutin::surface::{Surface, SwapInterval, WindowSurface};
@@ -58,7 +60,13 @@ struct App {
 }
 
 /// Opens the window and runs until it is closed (or `frames` frames were shown).
-pub fn run(res: ResDirs, scene: SceneDesc, view: View, frames: Option<u32>, screenshot: Option<PathBuf>) -> Result<()> {
+pub fn run(
+    res: ResDirs,
+    scene: SceneDesc,
+    view: View,
+    frames: Option<u32>,
+    screenshot: Option<PathBuf>,
+) -> Result<()> {
     let event_loop = EventLoop::new().context("cannot connect to the display")?;
     let fwd = (Vec3::from(scene.camera.target) - Vec3::from(scene.camera.eye)).normalize_or_zero();
     let mut app = App {
@@ -92,12 +100,16 @@ impl App {
         let attrs = Window::default_attributes()
             .with_title("opengl3d")
             .with_inner_size(PhysicalSize::new(w, h));
-        let template = ConfigTemplateBuilder::new().with_alpha_size(8).with_depth_size(0);
+        let template = ConfigTemplateBuilder::new()
+            .with_alpha_size(8)
+            .with_depth_size(0);
         let (window, config) = DisplayBuilder::new()
             .with_window_attributes(Some(attrs))
             .build(event_loop, template, |configs| {
                 // Prefer single-sampled configs: the engine renders into its own FBOs.
-                configs.min_by_key(|c| (c.num_samples(), c.srgb_capable() as u8)).expect("at least one GL config")
+                configs
+                    .min_by_key(|c| (c.num_samples(), c.srgb_capable() as u8))
+                    .expect("at least one GL config")
             })
             .map_err(|e| anyhow!("cannot create a GL window: {e}"))?;
         let window = window.ok_or_else(|| anyhow!("no window was created"))?;
@@ -107,17 +119,35 @@ impl App {
             .with_profile(GlProfile::Core)
             .with_context_api(ContextApi::OpenGl(Some(Version::new(4, 5))))
             .build(Some(raw));
-        let not_current = unsafe { display.create_context(&config, &ctx_attrs) }.context("cannot create an OpenGL 4.5 core context")?;
-        let surface_attrs = window.build_surface_attributes(Default::default()).map_err(|e| anyhow!("{e}"))?;
-        let surface = unsafe { display.create_window_surface(&config, &surface_attrs) }.context("window surface")?;
+        let not_current = unsafe { display.create_context(&config, &ctx_attrs) }
+            .context("cannot create an OpenGL 4.5 core context")?;
+        let surface_attrs = window
+            .build_surface_attributes(Default::default())
+            .map_err(|e| anyhow!("{e}"))?;
+        let surface = unsafe { display.create_window_surface(&config, &surface_attrs) }
+            .context("window surface")?;
         let context = not_current.make_current(&surface).context("make current")?;
-        let _ = surface.set_swap_interval(&context, SwapInterval::Wait(NonZeroU32::new(1).unwrap()));
-        let gl = Rc::new(unsafe { glow::Context::from_loader_function_cstr(|s: &CStr| display.get_proc_address(s)) });
+        let _ =
+            surface.set_swap_interval(&context, SwapInterval::Wait(NonZeroU32::new(1).unwrap()));
+        let gl = Rc::new(unsafe {
+            glow::Context::from_loader_function_cstr(|s: &CStr| display.get_proc_address(s))
+        });
         log::info!("window context: {}", crate::engine::describe_renderer(&gl));
         let size = window.inner_size();
-        let mut engine = Engine::new(&gl, self.res.clone(), &self.scene, size.width.max(1), size.height.max(1))?;
+        let mut engine = Engine::new(
+            &gl,
+            self.res.clone(),
+            &self.scene,
+            size.width.max(1),
+            size.height.max(1),
+        )?;
         engine.view = self.start_view;
-        Ok(GlWindowState { engine, surface, context, window })
+        Ok(GlWindowState {
+            engine,
+            surface,
+            context,
+            window,
+        })
     }
 
     fn update_title(&self) {
@@ -144,7 +174,11 @@ impl App {
                 eprintln!("shaders rebuilt");
             }
         } else {
-            let text = errors.iter().map(|e| e.to_string()).collect::<Vec<_>>().join("\n");
+            let text = errors
+                .iter()
+                .map(|e| e.to_string())
+                .collect::<Vec<_>>()
+                .join("\n");
             if self.shader_error.as_deref() != Some(text.as_str()) {
                 eprintln!("{text}\n(the last working shaders keep running)");
             }
@@ -155,7 +189,11 @@ impl App {
 
     fn move_camera(&mut self, dt: f32) {
         let Some(s) = self.state.as_mut() else { return };
-        let fwd = Vec3::new(self.yaw.sin() * self.pitch.cos(), self.pitch.sin(), -self.yaw.cos() * self.pitch.cos());
+        let fwd = Vec3::new(
+            self.yaw.sin() * self.pitch.cos(),
+            self.pitch.sin(),
+            -self.yaw.cos() * self.pitch.cos(),
+        );
         let right = fwd.cross(Vec3::Y).normalize_or_zero();
         let mut d = Vec3::ZERO;
         for (k, v) in [
@@ -170,14 +208,20 @@ impl App {
                 d += v;
             }
         }
-        let speed = if self.keys.contains(&KeyCode::ShiftLeft) { 8.0 } else { 3.0 };
+        let speed = if self.keys.contains(&KeyCode::ShiftLeft) {
+            8.0
+        } else {
+            3.0
+        };
         let cam = &mut s.engine.camera;
         cam.eye += d.normalize_or_zero() * speed * dt;
         cam.target = cam.eye + fwd;
     }
 
     fn draw(&mut self) -> Result<()> {
-        let Some(s) = self.state.as_mut() else { return Ok(()) };
+        let Some(s) = self.state.as_mut() else {
+            return Ok(());
+        };
         if self.minimised {
             return Ok(());
         }
@@ -226,22 +270,32 @@ impl ApplicationHandler for App {
                 // Minimised windows report 0×0: keep the targets and stop drawing until restored.
                 self.minimised = size.width == 0 || size.height == 0;
                 if let (Some(s), false) = (self.state.as_mut(), self.minimised) {
-                    s.surface.resize(&s.context, NonZeroU32::new(size.width).unwrap(), NonZeroU32::new(size.height).unwrap());
+                    s.surface.resize(
+                        &s.context,
+                        NonZeroU32::new(size.width).unwrap(),
+                        NonZeroU32::new(size.height).unwrap(),
+                    );
                     if let Err(e) = s.engine.resize(size.width, size.height) {
                         eprintln!("resize to {}x{} failed: {e:#}", size.width, size.height);
                     }
                 }
             }
             WindowEvent::KeyboardInput { event, .. } => {
-                let PhysicalKey::Code(code) = event.physical_key else { return };
+                let PhysicalKey::Code(code) = event.physical_key else {
+                    return;
+                };
                 if event.state == ElementState::Pressed {
                     self.keys.insert(code);
                     if !event.repeat {
                         if let Some(s) = self.state.as_mut() {
                             match code {
                                 KeyCode::Escape => event_loop.exit(),
-                                KeyCode::Space => s.engine.ao_params.enabled = !s.engine.ao_params.enabled,
-                                KeyCode::KeyV | KeyCode::Tab => s.engine.view = s.engine.view.next(),
+                                KeyCode::Space => {
+                                    s.engine.ao_params.enabled = !s.engine.ao_params.enabled
+                                }
+                                KeyCode::KeyV | KeyCode::Tab => {
+                                    s.engine.view = s.engine.view.next()
+                                }
                                 KeyCode::KeyB => s.engine.ao_params.blur = !s.engine.ao_params.blur,
                                 KeyCode::KeyR => self.check_reload(true),
                                 _ => {}

@@ -15,7 +15,14 @@ pub struct Camera {
 
 impl Default for Camera {
     fn default() -> Self {
-        Camera { eye: Vec3::new(0.0, 1.6, 6.0), target: Vec3::ZERO, up: Vec3::Y, fov_y_deg: config::FOV_Y_DEG, near: config::NEAR, far: config::FAR }
+        Camera {
+            eye: Vec3::new(0.0, 1.6, 6.0),
+            target: Vec3::ZERO,
+            up: Vec3::Y,
+            fov_y_deg: config::FOV_Y_DEG,
+            near: config::NEAR,
+            far: config::FAR,
+        }
     }
 }
 
@@ -36,7 +43,12 @@ impl Camera {
     }
     /// The course's projection: OpenGL clip space, depth D = 0.5·(−z·B + A)/(−z) + 0.5.
     pub fn projection(&self, aspect: f32) -> Mat4 {
-        Mat4::perspective_rh_gl(self.fov_y_deg.to_radians(), aspect.max(1e-6), self.near, self.far)
+        Mat4::perspective_rh_gl(
+            self.fov_y_deg.to_radians(),
+            aspect.max(1e-6),
+            self.near,
+            self.far,
+        )
     }
     pub fn view_projection(&self, aspect: f32) -> Mat4 {
         self.projection(aspect) * self.view()

@@ -18,10 +18,20 @@ pub struct GameObject {
 
 impl GameObject {
     pub fn model(&self) -> Mat4 {
-        let r = Quat::from_euler(EulerRot::YXZ, self.rotation.y.to_radians(), self.rotation.x.to_radians(), self.rotation.z.to_radians());
-        Mat4::from_scale_rotation_translation(self.scale, r, self.position)
+        model_matrix(self.position, self.rotation, self.scale)
     }
     pub fn is_transparent(&self) -> bool {
         self.color.w < 0.999
     }
+}
+
+/// Model matrix from position, Euler degrees (yaw Y, pitch X, roll Z) and scale.
+pub fn model_matrix(position: Vec3, rotation_deg: Vec3, scale: Vec3) -> Mat4 {
+    let r = Quat::from_euler(
+        EulerRot::YXZ,
+        rotation_deg.y.to_radians(),
+        rotation_deg.x.to_radians(),
+        rotation_deg.z.to_radians(),
+    );
+    Mat4::from_scale_rotation_translation(scale, r, position)
 }

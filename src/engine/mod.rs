@@ -10,7 +10,10 @@ pub use game_object::GameObject;
 
 use crate::ao::{SaoLesson, SaoParams};
 use crate::config::{binding, loc};
-use crate::gl::{mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc};
+use crate::gl::{
+    mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture,
+    TextureDesc,
+};
 use crate::res::ResDirs;
 use crate::scene::{BloomDesc, LightDesc, SceneDesc};
 use anyhow::{bail, Context as _, Result};
@@ -60,6 +63,17 @@ pub fn describe_renderer(gl: &glow::Context) -> String {
     }
 }
 
+/// Time and draw calls of one pass of the last frame (`render --stats`).
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct PassStat {
+    pub name: &'static str,
+    /// shadow, opaque, ao, sky, transparent, bloom or post.
+    pub group: &'static str,
+    /// Wall-clock milliseconds between two glFinish calls (timer queries do not measure real time on llvmpipe).
+    pub ms: f64,
+    pub draw_calls: u64,
+}
+
 const SHADOW_MAP_SIZE: u32 = 2048;
 const BLOOM_LEVELS: usize = 6;
 
@@ -92,11 +106,20 @@ pub struct Engine {
     /// Scratch R32F target for value read-back.
     fbo_values: Option<FramebufferObject>,
     black: Texture,
+    /// When on, each pass is bracketed by glFinish and timed (slower; for `--stats` and benchmarks).
+    pub collect_stats: bool,
+    stats: std::cell::RefCell<Vec<PassStat>>,
 }
 
 impl Engine {
     /// Loads every shader and mesh of `scene` and creates targets of `width`×`height`.
-    pub fn new(gl: &Gl, res: ResDirs, scene: &SceneDesc, width: u32, height: u32) -> Result<Engine> {
+    pub fn new(
+        gl: &Gl,
+        res: ResDirs,
+        scene: &SceneDesc,
+        width: u32,
+        height: u32,
+    ) -> Result<Engine> {
         scene.validate()?;
         let (width, height) = (width.max(1), height.max(1));
         let camera = Camera {
@@ -126,7 +149,9 @@ impl Engine {
         let mut objects = Vec::new();
         for (i, o) in scene.objects.iter().enumerate() {
             let path = res.resolve_data(&o.mesh);
-            let mesh = meshes.load_obj(&o.mesh, &path).with_context(|| format!("scene object {} ({})", i + 1, o.mesh))?;
+            let mesh = meshes
+                .load_obj(&o.mesh, &path)
+                .with_context(|| format!("scene object {} ({})", i + 1, o.mesh))?;
             let data = meshes.data(&o.mesh).unwrap();
             let mut obj = GameObject {
                 name: o.mesh.clone(),
@@ -148,9 +173,14 @@ impl Engine {
         let fbo_main = create_main_fbo(gl, width, height)?;
         let shadow_tex = Rc::new(Texture::new(
             gl,
-            TextureDesc::target("FBO(shadow)", SHADOW_MAP_SIZE, SHADOW_MAP_SIZE, glow::DEPTH_COMPONENT32)
-                .filter(glow::LINEAR, glow::LINEAR)
-                .compare(true),
+            TextureDesc::target(
+                "FBO(shadow)",
+                SHADOW_MAP_SIZE,
+                SHADOW_MAP_SIZE,
+                glow::DEPTH_COMPONENT32,
+            )
+            .filter(glow::LINEAR, glow::LINEAR)
+            .compare(true),
         )?);
         let fbo_shadow = FramebufferObject::new(gl, None, Some(shadow_tex), 0, 0)?;
         let fbo_bloom = create_bloom_fbos(gl, width, height)?;
@@ -184,6 +214,8 @@ impl Engine {
             fbo_output: None,
             fbo_values: None,
             black,
+            collect_stats: false,
+            stats: Default::default(),
         };
         if let Some(e) = crate::gl::take_error(gl) {
             bail!("{e} while creating the engine");
@@ -248,7 +280,9 @@ impl Engine {
     }
 
     fn light_direction(&self) -> Vec3 {
-        Vec3::from(self.light.direction).try_normalize().unwrap_or(Vec3::Y)
+        Vec3::from(self.light.direction)
+            .try_normalize()
+            .unwrap_or(Vec3::Y)
     }
 
     /// Light's view-projection: an orthographic box around every object's bounds.
@@ -262,14 +296,22 @@ impl Engine {
         let center = (lo + hi) * 0.5;
         let r = ((hi - lo).length() * 0.5).max(0.1);
         let dir = self.light_direction();
-        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 { Vec3::Z } else { Vec3::Y };
+        let up = if dir.cross(Vec3::Y).length_squared() < 1e-6 {
+            Vec3::Z
+        } else {
+            Vec3::Y
+        };
         let view = Mat4::look_at_rh(center + dir * r * 2.0, center, up);
         Mat4::orthographic_rh_gl(-r, r, -r, r, 0.01, r * 4.0) * view
     }
 
     fn draw_objects(&self, prog: &ProgramObject, transparent: bool) {
         self.meshes.bind();
-        for o in self.objects.iter().filter(|o| o.is_transparent() == transparent) {
+        for o in self
+            .objects
+            .iter()
+            .filter(|o| o.is_transparent() == transparent)
+        {
             prog.set_mat4(loc::MODEL, &o.model());
             prog.set_vec4(loc::OBJECT_COLOR, o.color.to_array());
             self.meshes.draw(&o.mesh);
@@ -298,7 +340,10 @@ impl Engine {
 
     fn setup_standard(&self, shadow: &Mat4) {
         let p = &self.prog_standard;
-        p.set_mat4(loc::VIEW_PROJECTION, &self.camera.view_projection(self.aspect()));
+        p.set_mat4(
+            loc::VIEW_PROJECTION,
+            &self.camera.view_projection(self.aspect()),
+        );
         p.set_mat4(loc::SHADOW_MATRIX, shadow);
         p.set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
         p.set_vec3(loc::LIGHT_COLOR, self.light.color);
@@ -306,10 +351,16 @@ impl Engine {
         p.set_i32(loc::SHADOW_ENABLED, self.light.shadow as i32);
         p.use_program();
         if self.light.shadow {
-            self.fbo_shadow.depth_texture().unwrap().bind(binding::SHADOW_MAP);
+            self.fbo_shadow
+                .depth_texture()
+                .unwrap()
+                .bind(binding::SHADOW_MAP);
         } else {
             // A sampler2DShadow must not see a non-depth texture even when unused.
-            self.fbo_shadow.depth_texture().unwrap().bind(binding::SHADOW_MAP);
+            self.fbo_shadow
+                .depth_texture()
+                .unwrap()
+                .bind(binding::SHADOW_MAP);
         }
     }
 
@@ -325,7 +376,8 @@ impl Engine {
             self.gl.disable(glow::CULL_FACE);
             self.gl.clear_color(0.0, 0.0, 0.0, 1.0);
             self.gl.clear_depth_f32(1.0);
-            self.gl.clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            self.gl
+                .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
         }
         self.setup_standard(shadow);
         self.draw_objects(&self.prog_standard, false);
@@ -342,7 +394,8 @@ impl Engine {
         }
         let inv = self.camera.view_projection(self.aspect()).inverse();
         self.prog_sky.set_mat4(loc::INVERSE_VIEW_PROJECTION, &inv);
-        self.prog_sky.set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
+        self.prog_sky
+            .set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
         self.prog_sky.use_program();
         self.meshes.draw_plane_xy();
     }
@@ -355,7 +408,8 @@ impl Engine {
         unsafe {
             self.gl.enable(glow::BLEND);
             self.gl.blend_equation(glow::FUNC_ADD);
-            self.gl.blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+            self.gl
+                .blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
             self.gl.enable(glow::DEPTH_TEST);
             self.gl.depth_func(glow::LEQUAL);
             self.gl.depth_mask(false);
@@ -375,7 +429,8 @@ impl Engine {
             self.gl.disable(glow::CULL_FACE);
             self.gl.disable(glow::BLEND);
         }
-        self.prog_bloom_bright.set_f32(loc::BLOOM_THRESHOLD, self.bloom.threshold);
+        self.prog_bloom_bright
+            .set_f32(loc::BLOOM_THRESHOLD, self.bloom.threshold);
         self.prog_bloom_bright.use_program();
         self.fbo_bloom[0].bind();
         self.fbo_main.color_texture().unwrap().bind(0);
@@ -405,7 +460,8 @@ impl Engine {
             Some(f) => f.bind(),
             None => unsafe {
                 self.gl.bind_framebuffer(glow::FRAMEBUFFER, None);
-                self.gl.viewport(0, 0, self.width as i32, self.height as i32);
+                self.gl
+                    .viewport(0, 0, self.width as i32, self.height as i32);
             },
         }
         unsafe {
@@ -421,7 +477,10 @@ impl Engine {
         self.bind_output(target);
         self.prog_image.set_mat3(loc::COLOR_MATRIX, &Mat3::IDENTITY);
         let bloom_on = self.bloom.enabled && !self.fbo_bloom.is_empty();
-        self.prog_image.set_f32(loc::BLOOM_STRENGTH, if bloom_on { self.bloom.strength } else { 0.0 });
+        self.prog_image.set_f32(
+            loc::BLOOM_STRENGTH,
+            if bloom_on { self.bloom.strength } else { 0.0 },
+        );
         self.prog_image.use_program();
         self.fbo_main.color_texture().unwrap().bind(0);
         if bloom_on {
@@ -441,7 +500,8 @@ impl Engine {
             _ => (1, self.ao.result_texture(self.ao_params.blur), 1.0),
         };
         self.prog_debug.set_i32(loc::DEBUG_VIEW_MODE, mode);
-        self.prog_debug.set_f32(loc::DEBUG_VIEW_SCALE, if raw_values { 1.0 } else { scale });
+        self.prog_debug
+            .set_f32(loc::DEBUG_VIEW_SCALE, if raw_values { 1.0 } else { scale });
         self.prog_debug.use_program();
         tex.bind(0);
         self.meshes.draw_plane_xy();
@@ -452,45 +512,87 @@ impl Engine {
         self.render_inner(target, self.view, false);
     }
 
+    /// Passes of the last frame rendered with `collect_stats` on.
+    pub fn last_stats(&self) -> Vec<PassStat> {
+        self.stats.borrow().clone()
+    }
+
+    fn pass(&self, name: &'static str, group: &'static str, f: impl FnOnce()) {
+        if !self.collect_stats {
+            f();
+            return;
+        }
+        unsafe { self.gl.finish() };
+        let calls = self.meshes.draw_calls.get();
+        let t = std::time::Instant::now();
+        f();
+        unsafe { self.gl.finish() };
+        let ms = t.elapsed().as_secs_f64() * 1e3;
+        self.stats.borrow_mut().push(PassStat {
+            name,
+            group,
+            ms,
+            draw_calls: self.meshes.draw_calls.get() - calls,
+        });
+    }
+
+    /// One frame. Passes whose output is not used are skipped: no shadow pass without a
+    /// shadow-casting light, no AO passes with AO off, only restore + down-sampling for the
+    /// linear-depth view, no transparent pass without transparent objects, no bloom chain when off.
     fn render_inner(&self, target: Option<&FramebufferObject>, view: View, raw_values: bool) {
+        self.stats.borrow_mut().clear();
         let shadow = self.shadow_matrix();
         let need_ao = self.ao_params.enabled || view != View::Composite;
         if self.light.shadow && view == View::Composite {
-            self.draw_shadow_map(&shadow);
+            self.pass("shadow map", "shadow", || self.draw_shadow_map(&shadow));
         }
-        self.draw_opaque(&shadow);
+        self.pass("opaque", "opaque", || self.draw_opaque(&shadow));
         if need_ao {
             let depth = self.fbo_main.depth_texture().unwrap();
-            match view {
-                View::LinearDepth => {
-                    self.ao.restore_depth(&self.meshes, depth);
-                    self.ao.down_sample(&self.meshes);
+            let (m, ao) = (&self.meshes, &self.ao);
+            self.pass("sao restore depth", "ao", || ao.restore_depth(m, depth));
+            self.pass("sao down sampling", "ao", || ao.down_sample(m));
+            if view != View::LinearDepth {
+                self.pass("sao", "ao", || {
+                    ao.compute_sao(m, &self.camera, &self.ao_params)
+                });
+                if self.ao_params.blur && view != View::AoRaw {
+                    self.pass("sao blur", "ao", || ao.blur(m));
                 }
-                View::AoRaw => {
-                    let mut p = self.ao_params;
-                    p.blur = false;
-                    self.ao.run(&self.meshes, depth, &self.camera, &p);
-                }
-                _ => self.ao.run(&self.meshes, depth, &self.camera, &self.ao_params),
             }
             if view == View::Composite {
-                self.ao.composite(&self.meshes, &self.fbo_main, self.ao_params.blur);
+                self.pass("sao composite", "ao", || {
+                    ao.composite(m, &self.fbo_main, self.ao_params.blur)
+                });
             }
         }
         if view != View::Composite {
-            self.draw_debug_view(target, view, raw_values);
+            self.pass("debug view", "post", || {
+                self.draw_debug_view(target, view, raw_values)
+            });
             return;
         }
-        self.draw_sky();
-        self.draw_transparent(&shadow);
-        self.draw_bloom();
-        self.draw_image_processing(target);
+        self.pass("sky", "sky", || self.draw_sky());
+        if self.objects.iter().any(|o| o.is_transparent()) {
+            self.pass("transparent", "transparent", || {
+                self.draw_transparent(&shadow)
+            });
+        }
+        if self.bloom.enabled && !self.fbo_bloom.is_empty() {
+            self.pass("bloom", "bloom", || self.draw_bloom());
+        }
+        self.pass("image processing", "post", || {
+            self.draw_image_processing(target)
+        });
     }
 
     /// Renders into the headless RGBA8 output and reads it back (rows top-down).
     pub fn render_image(&mut self) -> Result<image::RgbaImage> {
         if self.fbo_output.is_none() {
-            let tex = Rc::new(Texture::new(&self.gl, TextureDesc::target("FBO(output)", self.width, self.height, glow::RGBA8))?);
+            let tex = Rc::new(Texture::new(
+                &self.gl,
+                TextureDesc::target("FBO(output)", self.width, self.height, glow::RGBA8),
+            )?);
             self.fbo_output = Some(FramebufferObject::new(&self.gl, Some(tex), None, 0, 0)?);
         }
         let out = self.fbo_output.as_ref().unwrap();
@@ -509,7 +611,10 @@ impl Engine {
             bail!("the composite view has colour, not values: write it as PNG");
         }
         if self.fbo_values.is_none() {
-            let tex = Rc::new(Texture::new(&self.gl, TextureDesc::target("FBO(values)", self.width, self.height, glow::R32F))?);
+            let tex = Rc::new(Texture::new(
+                &self.gl,
+                TextureDesc::target("FBO(values)", self.width, self.height, glow::R32F),
+            )?);
             self.fbo_values = Some(FramebufferObject::new(&self.gl, Some(tex), None, 0, 0)?);
         }
         let fbo = self.fbo_values.as_ref().unwrap();
@@ -529,7 +634,12 @@ impl Engine {
             self.draw_shadow_map(&shadow);
         }
         self.draw_opaque(&shadow);
-        self.ao.run(&self.meshes, self.fbo_main.depth_texture().unwrap(), &self.camera, &self.ao_params);
+        self.ao.run(
+            &self.meshes,
+            self.fbo_main.depth_texture().unwrap(),
+            &self.camera,
+            &self.ao_params,
+        );
     }
 
     /// Triangles of every opaque object in world space (for the ray-traced reference).
@@ -562,8 +672,16 @@ fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
 
 /// The main FBO: RGBA16F colour + DEPTH_COMPONENT32 depth, compare mode off (the AO passes read raw depth).
 fn create_main_fbo(gl: &Gl, width: u32, height: u32) -> Result<FramebufferObject> {
-    let color = Rc::new(Texture::new(gl, TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F).filter(glow::LINEAR, glow::LINEAR))?);
-    let depth = Rc::new(Texture::new(gl, TextureDesc::target("FBO(main depth)", width, height, glow::DEPTH_COMPONENT32).compare(false))?);
+    let color = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F)
+            .filter(glow::LINEAR, glow::LINEAR),
+    )?);
+    let depth = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(main depth)", width, height, glow::DEPTH_COMPONENT32)
+            .compare(false),
+    )?);
     FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)
 }
 
@@ -571,7 +689,11 @@ fn create_bloom_fbos(gl: &Gl, width: u32, height: u32) -> Result<Vec<Framebuffer
     let mut out = Vec::new();
     let (mut w, mut h) = (width / 2, height / 2);
     while out.len() < BLOOM_LEVELS && w >= 4 && h >= 4 {
-        let tex = Rc::new(Texture::new(gl, TextureDesc::target(&format!("FBO(bloom {})", out.len()), w, h, glow::RGBA16F).filter(glow::LINEAR, glow::LINEAR))?);
+        let tex = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target(&format!("FBO(bloom {})", out.len()), w, h, glow::RGBA16F)
+                .filter(glow::LINEAR, glow::LINEAR),
+        )?);
         out.push(FramebufferObject::new(gl, Some(tex), None, 0, 0)?);
         w /= 2;
         h /= 2;
@@ -580,7 +702,12 @@ fn create_bloom_fbos(gl: &Gl, width: u32, height: u32) -> Result<Vec<Framebuffer
 }
 
 /// Reads RGBA8 pixels of a framebuffer (`None` = default) and returns them top-down.
-pub fn read_rgba8(gl: &glow::Context, fbo: Option<glow::Framebuffer>, width: u32, height: u32) -> image::RgbaImage {
+pub fn read_rgba8(
+    gl: &glow::Context,
+    fbo: Option<glow::Framebuffer>,
+    width: u32,
+    height: u32,
+) -> image::RgbaImage {
     let mut data = vec![0u8; (width * height * 4) as usize];
     unsafe {
         gl.bind_framebuffer(glow::READ_FRAMEBUFFER, fbo);
@@ -588,7 +715,15 @@ pub fn read_rgba8(gl: &glow::Context, fbo: Option<glow::Framebuffer>, width: u32
             gl.read_buffer(glow::BACK);
         }
         gl.pixel_store_i32(glow::PACK_ALIGNMENT, 1);
-        gl.read_pixels(0, 0, width as i32, height as i32, glow::RGBA, glow::UNSIGNED_BYTE, glow::PixelPackData::Slice(Some(&mut data)));
+        gl.read_pixels(
+            0,
+            0,
+            width as i32,
+            height as i32,
+            glow::RGBA,
+            glow::UNSIGNED_BYTE,
+            glow::PixelPackData::Slice(Some(&mut data)),
+        );
         gl.bind_framebuffer(glow::READ_FRAMEBUFFER, None);
     }
     flip_rows(&mut data, (width * 4) as usize, height as usize);

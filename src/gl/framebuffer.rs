@@ -31,20 +31,43 @@ impl FramebufferObject {
             (None, None) => bail!("framebuffer needs at least one attachment"),
         };
         unsafe {
-            let id = gl.create_named_framebuffer().map_err(|e| anyhow::anyhow!("glCreateFramebuffers: {e}"))?;
+            let id = gl
+                .create_named_framebuffer()
+                .map_err(|e| anyhow::anyhow!("glCreateFramebuffers: {e}"))?;
             if let Some(c) = &color {
                 if color_level >= c.levels() {
-                    bail!("framebuffer: '{}' has no level {color_level}", c.desc().name);
+                    bail!(
+                        "framebuffer: '{}' has no level {color_level}",
+                        c.desc().name
+                    );
                 }
-                gl.named_framebuffer_texture(Some(id), glow::COLOR_ATTACHMENT0, Some(c.id()), color_level as i32);
+                gl.named_framebuffer_texture(
+                    Some(id),
+                    glow::COLOR_ATTACHMENT0,
+                    Some(c.id()),
+                    color_level as i32,
+                );
                 gl.named_framebuffer_draw_buffer(Some(id), glow::COLOR_ATTACHMENT0);
             } else {
                 gl.named_framebuffer_draw_buffer(Some(id), glow::NONE);
             }
             if let Some(d) = &depth {
-                gl.named_framebuffer_texture(Some(id), glow::DEPTH_ATTACHMENT, Some(d.id()), depth_level as i32);
+                gl.named_framebuffer_texture(
+                    Some(id),
+                    glow::DEPTH_ATTACHMENT,
+                    Some(d.id()),
+                    depth_level as i32,
+                );
             }
-            let fbo = FramebufferObject { gl: gl.clone(), id, color, depth, color_level, width, height };
+            let fbo = FramebufferObject {
+                gl: gl.clone(),
+                id,
+                color,
+                depth,
+                color_level,
+                width,
+                height,
+            };
             let status = gl.check_named_framebuffer_status(Some(id), glow::FRAMEBUFFER);
             if status != glow::FRAMEBUFFER_COMPLETE {
                 bail!("framebuffer is incomplete (status 0x{status:x})");
@@ -57,7 +80,8 @@ impl FramebufferObject {
     pub fn bind(&self) {
         unsafe {
             self.gl.bind_framebuffer(glow::FRAMEBUFFER, Some(self.id));
-            self.gl.viewport(0, 0, self.width as i32, self.height as i32);
+            self.gl
+                .viewport(0, 0, self.width as i32, self.height as i32);
         }
     }
     pub fn id(&self) -> glow::Framebuffer {

@@ -39,17 +39,30 @@ impl MeshData {
         if !path.is_file() {
             bail!("{shown}: OBJ file not found");
         }
-        let opts = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
-        let (models, _materials) = tobj::load_obj(path, &opts).with_context(|| format!("{shown}: malformed OBJ file"))?;
+        let opts = tobj::LoadOptions {
+            triangulate: true,
+            single_index: true,
+            ..Default::default()
+        };
+        let (models, _materials) =
+            tobj::load_obj(path, &opts).with_context(|| format!("{shown}: malformed OBJ file"))?;
         let mut out = MeshData::default();
         for m in &models {
             let mesh = &m.mesh;
             let n = mesh.positions.len() / 3;
             let base = out.vertices.len() as u32;
             for i in 0..n {
-                let position = [mesh.positions[3 * i], mesh.positions[3 * i + 1], mesh.positions[3 * i + 2]];
+                let position = [
+                    mesh.positions[3 * i],
+                    mesh.positions[3 * i + 1],
+                    mesh.positions[3 * i + 2],
+                ];
                 if position.iter().any(|v| !v.is_finite()) {
-                    bail!("{shown}: vertex {} of '{}' is not a finite number", i + 1, m.name);
+                    bail!(
+                        "{shown}: vertex {} of '{}' is not a finite number",
+                        i + 1,
+                        m.name
+                    );
                 }
                 let texcoord = if mesh.texcoords.len() >= 2 * n {
                     [mesh.texcoords[2 * i], mesh.texcoords[2 * i + 1]]
@@ -57,11 +70,19 @@ impl MeshData {
                     [0.0; 2]
                 };
                 let normal = if mesh.normals.len() >= 3 * n {
-                    [mesh.normals[3 * i], mesh.normals[3 * i + 1], mesh.normals[3 * i + 2]]
+                    [
+                        mesh.normals[3 * i],
+                        mesh.normals[3 * i + 1],
+                        mesh.normals[3 * i + 2],
+                    ]
                 } else {
                     [0.0; 3]
                 };
-                out.vertices.push(Vertex { position, texcoord, normal });
+                out.vertices.push(Vertex {
+                    position,
+                    texcoord,
+                    normal,
+                });
             }
             for &i in &mesh.indices {
                 if i as usize >= n {
@@ -122,13 +143,17 @@ pub struct MeshBuffer {
     vbo: glow::Buffer,
     ibo: glow::Buffer,
     meshes: HashMap<String, (StaticMesh, MeshData)>,
+    /// Draw calls issued so far (pass statistics read differences of it).
+    pub draw_calls: std::cell::Cell<u64>,
 }
 
 impl MeshBuffer {
     /// Creates the buffers and the full-screen `plane_xy` mesh every post pass draws.
     pub fn new(gl: &Gl) -> Result<MeshBuffer> {
         unsafe {
-            let vao = gl.create_named_vertex_array().map_err(|e| anyhow::anyhow!(e))?;
+            let vao = gl
+                .create_named_vertex_array()
+                .map_err(|e| anyhow::anyhow!(e))?;
             let vbo = gl.create_named_buffer().map_err(|e| anyhow::anyhow!(e))?;
             let ibo = gl.create_named_buffer().map_err(|e| anyhow::anyhow!(e))?;
             let stride = std::mem::size_of::<Vertex>() as i32;
@@ -139,7 +164,14 @@ impl MeshBuffer {
                 gl.vertex_array_attrib_format_f32(vao, loc, size, glow::FLOAT, false, offset);
                 gl.vertex_array_attrib_binding_f32(vao, loc, 0);
             }
-            let mut mb = MeshBuffer { gl: gl.clone(), vao, vbo, ibo, meshes: HashMap::new() };
+            let mut mb = MeshBuffer {
+                gl: gl.clone(),
+                vao,
+                vbo,
+                ibo,
+                meshes: HashMap::new(),
+                draw_calls: std::cell::Cell::new(0),
+            };
             mb.add("plane_xy", plane_xy())?;
             Ok(mb)
         }
@@ -150,7 +182,18 @@ impl MeshBuffer {
         if data.indices.is_empty() {
             bail!("mesh '{name}' has no triangles");
         }
-        self.meshes.insert(name.to_string(), (StaticMesh { mode: glow::TRIANGLES, count: 0, index_offset: 0, base_vertex: 0 }, data));
+        self.meshes.insert(
+            name.to_string(),
+            (
+                StaticMesh {
+                    mode: glow::TRIANGLES,
+                    count: 0,
+                    index_offset: 0,
+                    base_vertex: 0,
+                },
+                data,
+            ),
+        );
         self.upload();
         Ok(self.meshes[name].0)
     }
@@ -178,12 +221,20 @@ impl MeshBuffer {
         }
         let vbytes: Vec<u8> = vertices
             .iter()
-            .flat_map(|v| v.position.iter().chain(&v.texcoord).chain(&v.normal).flat_map(|f| f.to_ne_bytes()))
+            .flat_map(|v| {
+                v.position
+                    .iter()
+                    .chain(&v.texcoord)
+                    .chain(&v.normal)
+                    .flat_map(|f| f.to_ne_bytes())
+            })
             .collect();
         let ibytes: Vec<u8> = indices.iter().flat_map(|i| i.to_ne_bytes()).collect();
         unsafe {
-            self.gl.named_buffer_data_u8_slice(self.vbo, &vbytes, glow::STATIC_DRAW);
-            self.gl.named_buffer_data_u8_slice(self.ibo, &ibytes, glow::STATIC_DRAW);
+            self.gl
+                .named_buffer_data_u8_slice(self.vbo, &vbytes, glow::STATIC_DRAW);
+            self.gl
+                .named_buffer_data_u8_slice(self.ibo, &ibytes, glow::STATIC_DRAW);
         }
     }
 
@@ -198,8 +249,15 @@ impl MeshBuffer {
     }
     /// Draws one mesh (the VAO must be bound).
     pub fn draw(&self, mesh: &StaticMesh) {
+        self.draw_calls.set(self.draw_calls.get() + 1);
         unsafe {
-            self.gl.draw_elements_base_vertex(mesh.mode, mesh.count, glow::UNSIGNED_INT, mesh.index_offset, mesh.base_vertex)
+            self.gl.draw_elements_base_vertex(
+                mesh.mode,
+                mesh.count,
+                glow::UNSIGNED_INT,
+                mesh.index_offset,
+                mesh.base_vertex,
+            )
         }
     }
     /// Binds the VAO and draws the full-screen quad.
@@ -212,8 +270,15 @@ impl MeshBuffer {
 
 /// The course's `plane_xy`: a quad covering NDC [-1,1]², texcoords [0,1]².
 pub fn plane_xy() -> MeshData {
-    let v = |x: f32, y: f32| Vertex { position: [x, y, 0.0], texcoord: [(x + 1.0) * 0.5, (y + 1.0) * 0.5], normal: [0.0, 0.0, 1.0] };
-    MeshData { vertices: vec![v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)], indices: vec![0, 1, 2, 2, 3, 0] }
+    let v = |x: f32, y: f32| Vertex {
+        position: [x, y, 0.0],
+        texcoord: [(x + 1.0) * 0.5, (y + 1.0) * 0.5],
+        normal: [0.0, 0.0, 1.0],
+    };
+    MeshData {
+        vertices: vec![v(-1.0, -1.0), v(1.0, -1.0), v(1.0, 1.0), v(-1.0, 1.0)],
+        indices: vec![0, 1, 2, 2, 3, 0],
+    }
 }
 
 impl Drop for MeshBuffer {

@@ -12,7 +12,10 @@ use std::time::SystemTime;
 #[derive(Debug, thiserror::Error)]
 pub enum ProgramError {
     #[error("{path}: cannot read shader file: {source}")]
-    Io { path: String, source: std::io::Error },
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
     #[error("{path}: shader file is neither UTF-8 nor Shift-JIS text; save it as UTF-8")]
     Encoding { path: String },
     #[error("{path}: no '#version' line (the course's shaders start with '#version 450')")]
@@ -20,7 +23,11 @@ pub enum ProgramError {
     #[error("{}", .messages.join("\n"))]
     Compile { path: String, messages: Vec<String> },
     #[error("{vert} + {frag}: link error: {log}")]
-    Link { vert: String, frag: String, log: String },
+    Link {
+        vert: String,
+        frag: String,
+        log: String,
+    },
     #[error("shader '{name}' not found in {searched}")]
     NotFound { name: String, searched: String },
     #[error("GL error: {0}")]
@@ -52,9 +59,17 @@ pub struct ShaderSource {
 impl ShaderSource {
     pub fn load(path: &Path) -> Result<ShaderSource, ProgramError> {
         let shown = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| ProgramError::Io { path: shown.clone(), source })?;
-        let (text, was_shift_jis) = decode_shader_bytes(&bytes).ok_or(ProgramError::Encoding { path: shown })?;
-        Ok(ShaderSource { path: path.to_path_buf(), text, was_shift_jis })
+        let bytes = std::fs::read(path).map_err(|source| ProgramError::Io {
+            path: shown.clone(),
+            source,
+        })?;
+        let (text, was_shift_jis) =
+            decode_shader_bytes(&bytes).ok_or(ProgramError::Encoding { path: shown })?;
+        Ok(ShaderSource {
+            path: path.to_path_buf(),
+            text,
+            was_shift_jis,
+        })
     }
 }
 
@@ -74,11 +89,17 @@ pub fn decode_shader_bytes(bytes: &[u8]) -> Option<(String, bool)> {
 /// Prepares source for the GL compiler: inserts `#define`s after `#version` (with `#line` so that
 /// error lines still match the file) and blanks non-ASCII characters (Japanese comments), which GLSL
 /// does not allow, without moving any line.
-pub fn prepare_source(src: &ShaderSource, defines: &[(String, String)]) -> Result<String, ProgramError> {
+pub fn prepare_source(
+    src: &ShaderSource,
+    defines: &[(String, String)],
+) -> Result<String, ProgramError> {
     let mut out = String::with_capacity(src.text.len() + 128);
     let mut seen_version = false;
     for (i, line) in src.text.lines().enumerate() {
-        let ascii: String = line.chars().map(|c| if c.is_ascii() { c } else { ' ' }).collect();
+        let ascii: String = line
+            .chars()
+            .map(|c| if c.is_ascii() { c } else { ' ' })
+            .collect();
         out.push_str(&ascii);
         out.push('\n');
         if !seen_version && ascii.trim_start().starts_with("#version") {
@@ -91,7 +112,9 @@ pub fn prepare_source(src: &ShaderSource, defines: &[(String, String)]) -> Resul
         }
     }
     if !seen_version {
-        return Err(ProgramError::NoVersion { path: src.path.display().to_string() });
+        return Err(ProgramError::NoVersion {
+            path: src.path.display().to_string(),
+        });
     }
     Ok(out)
 }
@@ -120,7 +143,11 @@ fn parse_mesa(line: &str) -> Option<(u32, Option<u32>, String)> {
     let (head, msg) = line.split_once("): ")?;
     let (_, rest) = head.split_once(':')?;
     let (l, c) = rest.split_once('(')?;
-    Some((l.trim().parse().ok()?, c.trim().parse().ok(), msg.trim().to_string()))
+    Some((
+        l.trim().parse().ok()?,
+        c.trim().parse().ok(),
+        msg.trim().to_string(),
+    ))
 }
 
 fn parse_nvidia(line: &str) -> Option<(u32, Option<u32>, String)> {
@@ -170,11 +197,22 @@ impl ProgramObject {
     ) -> Result<ProgramObject, ProgramError> {
         let vert_path = res.find(vert)?;
         let frag_path = res.find(frag)?;
-        let defines: Vec<(String, String)> = defines.iter().map(|(k, v)| (k.to_string(), v.clone())).collect();
+        let defines: Vec<(String, String)> = defines
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.clone()))
+            .collect();
         let id = build(gl, &vert_path, &frag_path, &defines)?;
         let stamp = mtime(&vert_path).zip(mtime(&frag_path));
         let active = active_locations(gl, id);
-        Ok(ProgramObject { gl: gl.clone(), id, vert_path, frag_path, defines, stamp, active })
+        Ok(ProgramObject {
+            gl: gl.clone(),
+            id,
+            vert_path,
+            frag_path,
+            defines,
+            stamp,
+            active,
+        })
     }
 
     /// Rebuilds from the files; on failure the previous program stays in use and the error is returned.
@@ -189,7 +227,10 @@ impl ProgramObject {
 
     /// Changes the injected defines and rebuilds (keeps the old program on failure).
     pub fn set_defines(&mut self, defines: &[(&str, String)]) -> Result<(), ProgramError> {
-        let new: Vec<(String, String)> = defines.iter().map(|(k, v)| (k.to_string(), v.clone())).collect();
+        let new: Vec<(String, String)> = defines
+            .iter()
+            .map(|(k, v)| (k.to_string(), v.clone()))
+            .collect();
         if new == self.defines {
             return Ok(());
         }
@@ -233,39 +274,64 @@ impl ProgramObject {
         if !self.has_location(location) {
             return;
         }
-        unsafe { self.gl.program_uniform_1_i32(self.id, Some(&Self::loc(location)), v) }
+        unsafe {
+            self.gl
+                .program_uniform_1_i32(self.id, Some(&Self::loc(location)), v)
+        }
     }
     pub fn set_f32(&self, location: i32, v: f32) {
         if !self.has_location(location) {
             return;
         }
-        unsafe { self.gl.program_uniform_1_f32(self.id, Some(&Self::loc(location)), v) }
+        unsafe {
+            self.gl
+                .program_uniform_1_f32(self.id, Some(&Self::loc(location)), v)
+        }
     }
     pub fn set_vec2(&self, location: i32, v: [f32; 2]) {
         if !self.has_location(location) {
             return;
         }
-        unsafe { self.gl.program_uniform_2_f32(self.id, Some(&Self::loc(location)), v[0], v[1]) }
+        unsafe {
+            self.gl
+                .program_uniform_2_f32(self.id, Some(&Self::loc(location)), v[0], v[1])
+        }
     }
     pub fn set_vec3(&self, location: i32, v: [f32; 3]) {
         if !self.has_location(location) {
             return;
         }
-        unsafe { self.gl.program_uniform_3_f32(self.id, Some(&Self::loc(location)), v[0], v[1], v[2]) }
+        unsafe {
+            self.gl
+                .program_uniform_3_f32(self.id, Some(&Self::loc(location)), v[0], v[1], v[2])
+        }
     }
     pub fn set_vec4(&self, location: i32, v: [f32; 4]) {
         if !self.has_location(location) {
             return;
         }
-        unsafe { self.gl.program_uniform_4_f32(self.id, Some(&Self::loc(location)), v[0], v[1], v[2], v[3]) }
+        unsafe {
+            self.gl.program_uniform_4_f32(
+                self.id,
+                Some(&Self::loc(location)),
+                v[0],
+                v[1],
+                v[2],
+                v[3],
+            )
+        }
     }
     pub fn set_mat4(&self, location: i32, m: &glam::Mat4) {
         if !self.has_location(location) {
             return;
         }
         unsafe {
-            self.gl
-                .program_uniform_matrix_4_f32_slice(self.id, Some(&Self::loc(location)), false, &m.to_cols_array())
+            self.gl.program_uniform_matrix_4_f32_slice(
+                self.id,
+                Some(&Self::loc(location)),
+                false,
+                &m.to_cols_array(),
+            )
         }
     }
     pub fn set_mat3(&self, location: i32, m: &glam::Mat3) {
@@ -273,16 +339,28 @@ impl ProgramObject {
             return;
         }
         unsafe {
-            self.gl
-                .program_uniform_matrix_3_f32_slice(self.id, Some(&Self::loc(location)), false, &m.to_cols_array())
+            self.gl.program_uniform_matrix_3_f32_slice(
+                self.id,
+                Some(&Self::loc(location)),
+                false,
+                &m.to_cols_array(),
+            )
         }
     }
 }
 
-fn compile(gl: &glow::Context, kind: u32, path: &Path, defines: &[(String, String)]) -> Result<glow::Shader, ProgramError> {
+fn compile(
+    gl: &glow::Context,
+    kind: u32,
+    path: &Path,
+    defines: &[(String, String)],
+) -> Result<glow::Shader, ProgramError> {
     let src = ShaderSource::load(path)?;
     if src.was_shift_jis {
-        log::warn!("{}: decoded as Shift-JIS; consider saving it as UTF-8", path.display());
+        log::warn!(
+            "{}: decoded as Shift-JIS; consider saving it as UTF-8",
+            path.display()
+        );
     }
     let text = prepare_source(&src, defines)?;
     unsafe {
@@ -293,13 +371,21 @@ fn compile(gl: &glow::Context, kind: u32, path: &Path, defines: &[(String, Strin
             let log = gl.get_shader_info_log(sh);
             gl.delete_shader(sh);
             let shown = path.display().to_string();
-            return Err(ProgramError::Compile { messages: format_compile_log(&shown, &log), path: shown });
+            return Err(ProgramError::Compile {
+                messages: format_compile_log(&shown, &log),
+                path: shown,
+            });
         }
         Ok(sh)
     }
 }
 
-fn build(gl: &glow::Context, vert: &Path, frag: &Path, defines: &[(String, String)]) -> Result<glow::Program, ProgramError> {
+fn build(
+    gl: &glow::Context,
+    vert: &Path,
+    frag: &Path,
+    defines: &[(String, String)],
+) -> Result<glow::Program, ProgramError> {
     let vs = compile(gl, glow::VERTEX_SHADER, vert, defines)?;
     let fs = match compile(gl, glow::FRAGMENT_SHADER, frag, defines) {
         Ok(fs) => fs,

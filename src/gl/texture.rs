@@ -80,7 +80,12 @@ impl Texture {
     /// Creates an empty texture with `desc.levels` levels (clamped to what the size allows).
     pub fn new(gl: &Gl, mut desc: TextureDesc) -> Result<Texture> {
         if desc.width == 0 || desc.height == 0 {
-            bail!("texture '{}': size {}x{} is empty", desc.name, desc.width, desc.height);
+            bail!(
+                "texture '{}': size {}x{} is empty",
+                desc.name,
+                desc.width,
+                desc.height
+            );
         }
         let max_size = unsafe { gl.get_parameter_i32(glow::MAX_TEXTURE_SIZE) } as u32;
         if desc.width > max_size || desc.height > max_size {
@@ -104,10 +109,17 @@ impl Texture {
                 desc.width as i32,
                 desc.height as i32,
             );
-            let tex = Texture { gl: gl.clone(), id, desc };
+            let tex = Texture {
+                gl: gl.clone(),
+                id,
+                desc,
+            };
             tex.apply_sampling();
             if let Some(err) = super::take_error(gl) {
-                bail!("texture '{}': {err} while allocating storage", tex.desc.name);
+                bail!(
+                    "texture '{}': {err} while allocating storage",
+                    tex.desc.name
+                );
             }
             Ok(tex)
         }
@@ -159,7 +171,11 @@ impl Texture {
             gl.texture_parameter_i32(self.id, glow::TEXTURE_WRAP_T, d.wrap as i32);
             gl.texture_parameter_i32(self.id, glow::TEXTURE_BASE_LEVEL, 0);
             gl.texture_parameter_i32(self.id, glow::TEXTURE_MAX_LEVEL, d.levels as i32 - 1);
-            let mode = if d.compare { glow::COMPARE_REF_TO_TEXTURE } else { glow::NONE };
+            let mode = if d.compare {
+                glow::COMPARE_REF_TO_TEXTURE
+            } else {
+                glow::NONE
+            };
             gl.texture_parameter_i32(self.id, glow::TEXTURE_COMPARE_MODE, mode as i32);
             if d.compare {
                 gl.texture_parameter_i32(self.id, glow::TEXTURE_COMPARE_FUNC, glow::LEQUAL as i32);
@@ -170,18 +186,24 @@ impl Texture {
     /// Sets the four swizzle sources (e.g. R,G,B ← 0 and A ← R for the lesson's AO blend).
     pub fn set_swizzle(&self, rgba: [u32; 4]) {
         unsafe {
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_R, rgba[0] as i32);
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_G, rgba[1] as i32);
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_B, rgba[2] as i32);
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_A, rgba[3] as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_R, rgba[0] as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_G, rgba[1] as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_B, rgba[2] as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_SWIZZLE_A, rgba[3] as i32);
         }
     }
 
     /// Restricts which levels sampling may touch (used while a pass writes one level and reads another).
     pub fn set_level_range(&self, base: u32, max: u32) {
         unsafe {
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_BASE_LEVEL, base as i32);
-            self.gl.texture_parameter_i32(self.id, glow::TEXTURE_MAX_LEVEL, max as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_BASE_LEVEL, base as i32);
+            self.gl
+                .texture_parameter_i32(self.id, glow::TEXTURE_MAX_LEVEL, max as i32);
         }
     }
 
@@ -234,14 +256,21 @@ impl Texture {
             );
             self.gl.bind_texture(glow::TEXTURE_2D, None);
         }
-        bytes.chunks_exact(4).map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]])).collect()
+        bytes
+            .chunks_exact(4)
+            .map(|b| f32::from_ne_bytes([b[0], b[1], b[2], b[3]]))
+            .collect()
     }
 
     /// Uploads f32 data (one channel, or depth) to a level. Rows bottom-up. Used by tests and tools.
     pub fn upload_f32(&self, level: u32, channels: u32, data: &[f32]) -> Result<()> {
         let (w, h) = self.size_at(level);
         if data.len() != (w * h * channels) as usize {
-            bail!("texture '{}': upload of {} values to a {w}x{h}x{channels} level", self.desc.name, data.len());
+            bail!(
+                "texture '{}': upload of {} values to a {w}x{h}x{channels} level",
+                self.desc.name,
+                data.len()
+            );
         }
         let format = match (channels, is_depth_format(self.desc.internal_format)) {
             (_, true) => glow::DEPTH_COMPONENT,

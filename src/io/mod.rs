@@ -9,7 +9,9 @@ pub fn write_pfm_gray(path: &Path, width: u32, height: u32, values: &[f32]) -> R
     if values.len() != (width * height) as usize {
         bail!("PFM: {} values for {width}x{height}", values.len());
     }
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?);
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
+    );
     // Negative scale = little-endian.
     write!(f, "Pf\n{width} {height}\n-1.0\n")?;
     for y in (0..height as usize).rev() {
@@ -26,7 +28,9 @@ pub fn write_pfm_rgb(path: &Path, width: u32, height: u32, rgb: &[f32]) -> Resul
     if rgb.len() != (width * height * 3) as usize {
         bail!("PFM: {} values for {width}x{height}x3", rgb.len());
     }
-    let mut f = std::io::BufWriter::new(std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?);
+    let mut f = std::io::BufWriter::new(
+        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
+    );
     write!(f, "PF\n{width} {height}\n-1.0\n")?;
     let row = width as usize * 3;
     for y in (0..height as usize).rev() {
@@ -66,7 +70,9 @@ pub fn read_pfm(path: &Path) -> Result<(u32, u32, u32, Vec<f32>)> {
     let h: u32 = fields[2].parse().context("PFM height")?;
     let scale: f32 = fields[3].parse().context("PFM scale")?;
     let n = (w * h * channels) as usize;
-    let data = bytes.get(pos..pos + n * 4).with_context(|| format!("{}: truncated PFM data", path.display()))?;
+    let data = bytes
+        .get(pos..pos + n * 4)
+        .with_context(|| format!("{}: truncated PFM data", path.display()))?;
     let le = scale < 0.0;
     let vals: Vec<f32> = data
         .chunks_exact(4)
@@ -89,7 +95,11 @@ pub fn read_pfm(path: &Path) -> Result<(u32, u32, u32, Vec<f32>)> {
 
 /// Maps single-channel values to an 8-bit grey PNG: value × scale, clamped to [0,1].
 pub fn gray_to_png(path: &Path, width: u32, height: u32, values: &[f32], scale: f32) -> Result<()> {
-    let px: Vec<u8> = values.iter().map(|v| ((v * scale).clamp(0.0, 1.0) * 255.0 + 0.5) as u8).collect();
+    let px: Vec<u8> = values
+        .iter()
+        .map(|v| ((v * scale).clamp(0.0, 1.0) * 255.0 + 0.5) as u8)
+        .collect();
     let img = image::GrayImage::from_raw(width, height, px).context("image size")?;
-    img.save(path).with_context(|| format!("cannot write {}", path.display()))
+    img.save(path)
+        .with_context(|| format!("cannot write {}", path.display()))
 }

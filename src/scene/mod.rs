@@ -16,7 +16,10 @@ pub struct OutputDesc {
 }
 impl Default for OutputDesc {
     fn default() -> Self {
-        OutputDesc { width: 1280, height: 720 }
+        OutputDesc {
+            width: 1280,
+            height: 720,
+        }
     }
 }
 
@@ -32,7 +35,13 @@ pub struct CameraDesc {
 }
 impl Default for CameraDesc {
     fn default() -> Self {
-        CameraDesc { eye: [0.0, 1.6, 6.0], target: [0.0, 1.0, 0.0], fov_y: config::FOV_Y_DEG, near: config::NEAR, far: config::FAR }
+        CameraDesc {
+            eye: [0.0, 1.6, 6.0],
+            target: [0.0, 1.0, 0.0],
+            fov_y: config::FOV_Y_DEG,
+            near: config::NEAR,
+            far: config::FAR,
+        }
     }
 }
 
@@ -47,7 +56,12 @@ pub struct LightDesc {
 }
 impl Default for LightDesc {
     fn default() -> Self {
-        LightDesc { direction: [0.45, 0.8, 0.35], color: [2.2, 2.0, 1.8], ambient: [0.55, 0.6, 0.7], shadow: true }
+        LightDesc {
+            direction: [0.45, 0.8, 0.35],
+            color: [2.2, 2.0, 1.8],
+            ambient: [0.55, 0.6, 0.7],
+            shadow: true,
+        }
     }
 }
 
@@ -60,7 +74,11 @@ pub struct BloomDesc {
 }
 impl Default for BloomDesc {
     fn default() -> Self {
-        BloomDesc { enabled: true, threshold: 1.0, strength: 0.25 }
+        BloomDesc {
+            enabled: true,
+            threshold: 1.0,
+            strength: 0.25,
+        }
     }
 }
 
@@ -100,7 +118,8 @@ pub struct SceneDesc {
 
 impl SceneDesc {
     pub fn load(path: &Path) -> Result<SceneDesc> {
-        let text = std::fs::read_to_string(path).with_context(|| format!("{}: cannot read scene file", path.display()))?;
+        let text = std::fs::read_to_string(path)
+            .with_context(|| format!("{}: cannot read scene file", path.display()))?;
         Self::parse(&text).with_context(|| format!("{}: invalid scene file", path.display()))
     }
 
@@ -114,9 +133,31 @@ impl SceneDesc {
     /// the camera framing its bounds.
     pub fn single_obj(mesh: &str) -> SceneDesc {
         SceneDesc {
-            objects: vec![ObjectDesc { mesh: mesh.to_string(), position: [0.0; 3], rotation: [0.0; 3], scale: [1.0; 3], color: grey() }],
+            objects: vec![ObjectDesc {
+                mesh: mesh.to_string(),
+                position: [0.0; 3],
+                rotation: [0.0; 3],
+                scale: [1.0; 3],
+                color: grey(),
+            }],
             ..Default::default()
         }
+    }
+
+    /// Every object's triangles in world space, loaded on the CPU (for the ray-traced reference).
+    pub fn world_triangles(&self, res: &crate::res::ResDirs) -> Result<Vec<[glam::Vec3; 3]>> {
+        let mut out = Vec::new();
+        for (i, o) in self.objects.iter().enumerate() {
+            let data = crate::gl::mesh::MeshData::load_obj(&res.resolve_data(&o.mesh))
+                .with_context(|| format!("scene object {} ({})", i + 1, o.mesh))?;
+            let m = crate::engine::game_object::model_matrix(
+                o.position.into(),
+                o.rotation.into(),
+                o.scale.into(),
+            );
+            out.extend(data.triangles().map(|t| t.map(|p| m.transform_point3(p))));
+        }
+        Ok(out)
     }
 
     pub fn validate(&self) -> Result<()> {
@@ -132,14 +173,34 @@ impl SceneDesc {
             bail!("camera fov_y {} must be between 0 and 179 degrees", c.fov_y);
         }
         if !(c.near > 0.0 && c.far > c.near && c.far.is_finite()) {
-            bail!("camera planes must satisfy 0 < near < far (got near {}, far {})", c.near, c.far);
+            bail!(
+                "camera planes must satisfy 0 < near < far (got near {}, far {})",
+                c.near,
+                c.far
+            );
         }
-        if self.output.width == 0 || self.output.height == 0 || self.output.width > 16384 || self.output.height > 16384 {
-            bail!("output size {}x{} must be between 1 and 16384", self.output.width, self.output.height);
+        if self.output.width == 0
+            || self.output.height == 0
+            || self.output.width > 16384
+            || self.output.height > 16384
+        {
+            bail!(
+                "output size {}x{} must be between 1 and 16384",
+                self.output.width,
+                self.output.height
+            );
         }
         for (i, o) in self.objects.iter().enumerate() {
-            if !finite(&o.position) || !finite(&o.rotation) || !finite(&o.scale) || !finite(&o.color) {
-                bail!("object {} ({}): non-finite transform or colour", i + 1, o.mesh);
+            if !finite(&o.position)
+                || !finite(&o.rotation)
+                || !finite(&o.scale)
+                || !finite(&o.color)
+            {
+                bail!(
+                    "object {} ({}): non-finite transform or colour",
+                    i + 1,
+                    o.mesh
+                );
             }
         }
         Ok(())

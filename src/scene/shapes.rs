@@ -7,15 +7,69 @@ use std::fmt::Write as _;
 
 /// Appends an axis-aligned box with flat normals (24 vertices, outward faces, CCW).
 pub fn add_box(m: &mut MeshData, min: Vec3, max: Vec3) {
-    let c = |x: bool, y: bool, z: bool| Vec3::new(if x { max.x } else { min.x }, if y { max.y } else { min.y }, if z { max.z } else { min.z });
+    let c = |x: bool, y: bool, z: bool| {
+        Vec3::new(
+            if x { max.x } else { min.x },
+            if y { max.y } else { min.y },
+            if z { max.z } else { min.z },
+        )
+    };
     // Each face: normal and four corners counter-clockwise seen from outside.
     let faces = [
-        (Vec3::X, [c(true, false, true), c(true, false, false), c(true, true, false), c(true, true, true)]),
-        (Vec3::NEG_X, [c(false, false, false), c(false, false, true), c(false, true, true), c(false, true, false)]),
-        (Vec3::Y, [c(false, true, true), c(true, true, true), c(true, true, false), c(false, true, false)]),
-        (Vec3::NEG_Y, [c(false, false, false), c(true, false, false), c(true, false, true), c(false, false, true)]),
-        (Vec3::Z, [c(false, false, true), c(true, false, true), c(true, true, true), c(false, true, true)]),
-        (Vec3::NEG_Z, [c(true, false, false), c(false, false, false), c(false, true, false), c(true, true, false)]),
+        (
+            Vec3::X,
+            [
+                c(true, false, true),
+                c(true, false, false),
+                c(true, true, false),
+                c(true, true, true),
+            ],
+        ),
+        (
+            Vec3::NEG_X,
+            [
+                c(false, false, false),
+                c(false, false, true),
+                c(false, true, true),
+                c(false, true, false),
+            ],
+        ),
+        (
+            Vec3::Y,
+            [
+                c(false, true, true),
+                c(true, true, true),
+                c(true, true, false),
+                c(false, true, false),
+            ],
+        ),
+        (
+            Vec3::NEG_Y,
+            [
+                c(false, false, false),
+                c(true, false, false),
+                c(true, false, true),
+                c(false, false, true),
+            ],
+        ),
+        (
+            Vec3::Z,
+            [
+                c(false, false, true),
+                c(true, false, true),
+                c(true, true, true),
+                c(false, true, true),
+            ],
+        ),
+        (
+            Vec3::NEG_Z,
+            [
+                c(true, false, false),
+                c(false, false, false),
+                c(false, true, false),
+                c(true, true, false),
+            ],
+        ),
     ];
     for (n, q) in faces {
         add_quad(m, q, n);
@@ -25,11 +79,21 @@ pub fn add_box(m: &mut MeshData, min: Vec3, max: Vec3) {
 /// Appends a quad (two triangles) with one normal.
 pub fn add_quad(m: &mut MeshData, q: [Vec3; 4], n: Vec3) {
     let base = m.vertices.len() as u32;
-    let uv = [Vec2::new(0.0, 0.0), Vec2::new(1.0, 0.0), Vec2::new(1.0, 1.0), Vec2::new(0.0, 1.0)];
+    let uv = [
+        Vec2::new(0.0, 0.0),
+        Vec2::new(1.0, 0.0),
+        Vec2::new(1.0, 1.0),
+        Vec2::new(0.0, 1.0),
+    ];
     for (p, t) in q.iter().zip(uv) {
-        m.vertices.push(Vertex { position: p.to_array(), texcoord: t.to_array(), normal: n.to_array() });
+        m.vertices.push(Vertex {
+            position: p.to_array(),
+            texcoord: t.to_array(),
+            normal: n.to_array(),
+        });
     }
-    m.indices.extend_from_slice(&[base, base + 1, base + 2, base + 2, base + 3, base]);
+    m.indices
+        .extend_from_slice(&[base, base + 1, base + 2, base + 2, base + 3, base]);
 }
 
 /// A horizontal ground plane of half-size `h`, split into `n`×`n` quads (keeps interpolation well behaved).
@@ -41,7 +105,16 @@ pub fn ground(h: f32, n: u32) -> MeshData {
             let x0 = -h + i as f32 * step;
             let z0 = -h + j as f32 * step;
             let (x1, z1) = (x0 + step, z0 + step);
-            add_quad(&mut m, [Vec3::new(x0, 0.0, z1), Vec3::new(x1, 0.0, z1), Vec3::new(x1, 0.0, z0), Vec3::new(x0, 0.0, z0)], Vec3::Y);
+            add_quad(
+                &mut m,
+                [
+                    Vec3::new(x0, 0.0, z1),
+                    Vec3::new(x1, 0.0, z1),
+                    Vec3::new(x1, 0.0, z0),
+                    Vec3::new(x0, 0.0, z0),
+                ],
+                Vec3::Y,
+            );
         }
     }
     m
@@ -50,17 +123,37 @@ pub fn ground(h: f32, n: u32) -> MeshData {
 /// Back and left walls of the courtyard, with a ledge (an overhang) along the back wall.
 pub fn walls() -> MeshData {
     let mut m = MeshData::default();
-    add_box(&mut m, Vec3::new(-8.0, 0.0, -6.4), Vec3::new(8.0, 4.0, -6.0)); // back wall
-    add_box(&mut m, Vec3::new(-8.0, 0.0, -6.0), Vec3::new(-7.6, 4.0, 6.0)); // left wall
-    add_box(&mut m, Vec3::new(-7.6, 2.4, -6.0), Vec3::new(8.0, 2.6, -4.8)); // ledge
+    add_box(
+        &mut m,
+        Vec3::new(-8.0, 0.0, -6.4),
+        Vec3::new(8.0, 4.0, -6.0),
+    ); // back wall
+    add_box(
+        &mut m,
+        Vec3::new(-8.0, 0.0, -6.0),
+        Vec3::new(-7.6, 4.0, 6.0),
+    ); // left wall
+    add_box(
+        &mut m,
+        Vec3::new(-7.6, 2.4, -6.0),
+        Vec3::new(8.0, 2.6, -4.8),
+    ); // ledge
     m
 }
 
 /// A square pillar with a plinth and a capital (creases at both ends).
 pub fn pillar() -> MeshData {
     let mut m = MeshData::default();
-    add_box(&mut m, Vec3::new(-0.45, 0.0, -0.45), Vec3::new(0.45, 0.3, 0.45));
-    add_box(&mut m, Vec3::new(-0.25, 0.3, -0.25), Vec3::new(0.25, 2.7, 0.25));
+    add_box(
+        &mut m,
+        Vec3::new(-0.45, 0.0, -0.45),
+        Vec3::new(0.45, 0.3, 0.45),
+    );
+    add_box(
+        &mut m,
+        Vec3::new(-0.25, 0.3, -0.25),
+        Vec3::new(0.25, 2.7, 0.25),
+    );
     add_box(&mut m, Vec3::new(-0.4, 2.7, -0.4), Vec3::new(0.4, 3.0, 0.4));
     m
 }
@@ -86,9 +179,17 @@ pub fn crate_box() -> MeshData {
 /// A table: a top on four legs (the top is an overhang over the floor).
 pub fn table() -> MeshData {
     let mut m = MeshData::default();
-    add_box(&mut m, Vec3::new(-0.8, 0.72, -0.45), Vec3::new(0.8, 0.8, 0.45));
+    add_box(
+        &mut m,
+        Vec3::new(-0.8, 0.72, -0.45),
+        Vec3::new(0.8, 0.8, 0.45),
+    );
     for (x, z) in [(-0.7, -0.35), (0.7, -0.35), (-0.7, 0.35), (0.7, 0.35)] {
-        add_box(&mut m, Vec3::new(x - 0.04, 0.0, z - 0.04), Vec3::new(x + 0.04, 0.72, z + 0.04));
+        add_box(
+            &mut m,
+            Vec3::new(x - 0.04, 0.0, z - 0.04),
+            Vec3::new(x + 0.04, 0.72, z + 0.04),
+        );
     }
     m
 }
@@ -102,8 +203,16 @@ pub fn sphere(r: f32, slices: u32, stacks: u32) -> MeshData {
         for i in 0..=slices {
             let u = i as f32 / slices as f32;
             let phi = u * std::f32::consts::TAU;
-            let n = Vec3::new(theta.sin() * phi.cos(), theta.cos(), -theta.sin() * phi.sin());
-            m.vertices.push(Vertex { position: (n * r + Vec3::Y * r).to_array(), texcoord: [u, v], normal: n.to_array() });
+            let n = Vec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                -theta.sin() * phi.sin(),
+            );
+            m.vertices.push(Vertex {
+                position: (n * r + Vec3::Y * r).to_array(),
+                texcoord: [u, v],
+                normal: n.to_array(),
+            });
         }
     }
     let row = slices + 1;
@@ -132,7 +241,11 @@ pub fn torus(big: f32, small: f32, seg: u32, tube: u32) -> MeshData {
         for j in 0..=tube {
             let b = j as f32 / tube as f32 * std::f32::consts::TAU;
             let n = out * b.cos() + Vec3::Y * b.sin();
-            m.vertices.push(Vertex { position: (centre + n * small).to_array(), texcoord: [i as f32 / seg as f32, j as f32 / tube as f32], normal: n.to_array() });
+            m.vertices.push(Vertex {
+                position: (centre + n * small).to_array(),
+                texcoord: [i as f32 / seg as f32, j as f32 / tube as f32],
+                normal: n.to_array(),
+            });
         }
     }
     let row = tube + 1;
@@ -149,7 +262,10 @@ pub fn torus(big: f32, small: f32, seg: u32, tube: u32) -> MeshData {
 /// OBJ text of a mesh (positions, texcoords, normals; 1-based indices).
 pub fn to_obj(m: &MeshData, comment: &str) -> String {
     let mut s = String::new();
-    let _ = writeln!(s, "# {comment}\n# generated by `opengl3d gen-demo`; regenerate rather than edit");
+    let _ = writeln!(
+        s,
+        "# {comment}\n# generated by `opengl3d gen-demo`; regenerate rather than edit"
+    );
     for v in &m.vertices {
         let _ = writeln!(s, "v {} {} {}", v.position[0], v.position[1], v.position[2]);
     }
@@ -160,7 +276,13 @@ pub fn to_obj(m: &MeshData, comment: &str) -> String {
         let _ = writeln!(s, "vn {} {} {}", v.normal[0], v.normal[1], v.normal[2]);
     }
     for t in m.indices.chunks_exact(3) {
-        let _ = writeln!(s, "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}", t[0] + 1, t[1] + 1, t[2] + 1);
+        let _ = writeln!(
+            s,
+            "f {0}/{0}/{0} {1}/{1}/{1} {2}/{2}/{2}",
+            t[0] + 1,
+            t[1] + 1,
+            t[2] + 1
+        );
     }
     s
 }
@@ -168,14 +290,26 @@ pub fn to_obj(m: &MeshData, comment: &str) -> String {
 /// Every demo mesh: (file name under `Res/meshes/`, description, mesh).
 pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
     vec![
-        ("ground.obj", "courtyard floor, 24 m square", ground(12.0, 12)),
+        (
+            "ground.obj",
+            "courtyard floor, 24 m square",
+            ground(12.0, 12),
+        ),
         ("walls.obj", "back and left walls with a ledge", walls()),
         ("pillar.obj", "pillar with plinth and capital", pillar()),
         ("steps.obj", "four steps", steps()),
         ("crate.obj", "unit crate", crate_box()),
         ("table.obj", "table with four legs", table()),
-        ("sphere.obj", "sphere of radius 0.7 resting on the floor", sphere(0.7, 32, 16)),
-        ("torus.obj", "torus lying on the floor", torus(0.6, 0.22, 40, 16)),
+        (
+            "sphere.obj",
+            "sphere of radius 0.7 resting on the floor",
+            sphere(0.7, 32, 16),
+        ),
+        (
+            "torus.obj",
+            "torus lying on the floor",
+            torus(0.6, 0.22, 40, 16),
+        ),
     ]
 }
 

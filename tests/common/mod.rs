@@ -28,16 +28,33 @@ pub fn object(dir: &Path, name: &str, mesh: &MeshData, position: Vec3, scale: Ve
     if !p.exists() {
         std::fs::write(&p, shapes::to_obj(mesh, name)).unwrap();
     }
-    ObjectDesc { mesh: p.display().to_string(), position: position.to_array(), rotation: [0.0; 3], scale: scale.to_array(), color: [0.8, 0.8, 0.8, 1.0] }
+    ObjectDesc {
+        mesh: p.display().to_string(),
+        position: position.to_array(),
+        rotation: [0.0; 3],
+        scale: scale.to_array(),
+        color: [0.8, 0.8, 0.8, 1.0],
+    }
 }
 
 /// A floor (y = 0) and a wall (the plane x = 0, extending to −x): a 90° crease along the Z axis.
 pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> SceneDesc {
     let mut wall = MeshData::default();
-    shapes::add_box(&mut wall, Vec3::new(-1.0, 0.0, -50.0), Vec3::new(0.0, 4.0, 50.0));
+    shapes::add_box(
+        &mut wall,
+        Vec3::new(-1.0, 0.0, -50.0),
+        Vec3::new(0.0, 4.0, 50.0),
+    );
     let mut s = SceneDesc::default();
-    s.objects.push(object(dir, "floor", &shapes::ground(50.0, 10), Vec3::ZERO, Vec3::ONE));
-    s.objects.push(object(dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
+    s.objects.push(object(
+        dir,
+        "floor",
+        &shapes::ground(50.0, 10),
+        Vec3::ZERO,
+        Vec3::ONE,
+    ));
+    s.objects
+        .push(object(dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
     s.camera.eye = eye.to_array();
     s.camera.target = target.to_array();
     s.output.width = w;
@@ -47,7 +64,14 @@ pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> Scen
 }
 
 pub fn engine(ctx: &HeadlessContext, scene: &SceneDesc) -> Engine {
-    Engine::new(&ctx.gl, ResDirs::default(), scene, scene.output.width, scene.output.height).expect("engine")
+    Engine::new(
+        &ctx.gl,
+        ResDirs::default(),
+        scene,
+        scene.output.width,
+        scene.output.height,
+    )
+    .expect("engine")
 }
 
 /// Pixel (x, y from the bottom, GL convention) of world point `p` in a `w`×`h` buffer.
@@ -55,8 +79,12 @@ pub fn project(engine: &Engine, p: Vec3, w: u32, h: u32) -> (usize, usize) {
     let (ew, eh) = engine.size();
     let clip = engine.camera.view_projection(ew as f32 / eh as f32) * Vec4::new(p.x, p.y, p.z, 1.0);
     let ndc = clip.truncate() / clip.w;
-    let x = ((ndc.x * 0.5 + 0.5) * w as f32).floor().clamp(0.0, w as f32 - 1.0) as usize;
-    let y = ((ndc.y * 0.5 + 0.5) * h as f32).floor().clamp(0.0, h as f32 - 1.0) as usize;
+    let x = ((ndc.x * 0.5 + 0.5) * w as f32)
+        .floor()
+        .clamp(0.0, w as f32 - 1.0) as usize;
+    let y = ((ndc.y * 0.5 + 0.5) * h as f32)
+        .floor()
+        .clamp(0.0, h as f32 - 1.0) as usize;
     (x, y)
 }
 
@@ -75,5 +103,10 @@ pub fn mean_around(data: &[f32], w: usize, h: usize, x: usize, y: usize, r: usiz
 
 pub fn assert_finite(label: &str, data: &[f32]) {
     let bad = data.iter().filter(|v| !v.is_finite()).count();
-    assert_eq!(bad, 0, "{label}: {bad} of {} values are NaN or Inf", data.len());
+    assert_eq!(
+        bad,
+        0,
+        "{label}: {bad} of {} values are NaN or Inf",
+        data.len()
+    );
 }

@@ -1,0 +1,409 @@
+#!/usr/bin/env python3
+"""Pictures for the lessons that the engine does not draw by itself.
+
+Pure Python 3 (no numpy, no PIL), so it runs anywhere `make-images.sh` runs. Each figure is a
+subcommand; the engine's renders come in as PFM files (raw floats, written by `opengl3d render
+--out X.pfm`), and everything goes out as 8-bit RGB PNG.
+
+    python3 figures.py depth-curve OUT.png
+    python3 figures.py spiral OUT.png
+    python3 figures.py mip-chain LINEAR_DEPTH_1280x720.pfm OUT.png
+    python3 figures.py course-depth LINEAR_DEPTH_1280x720.pfm OUT.png
+    python3 figures.py normals LINEAR_DEPTH_1280x720.pfm OUT.png
+    python3 figures.py grid OUT.png W H LABEL=FILE.pfm@X,Y ...   (W x H crops, 2 per row)
+"""
+
+import math
+import struct
+import sys
+import zlib
+
+NEAR, FAR, FOV_Y = 0.35, 1000.0, 60.0
+
+# ---------------------------------------------------------------------------------------------
+# A 5x7 bitmap font: just the characters the figures use.
+FONT = {
+    "0": ["01110", "10001", "10011", "10101", "11001", "10001", "01110"],
+    "1": ["00100", "01100", "00100", "00100", "00100", "00100", "01110"],
+    "2": ["01110", "10001", "00001", "00010", "00100", "01000", "11111"],
+    "3": ["11110", "00001", "00001", "01110", "00001", "00001", "11110"],
+    "4": ["00010", "00110", "01010", "10010", "11111", "00010", "00010"],
+    "5": ["11111", "10000", "11110", "00001", "00001", "10001", "01110"],
+    "6": ["00110", "01000", "10000", "11110", "10001", "10001", "01110"],
+    "7": ["11111", "00001", "00010", "00100", "01000", "01000", "01000"],
+    "8": ["01110", "10001", "10001", "01110", "10001", "10001", "01110"],
+    "9": ["01110", "10001", "10001", "01111", "00001", "00010", "01100"],
+    ".": ["00000", "00000", "00000", "00000", "00000", "01100", "01100"],
+    ",": ["00000", "00000", "00000", "00000", "01100", "00100", "01000"],
+    "-": ["00000", "00000", "00000", "11111", "00000", "00000", "00000"],
+    "+": ["00000", "00100", "00100", "11111", "00100", "00100", "00000"],
+    "=": ["00000", "00000", "11111", "00000", "11111", "00000", "00000"],
+    "(": ["00010", "00100", "01000", "01000", "01000", "00100", "00010"],
+    ")": ["01000", "00100", "00010", "00010", "00010", "00100", "01000"],
+    ":": ["00000", "01100", "01100", "00000", "01100", "01100", "00000"],
+    "/": ["00001", "00010", "00010", "00100", "01000", "01000", "10000"],
+    "*": ["00000", "10101", "01110", "11111", "01110", "10101", "00000"],
+    " ": ["00000"] * 7,
+    "a": ["00000", "00000", "01110", "00001", "01111", "10001", "01111"],
+    "b": ["10000", "10000", "10110", "11001", "10001", "10001", "11110"],
+    "c": ["00000", "00000", "01110", "10000", "10000", "10001", "01110"],
+    "d": ["00001", "00001", "01101", "10011", "10001", "10001", "01111"],
+    "e": ["00000", "00000", "01110", "10001", "11111", "10000", "01110"],
+    "f": ["00110", "01001", "01000", "11100", "01000", "01000", "01000"],
+    "g": ["00000", "01111", "10001", "10001", "01111", "00001", "01110"],
+    "h": ["10000", "10000", "10110", "11001", "10001", "10001", "10001"],
+    "i": ["00100", "00000", "01100", "00100", "00100", "00100", "01110"],
+    "k": ["10000", "10000", "10010", "10100", "11000", "10100", "10010"],
+    "l": ["01100", "00100", "00100", "00100", "00100", "00100", "01110"],
+    "m": ["00000", "00000", "11010", "10101", "10101", "10001", "10001"],
+    "n": ["00000", "00000", "10110", "11001", "10001", "10001", "10001"],
+    "o": ["00000", "00000", "01110", "10001", "10001", "10001", "01110"],
+    "p": ["00000", "00000", "11110", "10001", "11110", "10000", "10000"],
+    "r": ["00000", "00000", "10110", "11001", "10000", "10000", "10000"],
+    "s": ["00000", "00000", "01110", "10000", "01110", "00001", "11110"],
+    "t": ["01000", "01000", "11100", "01000", "01000", "01001", "00110"],
+    "u": ["00000", "00000", "10001", "10001", "10001", "10011", "01101"],
+    "v": ["00000", "00000", "10001", "10001", "10001", "01010", "00100"],
+    "w": ["00000", "00000", "10001", "10001", "10101", "10101", "01010"],
+    "x": ["00000", "00000", "10001", "01010", "00100", "01010", "10001"],
+    "y": ["00000", "00000", "10001", "10001", "01111", "00001", "01110"],
+    "z": ["00000", "00000", "11111", "00010", "00100", "01000", "11111"],
+    "A": ["01110", "10001", "10001", "11111", "10001", "10001", "10001"],
+    "B": ["11110", "10001", "10001", "11110", "10001", "10001", "11110"],
+    "C": ["01110", "10001", "10000", "10000", "10000", "10001", "01110"],
+    "D": ["11100", "10010", "10001", "10001", "10001", "10010", "11100"],
+    "L": ["10000", "10000", "10000", "10000", "10000", "10000", "11111"],
+    "N": ["10001", "11001", "10101", "10011", "10001", "10001", "10001"],
+    "O": ["01110", "10001", "10001", "10001", "10001", "10001", "01110"],
+    "S": ["01111", "10000", "10000", "01110", "00001", "00001", "11110"],
+}
+
+
+class Image:
+    def __init__(self, w, h, bg=(255, 255, 255)):
+        self.w, self.h = w, h
+        self.px = bytearray(bytes(bg) * (w * h))
+
+    def set(self, x, y, c):
+        x, y = int(x), int(y)
+        if 0 <= x < self.w and 0 <= y < self.h:
+            i = 3 * (y * self.w + x)
+            self.px[i:i + 3] = bytes(c)
+
+    def rect(self, x0, y0, x1, y1, c):
+        for y in range(max(0, int(y0)), min(self.h, int(y1))):
+            for x in range(max(0, int(x0)), min(self.w, int(x1))):
+                self.set(x, y, c)
+
+    def line(self, x0, y0, x1, y1, c, width=1, dash=0):
+        n = int(max(abs(x1 - x0), abs(y1 - y0))) + 1
+        r = (width - 1) / 2
+        for i in range(n + 1):
+            if dash and (i // dash) % 2:
+                continue
+            t = i / n
+            x, y = x0 + (x1 - x0) * t, y0 + (y1 - y0) * t
+            for dy in range(-int(r), int(r) + 1):
+                for dx in range(-int(r), int(r) + 1):
+                    self.set(round(x + dx), round(y + dy), c)
+
+    def disc(self, cx, cy, rad, c):
+        for y in range(int(cy - rad) - 1, int(cy + rad) + 2):
+            for x in range(int(cx - rad) - 1, int(cx + rad) + 2):
+                if (x + 0.5 - cx) ** 2 + (y + 0.5 - cy) ** 2 <= rad * rad:
+                    self.set(x, y, c)
+
+    def circle(self, cx, cy, rad, c, dash=0):
+        n = int(2 * math.pi * rad) + 1
+        for i in range(n):
+            if dash and (i // dash) % 2:
+                continue
+            a = 2 * math.pi * i / n
+            self.set(cx + rad * math.cos(a), cy + rad * math.sin(a), c)
+
+    def text(self, x, y, s, c=(0, 0, 0), scale=2):
+        for ch in s:
+            g = FONT.get(ch, FONT[" "])
+            for gy, row in enumerate(g):
+                for gx, bit in enumerate(row):
+                    if bit == "1":
+                        self.rect(x + gx * scale, y + gy * scale, x + (gx + 1) * scale, y + (gy + 1) * scale, c)
+            x += 6 * scale
+
+    def text_width(self, s, scale=2):
+        return 6 * scale * len(s) - scale
+
+    def paste(self, other, ox, oy):
+        for y in range(other.h):
+            if 0 <= oy + y < self.h:
+                for x in range(other.w):
+                    i = 3 * (y * other.w + x)
+                    self.set(ox + x, oy + y, other.px[i:i + 3])
+
+    def save(self, path):
+        raw = b"".join(b"\x00" + bytes(self.px[3 * y * self.w:3 * (y + 1) * self.w]) for y in range(self.h))
+
+        def chunk(kind, data):
+            return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
+
+        png = b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", self.w, self.h, 8, 2, 0, 0, 0))
+        png += chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
+        with open(path, "wb") as f:
+            f.write(png)
+
+
+def read_pfm(path):
+    """Returns (w, h, channels, rows top-down as lists of floats or of (r,g,b) tuples)."""
+    data = open(path, "rb").read()
+    fields, pos = [], 0
+    while len(fields) < 4:
+        while data[pos:pos + 1].isspace():
+            pos += 1
+        start = pos
+        while not data[pos:pos + 1].isspace():
+            pos += 1
+        fields.append(data[start:pos].decode())
+    pos += 1
+    ch = 1 if fields[0] == "Pf" else 3
+    w, h, scale = int(fields[1]), int(fields[2]), float(fields[3])
+    fmt = ("<" if scale < 0 else ">") + "f" * (w * ch)
+    rows = []
+    for y in range(h):  # PFM rows are bottom-up
+        vals = struct.unpack_from(fmt, data, pos + 4 * w * ch * y)
+        rows.append(list(vals) if ch == 1 else [vals[3 * i:3 * i + 3] for i in range(w)])
+    rows.reverse()
+    return w, h, ch, rows
+
+
+def grey(v):
+    g = max(0, min(255, round(v * 255)))
+    return (g, g, g)
+
+
+def level0_from_view(path):
+    """The linear-depth view at W×H shows level 0 (W/2×H/2) with every texel as a 2x2 block: undo that."""
+    w, h, _, rows = read_pfm(path)
+    return w // 2, h // 2, [rows[2 * y][0::2][: w // 2] for y in range(h // 2)]
+
+
+def label(img, x, y, s, scale=2):
+    img.rect(x - 3, y - 3, x + img.text_width(s, scale) + 3, y + 7 * scale + 3, (255, 255, 255))
+    img.text(x, y, s, (0, 0, 0), scale)
+
+
+# ---------------------------------------------------------------------------------------------
+def depth_curve(out):
+    """Stored depth D against view distance for near 0.35 and near 1 (far 1000)."""
+    W, H = 640, 360
+    img = Image(W, H)
+    x0, y0, x1, y1 = 70, 20, 620, 310  # plot box (y grows down)
+    dmax = 10.0
+
+    def px(d):
+        return x0 + (x1 - x0) * d / dmax
+
+    def py(D):
+        return y1 - (y1 - y0) * D
+
+    def depth(d, n):
+        A = -2 * FAR * n / (FAR - n)
+        B = (FAR + n) / (FAR - n)
+        return 0.5 * (B + A / d) + 0.5
+
+    for k in range(0, 11, 1):
+        img.line(px(k), y0, px(k), y1, (230, 230, 230))
+    for k in range(0, 11):
+        img.line(x0, py(k / 10), x1, py(k / 10), (230, 230, 230))
+    img.line(x0, y1, x1, y1, (0, 0, 0))
+    img.line(x0, y0, x0, y1, (0, 0, 0))
+    for k in range(0, 11, 2):
+        s = str(k)
+        img.text(px(k) - img.text_width(s) / 2, y1 + 8, s)
+    for k in (0, 2, 4, 6, 8, 10):
+        s = "%.1f" % (k / 10)
+        img.text(x0 - 10 - img.text_width(s), py(k / 10) - 7, s)
+    img.text(x1 - img.text_width("distance (m)"), y1 + 28, "distance (m)")
+    img.text(x0 + 10, y0 + 4, "D")
+
+    for n, col in ((1.0, (150, 150, 150)), (NEAR, (30, 90, 200))):
+        prev = None
+        steps = 2000
+        for i in range(steps + 1):
+            d = n + (dmax - n) * i / steps
+            p = (px(d), py(depth(d, n)))
+            if prev:
+                img.line(prev[0], prev[1], p[0], p[1], col, width=3)
+            prev = p
+    # D = 0.8 and 0.9 with near 0.35: 1.75 m and 3.49 m
+    A = -2 * FAR * NEAR / (FAR - NEAR)
+    B = (FAR + NEAR) / (FAR - NEAR)
+    for D in (0.8, 0.9):
+        d = A / ((2 * D - 1) - B)
+        img.line(x0, py(D), px(d), py(D), (200, 60, 40), dash=4)
+        img.line(px(d), py(D), px(d), y1, (200, 60, 40), dash=4)
+        img.disc(px(d), py(D), 4, (200, 60, 40))
+        img.text(px(d) + 6, y1 - 20, "%.2f" % d, (200, 60, 40))
+    label(img, 330, 200, "near 0.35", 2)
+    img.rect(310, 205, 324, 209, (30, 90, 200))
+    label(img, 330, 225, "near 1", 2)
+    img.rect(310, 230, 324, 234, (150, 150, 150))
+    img.save(out)
+
+
+def spiral(out):
+    """The 11 sample taps of sao.frag for two spiral-turn counts, coloured by the mip level they read."""
+    W, H = 640, 340
+    img = Image(W, H)
+    colours = [(30, 90, 200), (40, 160, 90), (230, 150, 30), (200, 50, 50)]
+    n, pixels, log_mip_offset, max_mip = 11, 100.0, 3, 3
+    for panel, turns in enumerate((3, 7)):
+        cx, cy, R = 160 + 320 * panel, 160, 125
+        img.circle(cx, cy, R, (160, 160, 160), dash=3)
+        img.line(cx - 5, cy, cx + 5, cy, (0, 0, 0))
+        img.line(cx, cy - 5, cx, cy + 5, (0, 0, 0))
+        start = 0.0
+        prev = None
+        for k in range(401):  # the continuous spiral the taps sit on
+            r = k / 400
+            a = r * turns * 2 * math.pi + start
+            p = (cx + R * r * math.cos(a), cy - R * r * math.sin(a))
+            if prev:
+                img.line(prev[0], prev[1], p[0], p[1], (215, 215, 215))
+            prev = p
+        for i in range(n):
+            ratio = (i + 0.5) / n
+            a = ratio * turns * 2 * math.pi + start
+            dist = int(ratio * pixels)
+            msb = dist.bit_length() - 1 if dist > 0 else -1
+            level = min(max(msb - log_mip_offset, 0), max_mip)
+            x, y = cx + R * ratio * math.cos(a), cy - R * ratio * math.sin(a)
+            img.disc(x, y, 7, colours[level])
+            s = str(i)
+            img.text(x + 8, y - 16, s, (0, 0, 0), 2)
+        t = "%d turns, 100 px disc" % turns
+        img.text(cx - img.text_width(t) / 2, 298, t)
+    x = 40
+    for level, c in enumerate(colours):
+        img.disc(x, 327, 6, c)
+        img.text(x + 12, 320, "level %d" % level, (0, 0, 0), 2)
+        x += 150
+    img.save(out)
+
+
+def mip_chain(pfm, out):
+    """Levels 0-3 of the linear-depth texture (min of 2x2 per level), each shown at 320x180."""
+    w, h, lv = level0_from_view(pfm)
+    levels = [(w, h, lv)]
+    for _ in range(3):
+        pw, ph, p = levels[-1]
+        nw, nh = max(pw // 2, 1), max(ph // 2, 1)
+        levels.append((nw, nh, [[min(p[min(2 * y + dy, ph - 1)][min(2 * x + dx, pw - 1)] for dy in (0, 1) for dx in (0, 1))
+                                 for x in range(nw)] for y in range(nh)]))
+    scale = 1.0 / max(v for row in lv for v in row if v < FAR)
+    img = Image(640, 360)
+    for i, (lw, lh, p) in enumerate(levels):
+        ox, oy = 320 * (i % 2), 180 * (i // 2)
+        for y in range(180):
+            row = p[y * lh // 180]
+            for x in range(320):
+                img.set(ox + x, oy + y, grey(row[x * lw // 320] * scale))
+        label(img, ox + 6, oy + 6, "level %d  %dx%d" % (i, lw, lh))
+    img.line(320, 0, 320, 359, (255, 0, 0))
+    img.line(0, 180, 639, 180, (255, 0, 0))
+    img.save(out)
+
+
+def course_depth(pfm, out):
+    """What the course's debug draw shows: R32F linear depth through simple.frag (red only), at 3 scales."""
+    w, h, lv = level0_from_view(pfm)
+    pw, ph = 213, 120
+    img = Image(3 * pw + 1, ph)
+    for panel, (k, text) in enumerate(((1.0, "x 1"), (0.01, "x 0.01"), (0.05, "x 0.05"))):
+        for y in range(ph):
+            row = lv[y * h // ph]
+            for x in range(pw):
+                r = max(0, min(255, round(row[x * w // pw] * k * 255)))
+                img.set(panel * pw + x, y, (r, 0, 0))
+        label(img, panel * pw + 6, 6, text)
+        if panel:
+            img.line(panel * pw, 0, panel * pw, ph - 1, (255, 255, 255))
+    img.save(out)
+
+
+def normals(pfm, out):
+    """View-space normals as sao.frag reconstructs them (quad derivatives of positions), on the CPU."""
+    w, h, lv = level0_from_view(pfm)
+    fov_scale = 1 / math.tan(math.radians(FOV_Y) / 2)
+    ndc_to_view = (w / h / fov_scale, 1 / fov_scale)
+
+    def pos(x, y):  # y is top-down here; texture v is bottom-up
+        d = lv[y][x]
+        u, v = (x + 0.5) / w, 1 - (y + 0.5) / h
+        return ((2 * u - 1) * ndc_to_view[0] * d, (2 * v - 1) * ndc_to_view[1] * d, -d)
+
+    img = Image(w, h)
+    for y in range(h):
+        ya = y - (y % 2)  # the 2x2 quad: rows ya (top) and ya+1
+        for x in range(w):
+            d = lv[y][x]
+            if d >= FAR:
+                img.set(x, y, (90, 90, 90))
+                continue
+            xa = x - (x % 2)
+            p, px1 = pos(xa, y), pos(min(xa + 1, w - 1), y)
+            dpdx = [px1[i] - p[i] for i in range(3)]
+            # dFdy points up the screen: from the lower row of the quad to the upper one
+            q0, q1 = pos(x, min(ya + 1, h - 1)), pos(x, ya)
+            dpdy = [q1[i] - q0[i] for i in range(3)]
+            c = (dpdx[1] * dpdy[2] - dpdx[2] * dpdy[1], dpdx[2] * dpdy[0] - dpdx[0] * dpdy[2], dpdx[0] * dpdy[1] - dpdx[1] * dpdy[0])
+            l2 = sum(v * v for v in c)
+            on_edge = max(abs(dpdx[2]), abs(dpdy[2])) > 0.1 * d
+            if l2 <= 1e-30 or on_edge:
+                img.set(x, y, (0, 0, 0))
+                continue
+            l = math.sqrt(l2)
+            img.set(x, y, tuple(max(0, min(255, round((v / l * 0.5 + 0.5) * 255))) for v in c))
+    img.save(out)
+
+
+def grid(out, cw, ch, items):
+    """Crops of cw x ch from single-channel PFMs, 2 per row, labelled. Item: LABEL=FILE@X,Y."""
+    rows = (len(items) + 1) // 2
+    img = Image(2 * cw, rows * ch)
+    for i, item in enumerate(items):
+        name, rest = item.split("=", 1)
+        path, xy = rest.rsplit("@", 1)
+        x0, y0 = (int(v) for v in xy.split(","))
+        w, h, chn, data = read_pfm(path)
+        ox, oy = cw * (i % 2), ch * (i // 2)
+        for y in range(ch):
+            for x in range(cw):
+                v = data[y0 + y][x0 + x]
+                img.set(ox + x, oy + y, grey(v) if chn == 1 else tuple(grey(c)[0] for c in v))
+        label(img, ox + 6, oy + 6, name)
+    img.line(cw, 0, cw, img.h - 1, (255, 0, 0))
+    for j in range(1, rows):
+        img.line(0, ch * j, img.w - 1, ch * j, (255, 0, 0))
+    img.save(out)
+
+
+def main(argv):
+    cmd = argv[1] if len(argv) > 1 else ""
+    if cmd == "depth-curve":
+        depth_curve(argv[2])
+    elif cmd == "spiral":
+        spiral(argv[2])
+    elif cmd == "mip-chain":
+        mip_chain(argv[2], argv[3])
+    elif cmd == "course-depth":
+        course_depth(argv[2], argv[3])
+    elif cmd == "normals":
+        normals(argv[2], argv[3])
+    elif cmd == "grid":
+        grid(argv[2], int(argv[3]), int(argv[4]), argv[5:])
+    else:
+        sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv)
