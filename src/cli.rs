@@ -34,6 +34,10 @@ pub enum Command {
     Lesson(LessonArgs),
     /// World-space ray-traced ambient occlusion of the scene on the CPU (the ground truth).
     Reference(ReferenceArgs),
+    /// Grade a student's shaders (--res DIR) against the lesson's steps; exits non-zero on a failed step.
+    Grade(crate::grade::GradeArgs),
+    /// Run time against error of the AO methods, or `--stress` for numerical stability.
+    Bench(crate::bench::BenchArgs),
     /// Regenerate the demo meshes in Res/meshes.
     GenDemo,
 }
@@ -221,6 +225,14 @@ pub fn run() -> Result<()> {
         }
         Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
         Some(Command::Reference(args)) => reference(&res, &args),
+        Some(Command::Grade(args)) => {
+            let code = crate::grade::run(&res, cli.res.as_deref(), &args)?;
+            if code != 0 {
+                std::process::exit(code);
+            }
+            Ok(())
+        }
+        Some(Command::Bench(args)) => crate::bench::run(&res, &args),
         Some(Command::GenDemo) => {
             let dir = crate::res::project_res_dir().join("meshes");
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {

@@ -6,11 +6,13 @@
 //! · `reference` (ray-traced ground truth) · `cli` (the command line).
 
 pub mod ao;
+pub mod bench;
 pub mod cli;
 pub mod config;
 pub mod context;
 pub mod engine;
 pub mod gl;
+pub mod grade;
 pub mod io;
 pub mod lesson;
 pub mod reference;
