@@ -112,6 +112,15 @@ pub struct SceneArgs {
     /// Ambient occlusion on or off.
     #[arg(long, value_enum)]
     pub ao: Option<OnOff>,
+    /// AO method.
+    #[arg(long, value_enum)]
+    pub method: Option<crate::ao::AoMethod>,
+    /// AO sample count (per method: samples, or directions × steps).
+    #[arg(long)]
+    pub samples: Option<u32>,
+    /// AO radius in metres.
+    #[arg(long)]
+    pub radius: Option<f32>,
 }
 
 #[derive(Args, Debug)]
@@ -209,6 +218,21 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
     }
     if let Some(ao) = args.ao {
         desc.ao.enabled = ao == OnOff::On;
+    }
+    if let Some(m) = args.method {
+        desc.ao.method = m;
+    }
+    if let Some(n) = args.samples {
+        if n == 0 || n > 256 {
+            bail!("--samples {n}: use 1 to 256");
+        }
+        desc.ao.samples = n;
+    }
+    if let Some(r) = args.radius {
+        if !(r.is_finite() && r > 0.0 && r <= 100.0) {
+            bail!("--radius {r}: use a radius in metres between 0 and 100");
+        }
+        desc.ao.radius = r;
     }
     desc.validate()?;
     Ok(desc)

@@ -1,5 +1,7 @@
 //! Ambient-occlusion methods, each with its own passes and shaders.
 
+pub mod methods;
 pub mod sao_lesson;
 
+pub use methods::{AoMethod, AoMethods};
 pub use sao_lesson::{SaoLesson, SaoParams};

@@ -21,6 +21,8 @@ use std::rc::Rc;
 #[serde(default, deny_unknown_fields)]
 pub struct SaoParams {
     pub enabled: bool,
+    /// Which AO method computes the occlusion (`sao-lesson` = the lesson's shaders).
+    pub method: crate::ao::AoMethod,
     /// World-space sampling radius (m).
     pub radius: f32,
     /// Distance (m) along the normal below which a sample does not occlude (removes self-occlusion).
@@ -35,6 +37,7 @@ impl Default for SaoParams {
     fn default() -> Self {
         SaoParams {
             enabled: true,
+            method: crate::ao::AoMethod::SaoLesson,
             radius: 1.0,
             bias: 0.012,
             intensity: 5.0,

@@ -8,7 +8,7 @@ pub mod game_object;
 pub use camera::{linear_depth_exact, Camera};
 pub use game_object::GameObject;
 
-use crate::ao::{SaoLesson, SaoParams};
+use crate::ao::{AoMethod, AoMethods, SaoLesson, SaoParams};
 use crate::config::{binding, loc};
 use crate::gl::{
     mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture,
@@ -96,6 +96,8 @@ pub struct Engine {
     prog_image: ProgramObject,
     prog_debug: ProgramObject,
     pub ao: SaoLesson,
+    /// The other AO methods (built on first use).
+    pub methods: AoMethods,
     width: u32,
     height: u32,
     pub fbo_main: FramebufferObject,
@@ -144,6 +146,8 @@ impl Engine {
         let prog_image = p("simple.vert", "image_processing.frag")?;
         let prog_debug = p("simple.vert", "debug_view.frag")?;
         let ao = SaoLesson::new(gl, &res, width, height, &camera, &ao_params)?;
+        let mut methods = AoMethods::new(gl, &res, &ao, &camera)?;
+        methods.prepare(ao_params.method)?;
 
         let mut meshes = MeshBuffer::new(gl)?;
         let mut objects = Vec::new();
@@ -206,6 +210,7 @@ impl Engine {
             prog_image,
             prog_debug,
             ao,
+            methods,
             width,
             height,
             fbo_main,
@@ -241,6 +246,7 @@ impl Engine {
         self.fbo_main = create_main_fbo(&self.gl, width, height)?;
         self.fbo_bloom = create_bloom_fbos(&self.gl, width, height)?;
         self.ao.resize(width, height)?;
+        self.methods.resize(&self.ao)?;
         self.fbo_output = None;
         self.fbo_values = None;
         self.width = width;
@@ -250,12 +256,15 @@ impl Engine {
 
     /// Applies changed camera planes or AO sample counts to the shaders (they are compile-time constants).
     pub fn sync_shader_constants(&mut self) -> Result<(), ProgramError> {
+        self.methods.update_camera(&self.camera)?;
+        self.methods.prepare(self.ao_params.method)?;
         self.ao.update_defines(&self.camera, &self.ao_params)
     }
 
     /// Rebuilds shaders whose files changed; errors are returned, the last working programs stay.
     pub fn hot_reload(&mut self, force: bool) -> Vec<ProgramError> {
         let mut errors = self.ao.reload(force);
+        errors.extend(self.methods.reload(force));
         for p in [
             &mut self.prog_standard,
             &mut self.prog_shadow,
@@ -552,12 +561,21 @@ impl Engine {
             let (m, ao) = (&self.meshes, &self.ao);
             self.pass("sao restore depth", "ao", || ao.restore_depth(m, depth));
             self.pass("sao down sampling", "ao", || ao.down_sample(m));
-            if view != View::LinearDepth {
+            let method = self.ao_params.method;
+            if view != View::LinearDepth && method == AoMethod::SaoLesson {
                 self.pass("sao", "ao", || {
                     ao.compute_sao(m, &self.camera, &self.ao_params)
                 });
                 if self.ao_params.blur && view != View::AoRaw {
                     self.pass("sao blur", "ao", || ao.blur(m));
+                }
+            } else if view != View::LinearDepth {
+                let methods = &self.methods;
+                self.pass(method.name(), "ao", || {
+                    methods.compute(method, ao, m, &self.camera, &self.ao_params)
+                });
+                if self.ao_params.blur && view != View::AoRaw {
+                    self.pass("separable blur", "ao", || methods.blur(ao, m));
                 }
             }
             if view == View::Composite {
@@ -588,6 +606,7 @@ impl Engine {
 
     /// Renders into the headless RGBA8 output and reads it back (rows top-down).
     pub fn render_image(&mut self) -> Result<image::RgbaImage> {
+        self.methods.prepare(self.ao_params.method)?;
         if self.fbo_output.is_none() {
             let tex = Rc::new(Texture::new(
                 &self.gl,
@@ -607,6 +626,7 @@ impl Engine {
     /// Renders `view` as raw values at the output size (rows top-down): linear depth in metres or
     /// ambient visibility (1 = open). For `Composite`, the luminance-free RGB is not available: use `render_image`.
     pub fn render_values(&mut self, view: View) -> Result<Vec<f32>> {
+        self.methods.prepare(self.ao_params.method)?;
         if view == View::Composite {
             bail!("the composite view has colour, not values: write it as PNG");
         }

@@ -93,13 +93,39 @@ pub fn prepare_source(
     src: &ShaderSource,
     defines: &[(String, String)],
 ) -> Result<String, ProgramError> {
+    prepare_source_with_includes(src, defines).map(|(text, _)| text)
+}
+
+/// As `prepare_source`, also expanding `#include "file"` lines (relative to the shader's folder,
+/// one level deep) with `#line` directives so that errors map back to the right file: source string
+/// 0 is the shader itself, k is the k-th included file (the returned list, in order).
+pub fn prepare_source_with_includes(
+    src: &ShaderSource,
+    defines: &[(String, String)],
+) -> Result<(String, Vec<PathBuf>), ProgramError> {
     let mut out = String::with_capacity(src.text.len() + 128);
+    let mut includes = Vec::new();
     let mut seen_version = false;
-    for (i, line) in src.text.lines().enumerate() {
-        let ascii: String = line
-            .chars()
+    let ascii_only = |line: &str| -> String {
+        line.chars()
             .map(|c| if c.is_ascii() { c } else { ' ' })
-            .collect();
+            .collect()
+    };
+    for (i, line) in src.text.lines().enumerate() {
+        let ascii = ascii_only(line);
+        if let Some(rest) = ascii.trim_start().strip_prefix("#include") {
+            let name = rest.trim().trim_matches('"');
+            let path = src.path.parent().unwrap_or(Path::new(".")).join(name);
+            let inc = ShaderSource::load(&path)?;
+            includes.push(path);
+            out.push_str(&format!("#line 1 {}\n", includes.len()));
+            for l in inc.text.lines() {
+                out.push_str(&ascii_only(l));
+                out.push('\n');
+            }
+            out.push_str(&format!("#line {} 0\n", i + 2));
+            continue;
+        }
         out.push_str(&ascii);
         out.push('\n');
         if !seen_version && ascii.trim_start().starts_with("#version") {
@@ -116,15 +142,33 @@ pub fn prepare_source(
             path: src.path.display().to_string(),
         });
     }
-    Ok(out)
+    Ok((out, includes))
 }
 
 /// Turns a driver log ("0:12(5): error: ...") into "path:12:5: error: ..." lines.
 pub fn format_compile_log(path: &str, log: &str) -> Vec<String> {
+    format_compile_log_sources(path, &[], log)
+}
+
+/// As `format_compile_log`, naming included files by their source-string number (1, 2, …).
+pub fn format_compile_log_sources(path: &str, includes: &[PathBuf], log: &str) -> Vec<String> {
     let mut out = Vec::new();
     for line in log.lines().map(str::trim).filter(|l| !l.is_empty()) {
         // Mesa: "0:12(5): error: msg"; NVIDIA: "0(12) : error C0000: msg".
         let parsed = parse_mesa(line).or_else(|| parse_nvidia(line));
+        let source: usize = line
+            .split(|c| c == ':' || c == '(')
+            .next()
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or(0);
+        let inc_name;
+        let path = match source.checked_sub(1).and_then(|k| includes.get(k)) {
+            Some(p) => {
+                inc_name = p.display().to_string();
+                inc_name.as_str()
+            }
+            None => path,
+        };
         match parsed {
             Some((l, c, msg)) => out.push(match c {
                 Some(c) => format!("{path}:{l}:{c}: {msg}"),
@@ -362,7 +406,7 @@ fn compile(
             path.display()
         );
     }
-    let text = prepare_source(&src, defines)?;
+    let (text, includes) = prepare_source_with_includes(&src, defines)?;
     unsafe {
         let sh = gl.create_shader(kind).map_err(ProgramError::Gl)?;
         gl.shader_source(sh, &text);
@@ -372,7 +416,7 @@ fn compile(
             gl.delete_shader(sh);
             let shown = path.display().to_string();
             return Err(ProgramError::Compile {
-                messages: format_compile_log(&shown, &log),
+                messages: format_compile_log_sources(&shown, &includes, &log),
                 path: shown,
             });
         }

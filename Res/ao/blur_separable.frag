@@ -1,0 +1,43 @@
+#version 450
+
+// One direction of the separable bilateral blur (McGuire's reference: 2 passes x 9 taps, radius 4,
+// sigma = 2 weights; weights fall to 0 across a depth step of 0.15 m). Taps are 1 texel apart, not 2:
+// the methods rotate their samples with a 4x4 tile, and taps 2 apart would only ever see 2 of its 4
+// phases per axis, leaving the tile's pattern in the picture.
+
+layout(binding=0) uniform sampler2D texColor; // occlusion
+layout(binding=1) uniform sampler2D texDepth; // linear depth
+
+layout(location=210) uniform ivec2 axis;      // (1,0) then (0,1)
+
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
+
+out float outColor;
+
+const float gaussian[5] = float[5](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
+
+void main()
+{
+  ivec2 uv = ivec2(gl_FragCoord.xy);
+  ivec2 maxUV = textureSize(texColor, 0) - 1;
+  float center = texelFetch(texColor, uv, 0).x;
+  float depth = texelFetch(texDepth, uv, 0).x;
+  outColor = center;
+  if (depth >= CAMERA_FAR) {
+    return;
+  }
+  float sum = center * gaussian[0];
+  float total = gaussian[0];
+  for (int r = -4; r <= 4; ++r) {
+    if (r == 0) {
+      continue;
+    }
+    ivec2 q = clamp(uv + axis * r, ivec2(0), maxUV);
+    float w = gaussian[abs(r)] * max(0.0, 1.0 - abs(texelFetch(texDepth, q, 0).x - depth) / 0.15);
+    sum += texelFetch(texColor, q, 0).x * w;
+    total += w;
+  }
+  outColor = sum / total;
+}

@@ -1,0 +1,71 @@
+// Shared by the AO methods in Res/ao/ (included with #include "common.glsl").
+// Inputs: the half-size linear-depth mip chain the lesson's restore and down-sampling passes make.
+
+layout(location=1) in vec2 inTexcoord;
+
+layout(binding=0) uniform sampler2D texDepth; // linear view distance (m), mip chain of nearest depths
+
+layout(location=200) uniform vec4 aoInfo;     // radius (m), bias (m), intensity, pixels per metre at 1 m
+layout(location=201) uniform vec2 ndcToView;  // NDC -> view space at 1 m
+layout(location=202) uniform ivec2 aoCounts;  // samples (or directions/slices), steps
+layout(location=203) uniform float maxRadiusPixels;
+
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
+
+#define AO_RADIUS (aoInfo.x)
+#define AO_BIAS (aoInfo.y)
+#define AO_INTENSITY (aoInfo.z)
+#define AO_PROJ_SCALE (aoInfo.w)
+
+out float outColor;
+
+const float PI = 3.14159265;
+
+vec2 DepthSize() { return vec2(textureSize(texDepth, 0)); }
+
+bool IsSky(float z) { return z >= CAMERA_FAR; }
+
+// View-space position of texture coordinate uv at linear distance z.
+vec3 ViewPos(vec2 uv, float z) { return vec3((uv * 2 - 1) * ndcToView * z, -z); }
+
+// Level-0 depth of a texel, clamped to the texture.
+float TexelDepth(ivec2 p) {
+  return texelFetch(texDepth, clamp(p, ivec2(0), ivec2(DepthSize()) - 1), 0).x;
+}
+
+// View-space position at the centre of texel p.
+vec3 TexelPos(ivec2 p) {
+  p = clamp(p, ivec2(0), ivec2(DepthSize()) - 1);
+  return ViewPos((vec2(p) + 0.5) / DepthSize(), TexelDepth(p));
+}
+
+// Texture coordinate where view-space point p projects.
+vec2 ProjectToUv(vec3 p) {
+  vec2 ndc = p.xy / max(-p.z, 1e-6) / ndcToView;
+  return ndc * 0.5 + 0.5;
+}
+
+// Normal from the neighbours with the smaller depth step on each axis (no derivatives, so no
+// 2x2-quad artefacts at silhouettes); (0,0,1) where it cannot be built.
+vec3 ReconstructNormal(ivec2 p, vec3 c) {
+  vec3 l = TexelPos(p - ivec2(1, 0)), r = TexelPos(p + ivec2(1, 0));
+  vec3 d = TexelPos(p - ivec2(0, 1)), u = TexelPos(p + ivec2(0, 1));
+  vec3 dx = abs(r.z - c.z) < abs(c.z - l.z) ? r - c : c - l;
+  vec3 dy = abs(u.z - c.z) < abs(c.z - d.z) ? u - c : c - d;
+  vec3 n = cross(dx, dy);
+  float len2 = dot(n, n);
+  return len2 > 1e-30 ? n * inversesqrt(len2) : vec3(0, 0, 1);
+}
+
+// A 4x4 tile of rotation angles (the "4x4 noise texture" of the seeds, as arithmetic).
+float NoiseAngle(ivec2 p) {
+  const float bayer[16] = float[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
+  return (bayer[(p.y & 3) * 4 + (p.x & 3)] + 0.5) / 16.0 * 2.0 * PI;
+}
+
+// Intensity 5 (the lesson's default) leaves occlusion as computed; larger darkens, smaller lightens.
+float ApplyIntensity(float occlusion) {
+  return 1.0 - pow(clamp(1.0 - occlusion, 0.0, 1.0), max(AO_INTENSITY, 0.0) / 5.0);
+}

@@ -1,0 +1,266 @@
+//! The other AO methods of the seeds (and the engine's own SAO, and GTAO), all reading the linear
+//! depth mip chain that the lesson's restore and down-sampling passes build, each with its own
+//! shader in `Res/ao/`, blurred by a separable bilateral filter and composited like the lesson.
+
+use crate::ao::{SaoLesson, SaoParams};
+use crate::config;
+use crate::engine::Camera;
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture, TextureDesc,
+};
+use crate::res::ResDirs;
+use anyhow::Result;
+use serde::{Deserialize, Serialize};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+/// Names as on the command line (`--method`).
+#[derive(
+    Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Serialize, Deserialize, clap::ValueEnum,
+)]
+#[serde(rename_all = "kebab-case")]
+pub enum AoMethod {
+    /// The lesson's SAO as taught (errata fixed, one 9×9 bilateral blur).
+    #[default]
+    SaoLesson,
+    /// The engine's SAO: round disc in view space, separable blur, small discs and sky skipped.
+    Sao,
+    /// Sphere sampling with depth comparison (Crytek).
+    Crytek,
+    /// Normal-oriented hemisphere kernel with range check.
+    Hemisphere,
+    /// Horizon-based AO (directions × steps).
+    Hbao,
+    /// UE4-style paired samples.
+    AngleBased,
+    /// Ground-truth-based AO (analytic cosine-weighted horizon integral).
+    Gtao,
+}
+
+impl AoMethod {
+    pub const ALL: [AoMethod; 7] = [
+        AoMethod::SaoLesson,
+        AoMethod::Sao,
+        AoMethod::Crytek,
+        AoMethod::Hemisphere,
+        AoMethod::Hbao,
+        AoMethod::AngleBased,
+        AoMethod::Gtao,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AoMethod::SaoLesson => "sao-lesson",
+            AoMethod::Sao => "sao",
+            AoMethod::Crytek => "crytek",
+            AoMethod::Hemisphere => "hemisphere",
+            AoMethod::Hbao => "hbao",
+            AoMethod::AngleBased => "angle-based",
+            AoMethod::Gtao => "gtao",
+        }
+    }
+
+    /// The method's fragment shader under `Res/` (the lesson's lives at the top level).
+    pub fn shader(self) -> &'static str {
+        match self {
+            AoMethod::SaoLesson => "sao.frag",
+            AoMethod::Sao => "ao/sao.frag",
+            AoMethod::Crytek => "ao/crytek.frag",
+            AoMethod::Hemisphere => "ao/hemisphere.frag",
+            AoMethod::Hbao => "ao/hbao.frag",
+            AoMethod::AngleBased => "ao/angle_based.frag",
+            AoMethod::Gtao => "ao/gtao.frag",
+        }
+    }
+
+    /// (first count, second count) the shader reads from `aoCounts`, from the common parameters:
+    /// SAO: samples and spiral turns; HBAO: directions and steps; GTAO: slices and steps per side.
+    pub fn counts(self, p: &SaoParams) -> [i32; 2] {
+        let s = p.samples.max(1) as i32;
+        match self {
+            AoMethod::SaoLesson | AoMethod::Sao => [s, p.spiral_turns.max(1) as i32],
+            AoMethod::Crytek | AoMethod::Hemisphere => [s, 1],
+            AoMethod::AngleBased => [(s / 2).max(1), 1],
+            // Directions × steps ≈ samples: 4 directions, the rest as steps.
+            AoMethod::Hbao => [4, (s / 4).max(1)],
+            AoMethod::Gtao => [2, (s / 4).max(1)],
+        }
+    }
+}
+
+/// Programs of the non-lesson methods (built on first use) and the separable blur's targets.
+pub struct AoMethods {
+    gl: Gl,
+    res: ResDirs,
+    programs: HashMap<AoMethod, ProgramObject>,
+    blur: ProgramObject,
+    /// Intermediate of the two blur passes (half size, R8).
+    fbo_tmp: FramebufferObject,
+    defines: Vec<(&'static str, String)>,
+}
+
+/// Location of the blur's axis uniform.
+const LOC_BLUR_AXIS: i32 = 210;
+const LOC_AO_INFO: i32 = 200;
+const LOC_NDC_TO_VIEW: i32 = 201;
+const LOC_AO_COUNTS: i32 = 202;
+const LOC_MAX_RADIUS: i32 = 203;
+
+fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    vec![("CAMERA_FAR", crate::ao::sao_lesson::glsl_float(camera.far))]
+}
+
+impl AoMethods {
+    pub fn new(gl: &Gl, res: &ResDirs, lesson: &SaoLesson, camera: &Camera) -> Result<AoMethods> {
+        let defines = camera_defines(camera);
+        let blur =
+            ProgramObject::from_res(gl, res, "simple.vert", "ao/blur_separable.frag", &defines)?;
+        let fbo_tmp = tmp_target(gl, lesson)?;
+        Ok(AoMethods {
+            gl: gl.clone(),
+            res: res.clone(),
+            programs: HashMap::new(),
+            blur,
+            fbo_tmp,
+            defines,
+        })
+    }
+
+    /// Re-creates the blur intermediate after the lesson's targets were resized.
+    pub fn resize(&mut self, lesson: &SaoLesson) -> Result<()> {
+        self.fbo_tmp = tmp_target(&self.gl, lesson)?;
+        Ok(())
+    }
+
+    /// Builds the method's program if needed (errors name the file and line).
+    pub fn prepare(&mut self, method: AoMethod) -> Result<(), ProgramError> {
+        if method == AoMethod::SaoLesson || self.programs.contains_key(&method) {
+            return Ok(());
+        }
+        let p = ProgramObject::from_res(
+            &self.gl,
+            &self.res,
+            "simple.vert",
+            method.shader(),
+            &self.defines,
+        )?;
+        self.programs.insert(method, p);
+        Ok(())
+    }
+
+    pub fn update_camera(&mut self, camera: &Camera) -> Result<(), ProgramError> {
+        let d = camera_defines(camera);
+        if d == self.defines {
+            return Ok(());
+        }
+        self.defines = d.clone();
+        self.blur.set_defines(&d)?;
+        for p in self.programs.values_mut() {
+            p.set_defines(&d)?;
+        }
+        Ok(())
+    }
+
+    pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
+        let mut errors = Vec::new();
+        for p in self
+            .programs
+            .values_mut()
+            .chain(std::iter::once(&mut self.blur))
+        {
+            if force || p.sources_changed() {
+                if let Err(e) = p.reload() {
+                    errors.push(e);
+                }
+            }
+        }
+        errors
+    }
+
+    /// Runs `method` into the lesson's SAO target (occlusion, R8, half size).
+    pub fn compute(
+        &self,
+        method: AoMethod,
+        lesson: &SaoLesson,
+        meshes: &MeshBuffer,
+        camera: &Camera,
+        params: &SaoParams,
+    ) {
+        let Some(p) = self.programs.get(&method) else {
+            log::error!("AO method {} was not prepared", method.name());
+            return;
+        };
+        let (w, h) = (
+            lesson.fbo_depth[0].width() as f32,
+            lesson.fbo_depth[0].height() as f32,
+        );
+        let fov_scale = config::fov_scale(camera.fov_y_deg);
+        // Pixels (of the half-size buffer) per metre at 1 m distance.
+        let proj_scale = 0.5 * h * fov_scale;
+        p.set_vec4(
+            LOC_AO_INFO,
+            [params.radius, params.bias, params.intensity, proj_scale],
+        );
+        p.set_vec2(LOC_NDC_TO_VIEW, [w / h / fov_scale, 1.0 / fov_scale]);
+        let c = method.counts(params);
+        if p.has_location(LOC_AO_COUNTS) {
+            unsafe {
+                use glow::HasContext;
+                self.gl.program_uniform_2_i32(
+                    p.id(),
+                    Some(&glow::NativeUniformLocation(LOC_AO_COUNTS as u32)),
+                    c[0],
+                    c[1],
+                );
+            }
+        }
+        // Near the camera the disc could cover the screen: clamp it (HBAO+ does the same).
+        p.set_f32(LOC_MAX_RADIUS, 0.25 * h.max(w).max(8.0));
+        fullscreen_state(&self.gl);
+        p.use_program();
+        lesson.fbo_sao.bind();
+        lesson.tex_depth.bind(0);
+        meshes.draw_plane_xy();
+    }
+
+    /// Two-pass separable bilateral blur: SAO target → intermediate → the lesson's blur target.
+    pub fn blur(&self, lesson: &SaoLesson, meshes: &MeshBuffer) {
+        fullscreen_state(&self.gl);
+        self.blur.use_program();
+        unsafe {
+            use glow::HasContext;
+            let loc = glow::NativeUniformLocation(LOC_BLUR_AXIS as u32);
+            lesson.tex_depth.bind(1);
+            self.gl
+                .program_uniform_2_i32(self.blur.id(), Some(&loc), 1, 0);
+            self.fbo_tmp.bind();
+            lesson.sao_texture().bind(0);
+            meshes.draw_plane_xy();
+            self.gl
+                .program_uniform_2_i32(self.blur.id(), Some(&loc), 0, 1);
+            lesson.fbo_blur.bind();
+            self.fbo_tmp.color_texture().unwrap().bind(0);
+            meshes.draw_plane_xy();
+        }
+    }
+}
+
+fn fullscreen_state(gl: &Gl) {
+    use glow::HasContext;
+    unsafe {
+        gl.disable(glow::CULL_FACE);
+        gl.disable(glow::DEPTH_TEST);
+        gl.depth_mask(false);
+        gl.disable(glow::BLEND);
+        gl.disable(glow::SCISSOR_TEST);
+    }
+}
+
+fn tmp_target(gl: &Gl, lesson: &SaoLesson) -> Result<FramebufferObject> {
+    let (w, h) = lesson.sao_texture().size_at(0);
+    let tex = Rc::new(Texture::new(
+        gl,
+        TextureDesc::target("FBO(ao blur tmp)", w, h, glow::R8),
+    )?);
+    FramebufferObject::new(gl, Some(tex), None, 0, 0)
+}
