@@ -1,6 +1,6 @@
 //! The desktop window: winit + glutin, a fly camera, AO and view toggles, hot reload of shaders.
 //!
-//! Keys: W/A/S/D/Q/E move, drag with a mouse button to look, Space toggles AO, V cycles the views
+//! Keys: W/A/S/D/Q/E move, drag with a mouse button to look, Space toggles AO, M cycles AO methods, V cycles the views
 //! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, Esc quits.
 //! Shaders are also rebuilt automatically within half a second of being saved; a compile error is
 //! shown in the title bar and on the console with file:line, and the last working program keeps running.
@@ -154,7 +154,8 @@ impl App {
         if let Some(s) = &self.state {
             let e = &s.engine;
             let mut t = format!(
-                "opengl3d — view: {} (V) — AO {} (Space) — blur {} (B)",
+                "opengl3d — {} (M) — view: {} (V) — AO {} (Space) — blur {} (B)",
+                e.ao_params.method.name(),
                 e.view.label(),
                 if e.ao_params.enabled { "on" } else { "off" },
                 if e.ao_params.blur { "on" } else { "off" }
@@ -298,6 +299,17 @@ impl ApplicationHandler for App {
                                 }
                                 KeyCode::KeyB => s.engine.ao_params.blur = !s.engine.ao_params.blur,
                                 KeyCode::KeyR => self.check_reload(true),
+                                KeyCode::KeyM => {
+                                    let all = crate::ao::AoMethod::ALL;
+                                    let i = all
+                                        .iter()
+                                        .position(|m| *m == s.engine.ao_params.method)
+                                        .unwrap_or(0);
+                                    s.engine.ao_params.method = all[(i + 1) % all.len()];
+                                    if let Err(e) = s.engine.sync_shader_constants() {
+                                        eprintln!("{e}");
+                                    }
+                                }
                                 _ => {}
                             }
                         }
