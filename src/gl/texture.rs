@@ -232,16 +232,21 @@ impl Texture {
         unsafe { self.gl.bind_texture_unit(unit, Some(self.id)) }
     }
 
-    /// Reads one level back as f32 values, `channels` per texel (1 = RED or DEPTH, 4 = RGBA). Rows bottom-up.
-    pub fn read_f32(&self, level: u32, channels: u32) -> Vec<f32> {
-        let (w, h) = self.size_at(level);
-        let format = match (channels, is_depth_format(self.desc.internal_format)) {
+    /// Pixel format for reading or writing `channels` values per texel (depth textures: DEPTH_COMPONENT).
+    fn transfer_format(&self, channels: u32) -> u32 {
+        match (channels, is_depth_format(self.desc.internal_format)) {
             (_, true) => glow::DEPTH_COMPONENT,
             (1, false) => glow::RED,
             (2, false) => glow::RG,
             (3, false) => glow::RGB,
             _ => glow::RGBA,
-        };
+        }
+    }
+
+    /// Reads one level back as f32 values, `channels` per texel (1 = RED or DEPTH, 4 = RGBA). Rows bottom-up.
+    pub fn read_f32(&self, level: u32, channels: u32) -> Vec<f32> {
+        let (w, h) = self.size_at(level);
+        let format = self.transfer_format(channels);
         let n = (w * h * channels) as usize;
         let mut bytes = vec![0u8; n * 4];
         unsafe {
@@ -272,13 +277,7 @@ impl Texture {
                 data.len()
             );
         }
-        let format = match (channels, is_depth_format(self.desc.internal_format)) {
-            (_, true) => glow::DEPTH_COMPONENT,
-            (1, false) => glow::RED,
-            (2, false) => glow::RG,
-            (3, false) => glow::RGB,
-            _ => glow::RGBA,
-        };
+        let format = self.transfer_format(channels);
         let bytes: Vec<u8> = data.iter().flat_map(|v| v.to_ne_bytes()).collect();
         unsafe {
             self.gl.pixel_store_i32(glow::UNPACK_ALIGNMENT, 1);
