@@ -107,13 +107,14 @@ void main()
   }
   occlusion = min(1.0, occlusion / samplingCount * INTENSITY);
 
-  // Average with the neighbour in each direction on near-flat surfaces (cheap 2x2 smoothing).
-  // Derivatives again outside any branch.
+  // Average with the neighbours on near-flat surfaces (cheap 2x2 smoothing): first along x, then
+  // along y of the row-averaged value, which gives the mean of the quad. Each derivative is taken
+  // after the branches have joined again, never inside one.
   float dOccX = dFdx(occlusion);
-  float dOccY = dFdy(occlusion);
   if (abs(dpdx.z) < 0.02) {
     occlusion -= dOccX * (float(iuv.x & 1) - 0.5);
   }
+  float dOccY = dFdy(occlusion);
   if (abs(dpdy.z) < 0.02) {
     occlusion -= dOccY * (float(iuv.y & 1) - 0.5);
   }

@@ -7,7 +7,8 @@ layout(binding=1) uniform sampler2D texDepth; // linear depth
 
 out vec4 outColor;
 
-// A sigma = 2 Gaussian (McGuire's weights), centre first.
+// McGuire's weights, centre first. His source labels them "stddev = 2", but their ratios are
+// exp(-k^2/18): a sigma = 3 Gaussian cut at +-4 taps and renormalised (the lesson printed them +0.3).
 const float gaussian[5] =
   { 0.153170, 0.144893, 0.122649, 0.092902, 0.062970 };
 

@@ -16,21 +16,22 @@ cd "$ROOT"
 cargo build --release
 run() { cargo run --release --quiet -- "$@"; }
 SMALL="--width 640 --height 360"
+M="--method sao-lesson"   # the lesson's shaders (the default method, pinned here)
 fig() { python3 "$HERE/figures.py" "$@"; }
 
 # Engine views, straight to PNG.
-run render --view composite $SMALL --out "$IMG/composite.png"
-run render --view composite --ao off $SMALL --out "$IMG/composite-ao-off.png"
-run render --view linear-depth $SMALL --out "$IMG/linear-depth.png"
-run render --view ao-raw $SMALL --out "$IMG/ao-raw.png"
-run render --view ao $SMALL --out "$IMG/ao.png"
+run render $M --view composite $SMALL --out "$IMG/composite.png"
+run render $M --view composite --ao off $SMALL --out "$IMG/composite-ao-off.png"
+run render $M --view linear-depth $SMALL --out "$IMG/linear-depth.png"
+run render $M --view ao-raw $SMALL --out "$IMG/ao-raw.png"
+run render $M --view ao $SMALL --out "$IMG/ao.png"
 
 # Diagrams.
 fig depth-curve "$IMG/depth-curve.png"
 fig spiral "$IMG/spiral.png"
 
 # Figures computed from the linear depth (1280x720 view = one value per level-0 texel of 640x360).
-run render --view linear-depth --out "$TMP/linear-depth.pfm"
+run render $M --view linear-depth --out "$TMP/linear-depth.pfm"
 fig mip-chain "$TMP/linear-depth.pfm" "$IMG/mip-chain.png"
 fig course-depth "$TMP/linear-depth.pfm" "$IMG/course-depth.png"
 fig normals "$TMP/linear-depth.pfm" "$IMG/normals.png"
@@ -44,14 +45,14 @@ sed 's/weight \*= max(0.0, 1.0 - edgeSharpness \* abs(sampleDepth - depth));/\/\
     Res/sao_blur.frag > "$V/noedge/sao_blur.frag"
 for f in "$V"/*/*; do cmp -s "$f" "Res/$(basename "$f")" && { echo "sed did not change $f" >&2; exit 1; }; done
 
-run render --view ao-raw $SMALL --out "$TMP/ok.pfm"
-run --res "$V/noguard" render --view ao-raw $SMALL --out "$TMP/noguard.pfm"
+run render $M --view ao-raw $SMALL --out "$TMP/ok.pfm"
+run --res "$V/noguard" render $M --view ao-raw $SMALL --out "$TMP/noguard.pfm"
 # A low camera looking across the floor shows what the mip bias is for.
 LOW="--eye 1.5,0.5,5 --target -1,0.2,-1"
-run render --view ao-raw $LOW $SMALL --out "$TMP/low-ok.pfm"
-run --res "$V/nomipbias" render --view ao-raw $LOW $SMALL --out "$TMP/low-nomipbias.pfm"
-run render --view ao $SMALL --out "$TMP/ok-blur.pfm"
-run --res "$V/noedge" render --view ao $SMALL --out "$TMP/noedge.pfm"
+run render $M --view ao-raw $LOW $SMALL --out "$TMP/low-ok.pfm"
+run --res "$V/nomipbias" render $M --view ao-raw $LOW $SMALL --out "$TMP/low-nomipbias.pfm"
+run render $M --view ao $SMALL --out "$TMP/ok-blur.pfm"
+run --res "$V/noedge" render $M --view ao $SMALL --out "$TMP/noedge.pfm"
 
 # 320x180 crops of the 640x360 views, correct on the left.
 fig grid "$IMG/mistakes-sao.png" 320 180 \

@@ -1,7 +1,7 @@
 #version 450
 
 // One direction of the separable bilateral blur (McGuire's reference: 2 passes x 9 taps, radius 4,
-// sigma = 2 weights; weights fall to 0 across a depth step of 0.15 m). Taps are 1 texel apart, not 2:
+// McGuire's weights (a sigma = 3 Gaussian in taps); weights fall to 0 across a depth step of 0.15 m). Taps are 1 texel apart, not 2:
 // the methods rotate their samples with a 4x4 tile, and taps 2 apart would only ever see 2 of its 4
 // phases per axis, leaving the tile's pattern in the picture.
 
