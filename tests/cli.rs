@@ -400,3 +400,17 @@ fn stats_show_which_passes_run_and_skips() {
         );
     }
 }
+
+#[test]
+fn objects_outside_the_view_are_culled() {
+    let all = stats(&[]);
+    let opaque_all = all.iter().find(|p| p.0 == "opaque").unwrap().2;
+    // Looking out of the courtyard (towards +Z): only the floor and the left wall remain in view.
+    let away = stats(&["--eye", "0,1.6,6", "--target", "0,1.6,20"]);
+    let opaque_away = away.iter().find(|p| p.0 == "opaque").unwrap().2;
+    assert_eq!(opaque_all, 13, "every demo object is in the default view");
+    assert!(
+        opaque_away < 4,
+        "looking away should draw only what is in view ({opaque_away} draw calls)"
+    );
+}

@@ -314,12 +314,15 @@ impl Engine {
         Mat4::orthographic_rh_gl(-r, r, -r, r, 0.01, r * 4.0) * view
     }
 
-    fn draw_objects(&self, prog: &ProgramObject, transparent: bool) {
+    /// Draws the opaque (or transparent) objects whose bounds touch the frustum of `view_projection`.
+    fn draw_objects(&self, prog: &ProgramObject, transparent: bool, view_projection: &Mat4) {
         self.meshes.bind();
+        let planes = frustum_planes(view_projection);
         for o in self
             .objects
             .iter()
             .filter(|o| o.is_transparent() == transparent)
+            .filter(|o| box_in_frustum(&planes, o.bounds))
         {
             prog.set_mat4(loc::MODEL, &o.model());
             prog.set_vec4(loc::OBJECT_COLOR, o.color.to_array());
@@ -343,7 +346,7 @@ impl Engine {
         }
         self.prog_shadow.set_mat4(loc::VIEW_PROJECTION, shadow);
         self.prog_shadow.use_program();
-        self.draw_objects(&self.prog_shadow, false);
+        self.draw_objects(&self.prog_shadow, false, shadow);
         unsafe { self.gl.disable(glow::POLYGON_OFFSET_FILL) };
     }
 
@@ -389,7 +392,11 @@ impl Engine {
                 .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
         }
         self.setup_standard(shadow);
-        self.draw_objects(&self.prog_standard, false);
+        self.draw_objects(
+            &self.prog_standard,
+            false,
+            &self.camera.view_projection(self.aspect()),
+        );
     }
 
     fn draw_sky(&self) {
@@ -425,7 +432,11 @@ impl Engine {
             self.gl.disable(glow::CULL_FACE);
         }
         self.setup_standard(shadow);
-        self.draw_objects(&self.prog_standard, true);
+        self.draw_objects(
+            &self.prog_standard,
+            true,
+            &self.camera.view_projection(self.aspect()),
+        );
         unsafe { self.gl.depth_mask(true) };
     }
 
@@ -675,6 +686,32 @@ impl Engine {
     }
 }
 
+/// The six planes (a, b, c, d with a·x + b·y + c·z + d ≥ 0 inside) of a view-projection's frustum.
+pub fn frustum_planes(m: &Mat4) -> [Vec4; 6] {
+    let r = |i: usize| m.row(i);
+    [
+        r(3) + r(0),
+        r(3) - r(0),
+        r(3) + r(1),
+        r(3) - r(1),
+        r(3) + r(2),
+        r(3) - r(2),
+    ]
+}
+
+/// Conservative test: false only when the box lies entirely outside one plane.
+pub fn box_in_frustum(planes: &[Vec4; 6], (lo, hi): (Vec3, Vec3)) -> bool {
+    planes.iter().all(|p| {
+        // The box corner farthest along the plane normal.
+        let c = Vec3::new(
+            if p.x >= 0.0 { hi.x } else { lo.x },
+            if p.y >= 0.0 { hi.y } else { lo.y },
+            if p.z >= 0.0 { hi.z } else { lo.z },
+        );
+        p.truncate().dot(c) + p.w >= 0.0
+    })
+}
+
 fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
     let (lo, hi) = data.bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO));
     let mut b = (Vec3::splat(f32::MAX), Vec3::splat(f32::MIN));
@@ -755,5 +792,39 @@ pub fn flip_rows<T: Copy>(data: &mut [T], row_len: usize, rows: usize) {
     for y in 0..rows / 2 {
         let (a, b) = data.split_at_mut((rows - 1 - y) * row_len);
         a[y * row_len..(y + 1) * row_len].swap_with_slice(&mut b[..row_len]);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frustum_test_keeps_visible_boxes_and_drops_those_behind() {
+        let cam = Camera {
+            eye: Vec3::ZERO,
+            target: Vec3::new(0.0, 0.0, -1.0),
+            ..Default::default()
+        };
+        let planes = frustum_planes(&cam.view_projection(1.0));
+        let unit = |c: Vec3| (c - Vec3::splat(0.5), c + Vec3::splat(0.5));
+        assert!(box_in_frustum(&planes, unit(Vec3::new(0.0, 0.0, -5.0))));
+        assert!(
+            !box_in_frustum(&planes, unit(Vec3::new(0.0, 0.0, 5.0))),
+            "behind the camera"
+        );
+        assert!(
+            !box_in_frustum(&planes, unit(Vec3::new(50.0, 0.0, -5.0))),
+            "far to the right"
+        );
+        assert!(
+            !box_in_frustum(&planes, unit(Vec3::new(0.0, 0.0, -2000.0))),
+            "beyond the far plane"
+        );
+        // A box around the camera straddles every plane: kept.
+        assert!(box_in_frustum(
+            &planes,
+            (Vec3::splat(-10.0), Vec3::splat(10.0))
+        ));
     }
 }
