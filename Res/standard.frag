@@ -13,6 +13,12 @@ layout(location=102) uniform vec3 lightColor;
 layout(location=103) uniform vec3 ambientColor;
 layout(location=104) uniform int shadowEnabled;
 
+// AO applied to the ambient term only (after a depth pre-pass): occlusion at half size.
+layout(binding=3) uniform sampler2D texAO;
+layout(location=105) uniform int aoAmbientOnly;
+layout(location=106) uniform vec2 invScreenSize;
+layout(location=107) uniform float aoPower;
+
 out vec4 outColor;
 
 float Shadow(vec3 normal)
@@ -48,5 +54,9 @@ void main()
   float diffuse = max(dot(n, normalize(lightDirection)), 0.0) * Shadow(n);
   // Hemispherical ambient: a little brighter from the sky than from the ground.
   vec3 ambient = ambientColor * (0.75 + 0.25 * n.y);
+  if (aoAmbientOnly != 0) {
+    float visibility = clamp(1.0 - texture(texAO, gl_FragCoord.xy * invScreenSize).x, 0.0, 1.0);
+    ambient *= pow(visibility, aoPower);
+  }
   outColor = vec4(objectColor.rgb * (ambient + lightColor * diffuse), objectColor.a);
 }

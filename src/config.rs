@@ -36,6 +36,13 @@ pub mod loc {
     pub const AMBIENT_COLOR: i32 = 103;
     /// standard.frag: 1 = sample the shadow map, 0 = fully lit.
     pub const SHADOW_ENABLED: i32 = 104;
+    /// standard.frag: AO on the ambient term only (1/0), 1/screen size, visibility power.
+    pub const AO_AMBIENT_ONLY: i32 = 105;
+    pub const INV_SCREEN_SIZE: i32 = 106;
+    pub const AO_POWER: i32 = 107;
+    /// ao/composite_tint.frag: tint colour and power.
+    pub const AO_TINT: i32 = 220;
+    pub const AO_TINT_POWER: i32 = 221;
     /// sky.frag: inverse of the view-projection matrix (to get a view ray per pixel).
     pub const INVERSE_VIEW_PROJECTION: i32 = 110;
     /// image_processing.frag: colour matrix; bloom strength.
@@ -59,4 +66,6 @@ pub mod loc {
 /// Texture bindings used by the engine's own shaders.
 pub mod binding {
     pub const SHADOW_MAP: u32 = 2;
+    /// standard.frag: occlusion for AO on the ambient term only.
+    pub const AO_AMBIENT: u32 = 3;
 }

@@ -4,4 +4,4 @@ pub mod methods;
 pub mod sao_lesson;
 
 pub use methods::{AoMethod, AoMethods};
-pub use sao_lesson::{SaoLesson, SaoParams};
+pub use sao_lesson::{CompositeMode, SaoLesson, SaoParams};

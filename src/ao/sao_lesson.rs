@@ -31,6 +31,25 @@ pub struct SaoParams {
     pub samples: u32,
     pub spiral_turns: u32,
     pub blur: bool,
+    /// How occlusion reaches the picture.
+    pub composite: CompositeMode,
+    /// Colour that occluded areas blend toward (`tinted`; black = the lesson's darkening).
+    pub tint: [f32; 3],
+    /// Visibility is raised to this power before compositing (1 = as computed).
+    pub power: f32,
+}
+
+/// How occlusion is applied to the image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum CompositeMode {
+    /// The lesson's blend over the whole lit colour (SRC_ALPHA, ONE_MINUS_SRC_ALPHA).
+    #[default]
+    Blend,
+    /// Blend toward `tint` with visibility^`power` (seeds 000 and 003).
+    Tinted,
+    /// A depth pre-pass, AO, then lighting with AO applied to the ambient term only.
+    AmbientOnly,
 }
 
 impl Default for SaoParams {
@@ -44,6 +63,9 @@ impl Default for SaoParams {
             samples: 11,
             spiral_turns: 3,
             blur: true,
+            composite: CompositeMode::Blend,
+            tint: [0.0; 3],
+            power: 1.0,
         }
     }
 }
@@ -66,6 +88,14 @@ impl SaoParams {
         fix("radius", &mut self.radius, 1e-3, 100.0);
         fix("bias", &mut self.bias, 0.0, 10.0);
         fix("intensity", &mut self.intensity, 0.0, 1000.0);
+        fix("power", &mut self.power, 0.05, 20.0);
+        for c in &mut self.tint {
+            *c = if c.is_finite() {
+                c.clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+        }
         if !(1..=256).contains(&self.samples) {
             notes.push(format!(
                 "AO samples {} is out of range, using {}",

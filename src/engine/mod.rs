@@ -8,7 +8,7 @@ pub mod game_object;
 pub use camera::{linear_depth_exact, Camera};
 pub use game_object::GameObject;
 
-use crate::ao::{AoMethod, AoMethods, SaoLesson, SaoParams};
+use crate::ao::{AoMethod, AoMethods, CompositeMode, SaoLesson, SaoParams};
 use crate::config::{binding, loc};
 use crate::gl::{
     mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture,
@@ -95,6 +95,7 @@ pub struct Engine {
     prog_bloom_up: ProgramObject,
     prog_image: ProgramObject,
     prog_debug: ProgramObject,
+    prog_composite_tint: ProgramObject,
     pub ao: SaoLesson,
     /// The other AO methods (built on first use).
     pub methods: AoMethods,
@@ -145,6 +146,7 @@ impl Engine {
         let prog_bloom_up = p("simple.vert", "bloom_up.frag")?;
         let prog_image = p("simple.vert", "image_processing.frag")?;
         let prog_debug = p("simple.vert", "debug_view.frag")?;
+        let prog_composite_tint = p("simple.vert", "ao/composite_tint.frag")?;
         let ao = SaoLesson::new(gl, &res, width, height, &camera, &ao_params)?;
         let mut methods = AoMethods::new(gl, &res, &ao, &camera)?;
         methods.prepare(ao_params.method)?;
@@ -209,6 +211,7 @@ impl Engine {
             prog_bloom_up,
             prog_image,
             prog_debug,
+            prog_composite_tint,
             ao,
             methods,
             width,
@@ -274,6 +277,7 @@ impl Engine {
             &mut self.prog_bloom_up,
             &mut self.prog_image,
             &mut self.prog_debug,
+            &mut self.prog_composite_tint,
         ] {
             if force || p.sources_changed() {
                 if let Err(e) = p.reload() {
@@ -361,6 +365,7 @@ impl Engine {
         p.set_vec3(loc::LIGHT_COLOR, self.light.color);
         p.set_vec3(loc::AMBIENT_COLOR, self.light.ambient);
         p.set_i32(loc::SHADOW_ENABLED, self.light.shadow as i32);
+        p.set_i32(loc::AO_AMBIENT_ONLY, 0);
         p.use_program();
         if self.light.shadow {
             self.fbo_shadow
@@ -397,6 +402,83 @@ impl Engine {
             false,
             &self.camera.view_projection(self.aspect()),
         );
+    }
+
+    /// Depth only (the pre-pass of AO-on-ambient): the AO chain needs depth before lighting.
+    fn draw_depth_prepass(&self) {
+        self.fbo_main.bind();
+        let vp = self.camera.view_projection(self.aspect());
+        unsafe {
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(true);
+            self.gl.clear_color(0.0, 0.0, 0.0, 1.0);
+            self.gl.clear_depth_f32(1.0);
+            self.gl
+                .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
+            self.gl.color_mask(false, false, false, false);
+        }
+        self.prog_shadow.set_mat4(loc::VIEW_PROJECTION, &vp);
+        self.prog_shadow.use_program();
+        self.draw_objects(&self.prog_shadow, false, &vp);
+        unsafe { self.gl.color_mask(true, true, true, true) };
+    }
+
+    /// Lighting after the pre-pass, with occlusion applied to the ambient term only.
+    fn draw_opaque_ao_ambient(&self, shadow: &Mat4) {
+        self.fbo_main.bind();
+        unsafe {
+            self.gl.disable(glow::BLEND);
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(glow::LEQUAL);
+            self.gl.depth_mask(false);
+        }
+        self.setup_standard(shadow);
+        let p = &self.prog_standard;
+        p.set_i32(loc::AO_AMBIENT_ONLY, 1);
+        p.set_vec2(
+            loc::INV_SCREEN_SIZE,
+            [1.0 / self.width as f32, 1.0 / self.height as f32],
+        );
+        p.set_f32(loc::AO_POWER, self.ao_params.power);
+        self.ao
+            .result_texture(self.ao_params.blur)
+            .bind(binding::AO_AMBIENT);
+        self.draw_objects(p, false, &self.camera.view_projection(self.aspect()));
+        unsafe { self.gl.depth_mask(true) };
+    }
+
+    /// Blends the occlusion over the lit image: the lesson's swizzled blend, or tinted with a power.
+    fn draw_ao_composite(&self) {
+        let params = &self.ao_params;
+        if params.composite == CompositeMode::Blend && params.power == 1.0 {
+            self.ao.composite(&self.meshes, &self.fbo_main, params.blur);
+            return;
+        }
+        let tint = if params.composite == CompositeMode::Tinted {
+            params.tint
+        } else {
+            [0.0; 3]
+        };
+        let p = &self.prog_composite_tint;
+        p.set_vec3(loc::AO_TINT, tint);
+        p.set_f32(loc::AO_TINT_POWER, params.power);
+        self.fbo_main.bind();
+        unsafe {
+            self.gl.disable(glow::CULL_FACE);
+            self.gl.disable(glow::DEPTH_TEST);
+            self.gl.enable(glow::BLEND);
+            self.gl.blend_equation(glow::FUNC_ADD);
+            self.gl
+                .blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
+        }
+        p.use_program();
+        self.ao.result_texture(params.blur).bind(0);
+        self.meshes.draw_plane_xy();
+        unsafe { self.gl.disable(glow::BLEND) };
     }
 
     fn draw_sky(&self) {
@@ -566,7 +648,14 @@ impl Engine {
         if self.light.shadow && view == View::Composite {
             self.pass("shadow map", "shadow", || self.draw_shadow_map(&shadow));
         }
-        self.pass("opaque", "opaque", || self.draw_opaque(&shadow));
+        let ambient_only = view == View::Composite
+            && self.ao_params.enabled
+            && self.ao_params.composite == CompositeMode::AmbientOnly;
+        if ambient_only {
+            self.pass("depth pre-pass", "opaque", || self.draw_depth_prepass());
+        } else {
+            self.pass("opaque", "opaque", || self.draw_opaque(&shadow));
+        }
         if need_ao {
             let depth = self.fbo_main.depth_texture().unwrap();
             let (m, ao) = (&self.meshes, &self.ao);
@@ -589,10 +678,10 @@ impl Engine {
                     self.pass("separable blur", "ao", || methods.blur(ao, m));
                 }
             }
-            if view == View::Composite {
-                self.pass("sao composite", "ao", || {
-                    ao.composite(m, &self.fbo_main, self.ao_params.blur)
-                });
+            if ambient_only {
+                self.pass("opaque", "opaque", || self.draw_opaque_ao_ambient(&shadow));
+            } else if view == View::Composite {
+                self.pass("sao composite", "ao", || self.draw_ao_composite());
             }
         }
         if view != View::Composite {
