@@ -36,6 +36,9 @@ pub enum Command {
     Reference(ReferenceArgs),
     /// Grade a student's shaders (--res DIR) against the lesson's steps; exits non-zero on a failed step.
     Grade(crate::grade::GradeArgs),
+    /// (Internal) grade one step in a child process of `grade`; prints one JSON line.
+    #[command(hide = true)]
+    GradeStep(crate::grade::GradeStepArgs),
     /// Run time against error of the AO methods, or `--stress` for numerical stability.
     Bench(crate::bench::BenchArgs),
     /// Regenerate the demo meshes in Res/meshes.
@@ -121,6 +124,15 @@ pub struct SceneArgs {
     /// AO radius in metres.
     #[arg(long)]
     pub radius: Option<f32>,
+    /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
+    #[arg(long, value_enum)]
+    pub composite: Option<crate::ao::CompositeMode>,
+    /// Tint colour for `--composite tinted`, "r,g,b" in 0..1.
+    #[arg(long, value_parser = parse_vec3)]
+    pub tint: Option<Vec3>,
+    /// Power applied to visibility before compositing.
+    #[arg(long)]
+    pub power: Option<f32>,
 }
 
 #[derive(Args, Debug)]
@@ -228,6 +240,21 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         }
         desc.ao.samples = n;
     }
+    if let Some(c) = args.composite {
+        desc.ao.composite = c;
+    }
+    if let Some(t) = args.tint {
+        if t.min_element() < 0.0 || t.max_element() > 1.0 {
+            bail!("--tint {t}: each channel must be between 0 and 1");
+        }
+        desc.ao.tint = t.to_array();
+    }
+    if let Some(p) = args.power {
+        if !(p.is_finite() && (0.05..=20.0).contains(&p)) {
+            bail!("--power {p}: use a power between 0.05 and 20");
+        }
+        desc.ao.power = p;
+    }
     if let Some(r) = args.radius {
         if !(r.is_finite() && r > 0.0 && r <= 100.0) {
             bail!("--radius {r}: use a radius in metres between 0 and 100");
@@ -257,6 +284,7 @@ pub fn run() -> Result<()> {
             Ok(())
         }
         Some(Command::Bench(args)) => crate::bench::run(&res, &args),
+        Some(Command::GradeStep(args)) => crate::grade::run_step(cli.res.as_deref(), &args),
         Some(Command::GenDemo) => {
             let dir = crate::res::project_res_dir().join("meshes");
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {
