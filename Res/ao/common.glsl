@@ -66,6 +66,11 @@ float NoiseAngle(ivec2 p) {
 }
 
 // Intensity 5 (the lesson's default) leaves occlusion as computed; larger darkens, smaller lightens.
+// pow(0, 0) is undefined in GLSL (it can come out NaN), so visibility is kept above 0 and an
+// intensity of 0 returns no occlusion outright.
 float ApplyIntensity(float occlusion) {
-  return 1.0 - pow(clamp(1.0 - occlusion, 0.0, 1.0), max(AO_INTENSITY, 0.0) / 5.0);
+  if (AO_INTENSITY <= 0.0) {
+    return 0.0;
+  }
+  return 1.0 - pow(clamp(1.0 - occlusion, 1e-6, 1.0), AO_INTENSITY / 5.0);
 }
