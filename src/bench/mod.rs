@@ -1,27 +1,129 @@
 //! Benchmarks: run time against error versus the ray-traced reference, and numerical stress tests.
+//!
+//! * `opengl3d bench` ([`perf`]): every AO method × quality setting, timed per pass and compared with
+//!   the ray-traced ground truth on fixed cameras → `report.json`, `report.md`, `report.svg/png`.
+//! * `opengl3d bench --stress` ([`stress`]): extreme planes, radii, intensities, fields of view, sizes
+//!   and cameras, NaN/Inf counts of every output, and linear-depth reconstruction error against
+//!   distance for several depth formats → `stress.json`, `stress.md`.
 
+pub mod catalog;
+pub mod chart;
+pub mod depth_formats;
+pub mod metrics;
+pub mod perf;
+pub mod stress;
+
+use crate::ao::AoMethod;
 use crate::res::ResDirs;
-use anyhow::{bail, Result};
+use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 
 #[derive(Args, Debug, Clone)]
 pub struct BenchArgs {
-    /// Scene files (default: the demo scene).
+    /// Scene files (default: the demo scene). Each is run at its own camera and three variants.
     #[arg(long = "scene")]
     pub scenes: Vec<PathBuf>,
     #[arg(long, default_value_t = 1920)]
     pub width: u32,
     #[arg(long, default_value_t = 1080)]
     pub height: u32,
-    /// Output folder for report.json, report.md and the charts.
+    /// Output folder for report.json, report.md and the charts (stress.json and stress.md with --stress).
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
     /// Run the numerical stress tests instead.
     #[arg(long)]
     pub stress: bool,
+    /// AO methods by name, comma-separated (default: every method the engine has).
+    #[arg(long, value_delimiter = ',')]
+    pub methods: Vec<String>,
+    /// Sample counts to run (replaces each method's default settings; combined with --radii).
+    #[arg(long, value_delimiter = ',')]
+    pub samples: Vec<u32>,
+    /// Radii in metres to run (replaces each method's default settings; combined with --samples).
+    #[arg(long, value_delimiter = ',')]
+    pub radii: Vec<f32>,
+    /// Rays per pixel of the ray-traced reference.
+    #[arg(long, default_value_t = 256)]
+    pub ref_rays: u32,
+    /// Render the reference at 1/N of the size and box-average the engine's output by N to compare.
+    #[arg(long, default_value_t = 1)]
+    pub ref_scale: u32,
+    /// Folder of cached references.
+    #[arg(long, default_value = "out/reference-cache")]
+    pub cache: PathBuf,
+    /// Frames rendered before timing.
+    #[arg(long, default_value_t = 2)]
+    pub warmup: u32,
+    /// Frames timed (the median is reported).
+    #[arg(long, default_value_t = 7)]
+    pub frames: u32,
+    /// Skip the FLIP metric (reported as 0).
+    #[arg(long)]
+    pub no_flip: bool,
+    /// With --stress: skip the 4096×4096 frame.
+    #[arg(long)]
+    pub no_large: bool,
 }
 
-pub fn run(_res: &ResDirs, _args: &BenchArgs) -> Result<()> {
-    bail!("the benchmark is not built yet")
+impl BenchArgs {
+    pub fn perf_config(&self) -> Result<perf::PerfConfig> {
+        let methods = if self.methods.is_empty() {
+            AoMethod::ALL.to_vec()
+        } else {
+            self.methods
+                .iter()
+                .map(|n| catalog::method_by_name(n))
+                .collect::<Result<Vec<_>>>()?
+        };
+        Ok(perf::PerfConfig {
+            scenes: self.scenes.clone(),
+            width: self.width,
+            height: self.height,
+            out: self.out.clone(),
+            methods,
+            samples: self.samples.clone(),
+            radii: self.radii.clone(),
+            ref_rays: self.ref_rays.max(1),
+            ref_scale: self.ref_scale.max(1),
+            cache: self.cache.clone(),
+            warmup: self.warmup,
+            frames: self.frames,
+            flip: !self.no_flip,
+            charts: true,
+            progress: true,
+        })
+    }
+}
+
+pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
+    if args.stress {
+        let cfg = stress::StressConfig {
+            out: args.out.clone(),
+            large: !args.no_large,
+            quick: false,
+            progress: true,
+        };
+        let report = stress::run(res, &cfg)?;
+        println!(
+            "wrote {} and {}: {} cases, {} NaN/Inf values, {} failed checks",
+            args.out.join("stress.json").display(),
+            args.out.join("stress.md").display(),
+            report.cases.len(),
+            report.total_non_finite,
+            report.cases.iter().filter(|c| !c.ok).count()
+        );
+        return Ok(());
+    }
+    let cfg = args.perf_config()?;
+    let report = perf::run(res, &cfg)?;
+    println!(
+        "wrote {} ({} rows, {}x{}, {} s)",
+        cfg.out.join("report.md").display(),
+        report.rows.len(),
+        report.width,
+        report.height,
+        report.run_s.round()
+    );
+    Ok(())
 }

@@ -71,7 +71,24 @@ pub struct PassStat {
     pub group: &'static str,
     /// Wall-clock milliseconds between two glFinish calls (timer queries do not measure real time on llvmpipe).
     pub ms: f64,
+    /// CPU milliseconds the whole process (llvmpipe's threads included) spent in the pass: unlike
+    /// `ms`, barely changed by other programs competing for the cores (benchmarks on shared machines).
+    pub cpu_ms: f64,
     pub draw_calls: u64,
+}
+
+/// CPU time of the whole process (all threads), in seconds.
+pub fn process_cpu_seconds() -> f64 {
+    let mut ts = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: clock_gettime writes one timespec; CLOCK_PROCESS_CPUTIME_ID exists on Linux.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut ts) };
+    if rc != 0 {
+        return 0.0;
+    }
+    ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
 }
 
 const SHADOW_MAP_SIZE: u32 = 2048;
@@ -627,13 +644,16 @@ impl Engine {
         unsafe { self.gl.finish() };
         let calls = self.meshes.draw_calls.get();
         let t = std::time::Instant::now();
+        let cpu = process_cpu_seconds();
         f();
         unsafe { self.gl.finish() };
         let ms = t.elapsed().as_secs_f64() * 1e3;
+        let cpu_ms = (process_cpu_seconds() - cpu) * 1e3;
         self.stats.borrow_mut().push(PassStat {
             name,
             group,
             ms,
+            cpu_ms,
             draw_calls: self.meshes.draw_calls.get() - calls,
         });
     }
