@@ -1,0 +1,78 @@
+#!/bin/sh
+# Regenerates the pictures under lessons/methods/img/ from the demo scene (Res/scenes/demo.toml).
+# Run from anywhere: sh lessons/methods/make-images.sh
+# Needs cargo (builds and runs the engine headless) and python3 (lessons/figures.py, no extra modules).
+# OPENGL3D=path/to/opengl3d uses an already-built binary instead of `cargo run --release --`.
+# With TIMINGS=1 it also prints the AO passes of `render --stats` at 1280x720 (3 runs per method).
+set -eu
+
+HERE=$(cd "$(dirname "$0")" && pwd)
+ROOT=$(cd "$HERE/../.." && pwd)
+IMG="$HERE/img"
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+mkdir -p "$IMG"
+cd "$ROOT"
+
+if [ -n "${OPENGL3D:-}" ]; then
+  run() { "$OPENGL3D" "$@" >/dev/null; }
+else
+  cargo build --release
+  run() { cargo run --release --quiet -- "$@" >/dev/null; }
+fi
+SMALL="--width 640 --height 360"
+METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao"
+fig() { python3 "$ROOT/lessons/figures.py" "$@"; }
+
+# Raw and blurred AO of every method (visibility: white = open), and two composites.
+for m in $METHODS; do
+  run render --method "$m" --view ao-raw $SMALL --out "$IMG/$m-ao-raw.png"
+  run render --method "$m" --view ao $SMALL --out "$IMG/$m-ao.png"
+done
+run render --method sao --view composite $SMALL --out "$IMG/sao-composite.png"
+run render --method gtao --view composite $SMALL --out "$IMG/gtao-composite.png"
+
+# Crytek without the rescale of the occluded fraction (an edited copy of its shader via --res;
+# #include is resolved next to the including file, so common.glsl goes along).
+V="$TMP/crytek-norescale"
+mkdir -p "$V/ao"
+cp Res/ao/common.glsl "$V/ao/"
+sed 's/clamp(2\.0 \* fraction - 1\.0, 0\.0, 1\.0)/fraction/' Res/ao/crytek.frag > "$V/ao/crytek.frag"
+cmp -s "$V/ao/crytek.frag" Res/ao/crytek.frag && { echo "sed did not change crytek.frag" >&2; exit 1; }
+run render --method crytek --view ao-raw $SMALL --out "$TMP/crytek.pfm"
+run --res "$V" render --method crytek --view ao-raw $SMALL --out "$TMP/crytek-norescale.pfm"
+fig grid "$IMG/crytek-rescale.png" 320 180 \
+  "rescaled=$TMP/crytek.pfm@320,60" "fraction as is=$TMP/crytek-norescale.pfm@320,60"
+
+# GTAO: 2 slices always; --samples only adds steps (N/4 per side).
+run render --method gtao --samples 11 --view ao-raw $SMALL --out "$TMP/gtao-11.pfm"
+run render --method gtao --samples 44 --view ao-raw $SMALL --out "$TMP/gtao-44.pfm"
+fig grid "$IMG/gtao-samples.png" 320 180 \
+  "--samples 11=$TMP/gtao-11.pfm@120,150" "--samples 44=$TMP/gtao-44.pfm@120,150"
+
+# The two blurs on the same wall: the lesson's 9x9 (taps 2 texels apart) and the separable 2 x 9.
+run render --method sao-lesson --view ao $SMALL --out "$TMP/lesson-blur.pfm"
+run render --method sao --view ao $SMALL --out "$TMP/sao-blur.pfm"
+fig grid "$IMG/sao-blurs.png" 320 180 \
+  "sao-lesson: 9x9=$TMP/lesson-blur.pfm@320,60" "sao: separable=$TMP/sao-blur.pfm@320,60"
+
+echo "pictures written to $IMG"
+
+if [ "${TIMINGS:-0}" = 1 ]; then
+  for m in $METHODS; do
+    for i in 1 2 3; do
+      if [ -n "${OPENGL3D:-}" ]; then
+        "$OPENGL3D" render --method "$m" --stats --width 1280 --height 720 --out "$TMP/t.png" 2>/dev/null
+      else
+        cargo run --release --quiet -- render --method "$m" --stats --width 1280 --height 720 --out "$TMP/t.png" 2>/dev/null
+      fi
+    done | python3 -c '
+import json, statistics, sys
+runs = [[p for p in json.loads(l)["passes"] if p["group"] == "ao"] for l in sys.stdin if l.strip()]
+names = [p["name"] for p in runs[0]]
+med = {n: statistics.median(r[i]["ms"] for r in runs) for i, n in enumerate(names)}
+tot = statistics.median(sum(p["ms"] for p in r) for r in runs)
+print(sys.argv[1], " ".join(f"{n}={v:.1f}" for n, v in med.items()), f"total={tot:.1f}")
+' "$m"
+  done
+fi
