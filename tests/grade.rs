@@ -66,15 +66,14 @@ fn check_shape(v: &Value) {
     }
 }
 
-/// The step a mutant folder's only file belongs to.
+/// The step a mutant folder's only lesson shader belongs to (other files are its includes).
 fn step_of(dir: &Path) -> &'static str {
     let file = std::fs::read_dir(dir)
         .unwrap()
-        .next()
-        .expect("a mutant folder holds one shader")
-        .unwrap()
-        .file_name();
-    match file.to_str().unwrap() {
+        .map(|e| e.unwrap().file_name().into_string().unwrap())
+        .find(|f| f.ends_with(".frag"))
+        .expect("a mutant folder holds one shader");
+    match file.as_str() {
         "sao_restore_depth.frag" => "restore",
         "sao_down_sampling.frag" => "down-sampling",
         "sao.frag" => "sao",
@@ -139,6 +138,7 @@ passes! {
     rewritten_restore_passes: "rewrite-restore",
     rewritten_down_sampling_passes: "rewrite-down-sampling",
     rewritten_sao_passes: "rewrite-sao",
+    rewritten_sao_with_an_include_passes: "rewrite-sao-include",
     rewritten_blur_passes: "rewrite-blur",
 }
 
@@ -155,6 +155,7 @@ fails! {
     sao_writing_inside_the_loop_fails: "sao-output-in-loop" => ["not normalised", "expected about 0."],
     sao_with_a_flipped_normal_fails: "sao-flipped-normal" => ["normal flipped"],
     sao_without_the_clamp_fails: "sao-no-clamp" => ["max(…, 0)"],
+    sao_reading_only_level_0_fails: "sao-level-0" => ["never reads the mip levels 1–3", "textureLod(texDepth, uv, mipLevel)"],
     sao_with_a_squared_falloff_fails: "sao-falloff-squared" => ["f·f·f", "fades too slowly"],
     sao_with_a_compile_error_names_file_and_line: "sao-compile-error" => ["does not compile", "sao-compile-error/sao.frag:83:"],
     blur_without_normalisation_fails: "blur-no-normalise" => ["not normalised", "totalWeight"],

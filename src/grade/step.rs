@@ -16,7 +16,8 @@
 //!   (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the camera
 //!   and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
 //!   mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth
-//!   edges they legitimately differ).
+//!   edges they legitimately differ); and that far samples come from mip levels 1–3 (the output
+//!   must move when those levels are emptied, about as much as the project's does).
 //! - blur: the project's SAO output of the first scene, plus a panel with a depth edge, a noisy flat
 //!   surface and sky; the edge must stay sharp, the flat surface must be smoothed with its mean kept,
 //!   nothing may leak into the sky, and the RMSE against the project's `sao_blur.frag` is bounded
@@ -67,6 +68,13 @@ pub mod tol {
     /// SAO: a raw output above this (on more than 1% of the pixels) is not normalised
     /// (output written in the loop: 5.9% of the pixels, up to 13.1).
     pub const SAO_RAW_MAX: f64 = 1.05;
+    /// SAO: emptying mip levels 1–3 must move the student's output by at least this fraction of
+    /// what it moves the project's (listing 1.24, rewrite 1.25; every sample from level 0: 0)...
+    pub const SAO_MIP_USE: f64 = 0.25;
+    /// ...when the project's own output moves by more than this (mean |Δ| per non-sky pixel; it
+    /// moves by 0.0034 on the three scenes); otherwise the scenes do not exercise the mips and the
+    /// check is skipped.
+    pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
     /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
     /// division by totalWeight 0.49 → 5.70).
     pub const BLUR_MEAN_ABS: f64 = 0.03;
@@ -720,6 +728,38 @@ fn run_sao(
     lesson.sao_texture().read_f32(0, 1)
 }
 
+/// As `run_sao`, but with every level above 0 pushed to the far plane after down-sampling: samples
+/// read from levels 1–3 then see nothing, so the output changes only where a shader reads the mips.
+fn run_sao_without_mips(
+    lesson: &SaoLesson,
+    meshes: &MeshBuffer,
+    scene: &SynthScene,
+    depth: &[f32],
+    params: &SaoParams,
+) -> Vec<f32> {
+    lesson.tex_depth.upload_f32(0, 1, depth).ok();
+    lesson.down_sample(meshes);
+    for level in 1..lesson.tex_depth.levels() {
+        let (w, h) = lesson.tex_depth.size_at(level);
+        let far = vec![scene.camera.far; (w * h) as usize];
+        lesson.tex_depth.upload_f32(level, 1, &far).ok();
+    }
+    lesson.compute_sao(meshes, &scene.camera, params);
+    lesson.sao_texture().read_f32(0, 1)
+}
+
+/// Mean |a − b| over non-sky pixels (after the R8 clamp).
+fn mean_abs_change(a: &[f32], b: &[f32], depth: &[f32], far: f32) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for i in 0..depth.len() {
+        if depth[i] < far {
+            sum += (as_r8(a[i]) - as_r8(b[i])).abs() as f64;
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
 /// Pixels away from depth edges: every depth within 2 texels is within 5% of this one (the
 /// lesson's normal from dFdx/dFdy is meaningless at an edge; the reference leaves edges open).
 fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
@@ -1054,6 +1094,43 @@ fn sao(rig: &Rig, params: &SaoParams) -> Verdict {
             ),
         );
     }
+    // Far samples must come from the min mip chain (levels 1–3), as the lesson teaches: a shader that
+    // reads level 0 for every sample passes the comparisons above on these small scenes, but thrashes
+    // the texture cache on a real screen. Measured by how much the output moves when levels 1–3 are
+    // emptied, relative to how much the project's own shader moves.
+    let (mut mip_s, mut mip_r) = (0.0f64, 0.0f64);
+    for scene in &scenes {
+        let depth = scene.depth();
+        let far = scene.camera.far;
+        let with = |l: &SaoLesson| run_sao(l, &rig.meshes, scene, &depth, params);
+        let without = |l: &SaoLesson| run_sao_without_mips(l, &rig.meshes, scene, &depth, params);
+        mip_r += mean_abs_change(&with(&rig.reference), &without(&rig.reference), &depth, far);
+        mip_s += mean_abs_change(&with(&rig.student), &without(&rig.student), &depth, far);
+    }
+    let mip_use = mip_s / mip_r.max(1e-9);
+    let mut metrics = metrics.clone();
+    metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
+    metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
+    metrics.insert("mip_use".into(), mip_use);
+    let verdict = |passed: bool, message: String| Verdict {
+        passed,
+        message,
+        metrics: metrics.clone(),
+        panels: panels.clone(),
+    };
+    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use < tol::SAO_MIP_USE {
+        return verdict(
+            false,
+            format!(
+                "never reads the mip levels 1–3: emptying them changes the output by {:.4} on \
+                 average, the project's sao.frag by {:.4}; read each sample with \
+                 textureLod(texDepth, uv, mipLevel) where mipLevel = clamp(findMSB(int(ssR)) − \
+                 logMipOffset, 0, maxMipLevel) grows with the sample's distance in pixels",
+                mip_s / scenes.len() as f64,
+                mip_r / scenes.len() as f64
+            ),
+        );
+    }
     let falloff = probes
         .iter()
         .filter(|p| p.kind == ProbeKind::Falloff)
@@ -1295,11 +1372,43 @@ fn blur(rig: &Rig, params: &SaoParams) -> Verdict {
     )
 }
 
-/// Copies `file` into a fresh `dir` (so that only this file of the student's is used).
+/// Copies `file` into a fresh `dir` (so that only this file of the student's is used), with the
+/// files it `#include`s (resolved next to it, as the engine does), keeping their relative paths.
+/// A missing include is not an error here: building the shader reports it with file:line.
 pub fn stage(file: &Path, dir: &Path) -> Result<PathBuf> {
     let _ = std::fs::remove_dir_all(dir);
     std::fs::create_dir_all(dir)?;
     let to = dir.join(file.file_name().unwrap());
     std::fs::copy(file, &to)?;
+    let from_dir = file.parent().unwrap_or(Path::new("."));
+    for name in included_files(&std::fs::read(file)?) {
+        let rel = Path::new(&name);
+        // Only paths below the shader's folder: the copy must stay inside `dir`.
+        if rel.is_absolute()
+            || rel
+                .components()
+                .any(|c| !matches!(c, std::path::Component::Normal(_)))
+        {
+            continue;
+        }
+        let (src, dst) = (from_dir.join(rel), dir.join(rel));
+        if src.is_file() {
+            if let Some(parent) = dst.parent() {
+                std::fs::create_dir_all(parent)?;
+            }
+            std::fs::copy(&src, &dst)?;
+        }
+    }
     Ok(to)
+}
+
+/// The file names of `#include "name"` lines (ASCII directives; the rest of the file may be in
+/// any encoding).
+fn included_files(bytes: &[u8]) -> Vec<String> {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .filter_map(|l| l.trim_start().strip_prefix("#include"))
+        .map(|rest| rest.trim().trim_matches('"').to_string())
+        .filter(|name| !name.is_empty())
+        .collect()
 }
