@@ -722,24 +722,23 @@ fn run_sao(
     depth: &[f32],
     params: &SaoParams,
 ) -> Vec<f32> {
-    lesson.tex_depth.upload_f32(0, 1, depth).ok();
-    lesson.down_sample(meshes);
-    lesson.compute_sao(meshes, &scene.camera, params);
-    lesson.sao_texture().read_f32(0, 1)
+    run_sao_mips(lesson, meshes, scene, depth, params, true)
 }
 
-/// As `run_sao`, but with every level above 0 pushed to the far plane after down-sampling: samples
-/// read from levels 1–3 then see nothing, so the output changes only where a shader reads the mips.
-fn run_sao_without_mips(
+/// `run_sao`; without `mips`, every level above 0 is pushed to the far plane after down-sampling:
+/// samples read from levels 1–3 then see nothing, so the output changes only where a shader reads
+/// the mips.
+fn run_sao_mips(
     lesson: &SaoLesson,
     meshes: &MeshBuffer,
     scene: &SynthScene,
     depth: &[f32],
     params: &SaoParams,
+    mips: bool,
 ) -> Vec<f32> {
     lesson.tex_depth.upload_f32(0, 1, depth).ok();
     lesson.down_sample(meshes);
-    for level in 1..lesson.tex_depth.levels() {
+    for level in (1..lesson.tex_depth.levels()).filter(|_| !mips) {
         let (w, h) = lesson.tex_depth.size_at(level);
         let far = vec![scene.camera.far; (w * h) as usize];
         lesson.tex_depth.upload_f32(level, 1, &far).ok();
@@ -1103,7 +1102,7 @@ fn sao(rig: &Rig, params: &SaoParams) -> Verdict {
         let depth = scene.depth();
         let far = scene.camera.far;
         let with = |l: &SaoLesson| run_sao(l, &rig.meshes, scene, &depth, params);
-        let without = |l: &SaoLesson| run_sao_without_mips(l, &rig.meshes, scene, &depth, params);
+        let without = |l: &SaoLesson| run_sao_mips(l, &rig.meshes, scene, &depth, params, false);
         mip_r += mean_abs_change(&with(&rig.reference), &without(&rig.reference), &depth, far);
         mip_s += mean_abs_change(&with(&rig.student), &without(&rig.student), &depth, far);
     }
