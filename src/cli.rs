@@ -112,15 +112,21 @@ pub struct SceneArgs {
     pub width: Option<u32>,
     #[arg(long)]
     pub height: Option<u32>,
+    /// Main depth buffer: d32 (the course's) or d32f-reversed (reversed-Z: far surfaces keep precision).
+    #[arg(long, value_enum)]
+    pub depth: Option<crate::engine::DepthMode>,
     /// Ambient occlusion on or off.
     #[arg(long, value_enum)]
     pub ao: Option<OnOff>,
     /// AO method.
     #[arg(long, value_enum)]
     pub method: Option<crate::ao::AoMethod>,
-    /// AO sample count (per method: samples, or directions × steps).
-    #[arg(long)]
+    /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
+    #[arg(long, conflicts_with = "quality")]
     pub samples: Option<u32>,
+    /// GTAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
+    #[arg(long, value_enum)]
+    pub quality: Option<crate::ao::GtaoQuality>,
     /// AO radius in metres.
     #[arg(long)]
     pub radius: Option<f32>,
@@ -228,6 +234,9 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
     if let Some(h) = args.height {
         desc.output.height = h;
     }
+    if let Some(d) = args.depth {
+        desc.output.depth = d;
+    }
     if let Some(ao) = args.ao {
         desc.ao.enabled = ao == OnOff::On;
     }
@@ -239,6 +248,11 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
             bail!("--samples {n}: use 1 to 256");
         }
         desc.ao.samples = n;
+        // An explicit count wins over a preset from the scene file.
+        desc.ao.quality = None;
+    }
+    if let Some(q) = args.quality {
+        desc.ao.quality = Some(q);
     }
     if let Some(c) = args.composite {
         desc.ao.composite = c;

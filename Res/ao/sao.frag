@@ -6,6 +6,12 @@
 
 #include "common.glsl"
 
+// Samples 2^LOG_MAX_OFFSET pixels apart share a texel of the level they read (McGuire). The engine
+// injects it and sizes the depth chain so that the largest (clamped) disc finds its level.
+#ifndef LOG_MAX_OFFSET
+#define LOG_MAX_OFFSET 3
+#endif
+
 void main()
 {
   ivec2 pix = ivec2(gl_FragCoord.xy);
@@ -37,7 +43,7 @@ void main()
     if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(DepthSize())))) {
       continue; // off screen: unknown, not the border texel repeated (which fakes occluders)
     }
-    int level = clamp(findMSB(int(h)) - 3, 0, maxLevel);
+    int level = clamp(findMSB(int(h)) - LOG_MAX_OFFSET, 0, maxLevel);
     float zq = texelFetch(texDepth, q >> level, level).x;
     vec3 Q = ViewPos((vec2(q) + 0.5) / DepthSize(), zq);
     vec3 v = Q - P;

@@ -11,6 +11,7 @@ use crate::gl::{
 use crate::res::ResDirs;
 use anyhow::Result;
 use serde::{Deserialize, Serialize};
+use std::cell::RefCell;
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -74,8 +75,13 @@ impl AoMethod {
     }
 
     /// (first count, second count) the shader reads from `aoCounts`, from the common parameters:
-    /// SAO: samples and spiral turns; HBAO: directions and steps; GTAO: slices and steps per side.
+    /// SAO: samples and spiral turns; HBAO: directions and steps; GTAO: slices and steps per side
+    /// (the quality preset's when one is set).
     pub fn counts(self, p: &SaoParams) -> [i32; 2] {
+        if let (AoMethod::Gtao, Some(q)) = (self, p.quality) {
+            let (slices, steps) = q.slices_steps();
+            return [slices as i32, steps as i32];
+        }
         let s = p.samples.max(1) as i32;
         match self {
             AoMethod::SaoLesson | AoMethod::Sao => [s, p.spiral_turns.max(1) as i32],
@@ -88,14 +94,56 @@ impl AoMethod {
     }
 }
 
+/// GTAO quality presets (`--quality`, `[ao] quality`): slices × steps per side. Every preset reads
+/// level 0 of the half-size linear-depth chain (GTAO's horizon search needs exact depths: the min
+/// mip chain would raise horizons); the sample count is what costs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize, clap::ValueEnum)]
+#[serde(rename_all = "kebab-case")]
+pub enum GtaoQuality {
+    /// 1 slice × 4 steps (8 taps): the blur hides the 4×4 rotation tile.
+    Low,
+    /// 2 slices × 4 steps (16 taps): the bench's default setting.
+    Medium,
+    /// 3 slices × 6 steps (36 taps).
+    High,
+    /// 4 slices × 8 steps (64 taps).
+    Ultra,
+}
+
+impl GtaoQuality {
+    pub const ALL: [GtaoQuality; 4] = [
+        GtaoQuality::Low,
+        GtaoQuality::Medium,
+        GtaoQuality::High,
+        GtaoQuality::Ultra,
+    ];
+    pub fn slices_steps(self) -> (u32, u32) {
+        match self {
+            GtaoQuality::Low => (1, 4),
+            GtaoQuality::Medium => (2, 4),
+            GtaoQuality::High => (3, 6),
+            GtaoQuality::Ultra => (4, 8),
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            GtaoQuality::Low => "low",
+            GtaoQuality::Medium => "medium",
+            GtaoQuality::High => "high",
+            GtaoQuality::Ultra => "ultra",
+        }
+    }
+}
+
 /// Programs of the non-lesson methods (built on first use) and the separable blur's targets.
 pub struct AoMethods {
     gl: Gl,
     res: ResDirs,
     programs: HashMap<AoMethod, ProgramObject>,
     blur: ProgramObject,
-    /// Intermediate of the two blur passes (half size, R8).
-    fbo_tmp: FramebufferObject,
+    /// Intermediate of the two blur passes (half size, R8), created on the first blur and dropped
+    /// by `release_targets` (an engine with AO off owns no AO texture).
+    fbo_tmp: RefCell<Option<FramebufferObject>>,
     defines: Vec<(&'static str, String)>,
 }
 
@@ -106,30 +154,59 @@ const LOC_NDC_TO_VIEW: i32 = 201;
 const LOC_AO_COUNTS: i32 = 202;
 const LOC_MAX_RADIUS: i32 = 203;
 
+/// `ao/sao.frag` reads level floor(log2(distance in pixels)) − SAO_LOG_MAX_OFFSET (McGuire's
+/// LOG_MAX_OFFSET): 2^3 = 8 samples share a texel of the level they read.
+pub const SAO_LOG_MAX_OFFSET: u32 = 3;
+
+/// Largest screen-space radius (pixels of the half-size buffer) a method's disc may have: near the
+/// camera the disc could cover the screen (HBAO+ clamps it the same way).
+pub fn max_radius_pixels(half_width: u32, half_height: u32) -> f32 {
+    0.25 * (half_width.max(half_height) as f32).max(8.0)
+}
+
+/// Levels of the linear-depth chain the engine's SAO reads: its samples lie within the clamped
+/// screen radius, so the farthest reads level floor(log2(max radius)) − LOG_MAX_OFFSET; capped by
+/// what the half-size texture can hold.
+pub fn sao_depth_levels(half_width: u32, half_height: u32) -> u32 {
+    let radius = max_radius_pixels(half_width, half_height) as u32;
+    let top = (31 - radius.max(1).leading_zeros()).saturating_sub(SAO_LOG_MAX_OFFSET);
+    (top + 1).min(crate::gl::texture::max_levels(half_width, half_height))
+}
+
 fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
-    vec![("CAMERA_FAR", crate::ao::sao_lesson::glsl_float(camera.far))]
+    vec![
+        ("CAMERA_FAR", crate::ao::sao_lesson::glsl_float(camera.far)),
+        ("LOG_MAX_OFFSET", SAO_LOG_MAX_OFFSET.to_string()),
+    ]
 }
 
 impl AoMethods {
-    pub fn new(gl: &Gl, res: &ResDirs, lesson: &SaoLesson, camera: &Camera) -> Result<AoMethods> {
+    /// Compiles the blur; targets are created on first use, the methods' programs by `prepare`.
+    pub fn new(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<AoMethods> {
         let defines = camera_defines(camera);
         let blur =
             ProgramObject::from_res(gl, res, "simple.vert", "ao/blur_separable.frag", &defines)?;
-        let fbo_tmp = tmp_target(gl, lesson)?;
         Ok(AoMethods {
             gl: gl.clone(),
             res: res.clone(),
             programs: HashMap::new(),
             blur,
-            fbo_tmp,
+            fbo_tmp: RefCell::new(None),
             defines,
         })
     }
 
-    /// Re-creates the blur intermediate after the lesson's targets were resized.
-    pub fn resize(&mut self, lesson: &SaoLesson) -> Result<()> {
-        self.fbo_tmp = tmp_target(&self.gl, lesson)?;
-        Ok(())
+    /// Drops the size-dependent targets (re-created at the right size on next use).
+    pub fn release_targets(&mut self) {
+        self.fbo_tmp = RefCell::new(None);
+    }
+
+    /// The textures this object currently owns.
+    pub fn textures(&self) -> Vec<Rc<Texture>> {
+        let tmp = self.fbo_tmp.borrow();
+        tmp.iter()
+            .filter_map(|f| f.color_texture().cloned())
+            .collect()
     }
 
     /// Builds the method's program if needed (errors name the file and line).
@@ -214,8 +291,7 @@ impl AoMethods {
                 );
             }
         }
-        // Near the camera the disc could cover the screen: clamp it (HBAO+ does the same).
-        p.set_f32(LOC_MAX_RADIUS, 0.25 * h.max(w).max(8.0));
+        p.set_f32(LOC_MAX_RADIUS, max_radius_pixels(w as u32, h as u32));
         fullscreen_state(&self.gl);
         p.use_program();
         lesson.fbo_sao.bind();
@@ -225,6 +301,19 @@ impl AoMethods {
 
     /// Two-pass separable bilateral blur: SAO target → intermediate → the lesson's blur target.
     pub fn blur(&self, lesson: &SaoLesson, meshes: &MeshBuffer) {
+        let size = lesson.sao_texture().size_at(0);
+        let mut tmp = self.fbo_tmp.borrow_mut();
+        if tmp.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
+            *tmp = None;
+            match tmp_target(&self.gl, size) {
+                Ok(f) => *tmp = Some(f),
+                Err(e) => {
+                    log::error!("separable blur skipped: {e:#}");
+                    return;
+                }
+            }
+        }
+        let fbo_tmp = tmp.as_ref().expect("created above");
         fullscreen_state(&self.gl);
         self.blur.use_program();
         unsafe {
@@ -233,13 +322,13 @@ impl AoMethods {
             lesson.tex_depth.bind(1);
             self.gl
                 .program_uniform_2_i32(self.blur.id(), Some(&loc), 1, 0);
-            self.fbo_tmp.bind();
+            fbo_tmp.bind();
             lesson.sao_texture().bind(0);
             meshes.draw_plane_xy();
             self.gl
                 .program_uniform_2_i32(self.blur.id(), Some(&loc), 0, 1);
             lesson.fbo_blur.bind();
-            self.fbo_tmp.color_texture().unwrap().bind(0);
+            fbo_tmp.color_texture().unwrap().bind(0);
             meshes.draw_plane_xy();
         }
     }
@@ -256,11 +345,28 @@ fn fullscreen_state(gl: &Gl) {
     }
 }
 
-fn tmp_target(gl: &Gl, lesson: &SaoLesson) -> Result<FramebufferObject> {
-    let (w, h) = lesson.sao_texture().size_at(0);
+fn tmp_target(gl: &Gl, (w, h): (u32, u32)) -> Result<FramebufferObject> {
     let tex = Rc::new(Texture::new(
         gl,
         TextureDesc::target("FBO(ao blur tmp)", w, h, glow::R8),
     )?);
     FramebufferObject::new(gl, Some(tex), None, 0, 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sao_level_count_follows_the_largest_disc() {
+        // 1920×1080 → 960×540 half size, radius clamp 240 px: log2 → 7, minus 3 → level 4.
+        assert_eq!(sao_depth_levels(960, 540), 5);
+        // 640 → clamp 160 → level 4; 512 → 128 → level 4; 511 → 127.75 → level 3.
+        assert_eq!(sao_depth_levels(640, 360), 5);
+        assert_eq!(sao_depth_levels(512, 100), 5);
+        assert_eq!(sao_depth_levels(511, 100), 4);
+        // Tiny buffers: one level, never more than the texture holds.
+        assert_eq!(sao_depth_levels(4, 4), 1);
+        assert_eq!(sao_depth_levels(8192, 2), 9);
+    }
 }

@@ -3,5 +3,5 @@
 pub mod methods;
 pub mod sao_lesson;
 
-pub use methods::{AoMethod, AoMethods};
-pub use sao_lesson::{CompositeMode, SaoLesson, SaoParams};
+pub use methods::{AoMethod, AoMethods, GtaoQuality};
+pub use sao_lesson::{CompositeMode, SaoLesson, SaoParams, SaoPrograms};

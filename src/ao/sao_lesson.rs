@@ -37,6 +37,8 @@ pub struct SaoParams {
     pub tint: [f32; 3],
     /// Visibility is raised to this power before compositing (1 = as computed).
     pub power: f32,
+    /// GTAO preset (slices × steps); when set it decides GTAO's sample counts instead of `samples`.
+    pub quality: Option<crate::ao::methods::GtaoQuality>,
 }
 
 /// How occlusion is applied to the image.
@@ -66,6 +68,7 @@ impl Default for SaoParams {
             composite: CompositeMode::Blend,
             tint: [0.0; 3],
             power: 1.0,
+            quality: None,
         }
     }
 }
@@ -130,7 +133,72 @@ pub fn half_size(width: u32, height: u32) -> (u32, u32) {
     ((width / 2).max(1), (height / 2).max(1))
 }
 
+/// The lesson's five programs without their targets: the engine compiles them when it starts (so a
+/// shader error shows at once) but creates the targets only when AO first runs.
+pub struct SaoPrograms {
+    pub restore_depth: ProgramObject,
+    pub down_sampling: ProgramObject,
+    pub sao: ProgramObject,
+    pub blur: ProgramObject,
+    pub simple: ProgramObject,
+}
+
+impl SaoPrograms {
+    pub fn new(gl: &Gl, res: &ResDirs, camera: &Camera, params: &SaoParams) -> Result<SaoPrograms> {
+        let planes = camera_defines(camera);
+        let p = |frag: &str, defines: &[(&'static str, String)]| {
+            ProgramObject::from_res(gl, res, "simple.vert", frag, defines)
+        };
+        Ok(SaoPrograms {
+            restore_depth: p("sao_restore_depth.frag", &planes)?,
+            down_sampling: p("sao_down_sampling.frag", &planes)?,
+            sao: p("sao.frag", &sao_defines(camera, params))?,
+            blur: p("sao_blur.frag", &planes)?,
+            simple: p("simple.frag", &[])?,
+        })
+    }
+
+    fn all_mut(&mut self) -> [&mut ProgramObject; 5] {
+        [
+            &mut self.restore_depth,
+            &mut self.down_sampling,
+            &mut self.sao,
+            &mut self.blur,
+            &mut self.simple,
+        ]
+    }
+
+    pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
+        reload_programs(self.all_mut(), force)
+    }
+
+    pub fn update_defines(
+        &mut self,
+        camera: &Camera,
+        params: &SaoParams,
+    ) -> Result<(), ProgramError> {
+        let planes = camera_defines(camera);
+        self.restore_depth.set_defines(&planes)?;
+        self.down_sampling.set_defines(&planes)?;
+        self.blur.set_defines(&planes)?;
+        self.sao.set_defines(&sao_defines(camera, params))
+    }
+}
+
+fn reload_programs(programs: [&mut ProgramObject; 5], force: bool) -> Vec<ProgramError> {
+    let mut errors = Vec::new();
+    for p in programs {
+        if force || p.sources_changed() {
+            if let Err(e) = p.reload() {
+                errors.push(e);
+            }
+        }
+    }
+    errors
+}
+
 impl SaoLesson {
+    /// The lesson's passes with their targets for a `width`×`height` main image (4 depth levels).
     pub fn new(
         gl: &Gl,
         res: &ResDirs,
@@ -139,38 +207,55 @@ impl SaoLesson {
         camera: &Camera,
         params: &SaoParams,
     ) -> Result<SaoLesson, anyhow::Error> {
-        let planes = camera_defines(camera);
-        let prog_restore_depth =
-            ProgramObject::from_res(gl, res, "simple.vert", "sao_restore_depth.frag", &planes)?;
-        let prog_down_sampling =
-            ProgramObject::from_res(gl, res, "simple.vert", "sao_down_sampling.frag", &planes)?;
-        let prog_sao = ProgramObject::from_res(
-            gl,
-            res,
-            "simple.vert",
-            "sao.frag",
-            &sao_defines(camera, params),
-        )?;
-        let prog_blur = ProgramObject::from_res(gl, res, "simple.vert", "sao_blur.frag", &planes)?;
-        let prog_simple = ProgramObject::from_res(gl, res, "simple.vert", "simple.frag", &[])?;
-        let (tex_depth, fbo_depth, fbo_sao, fbo_blur) = create_targets(gl, width, height)?;
-        Ok(SaoLesson {
+        let programs = SaoPrograms::new(gl, res, camera, params)?;
+        let targets = create_targets(gl, width, height, SAO_DEPTH_LEVELS as u32)?;
+        Ok(SaoLesson::from_parts(gl, programs, targets))
+    }
+
+    /// Joins compiled programs and created targets.
+    pub fn from_parts(gl: &Gl, programs: SaoPrograms, targets: SaoTargets) -> SaoLesson {
+        let SaoPrograms {
+            restore_depth,
+            down_sampling,
+            sao,
+            blur,
+            simple,
+        } = programs;
+        let (tex_depth, fbo_depth, fbo_sao, fbo_blur) = targets;
+        SaoLesson {
             gl: gl.clone(),
-            prog_restore_depth,
-            prog_down_sampling,
-            prog_sao,
-            prog_blur,
-            prog_simple,
+            prog_restore_depth: restore_depth,
+            prog_down_sampling: down_sampling,
+            prog_sao: sao,
+            prog_blur: blur,
+            prog_simple: simple,
             tex_depth,
             fbo_depth,
             fbo_sao,
             fbo_blur,
-        })
+        }
+    }
+
+    /// Deletes the targets and keeps the programs.
+    pub fn into_programs(self) -> SaoPrograms {
+        SaoPrograms {
+            restore_depth: self.prog_restore_depth,
+            down_sampling: self.prog_down_sampling,
+            sao: self.prog_sao,
+            blur: self.prog_blur,
+            simple: self.prog_simple,
+        }
     }
 
     /// Re-creates the half-size targets for a new main size.
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
-        let (t, d, s, b) = create_targets(&self.gl, width, height)?;
+        self.resize_with_levels(width, height, SAO_DEPTH_LEVELS as u32)
+    }
+
+    /// Re-creates the targets with `depth_levels` levels in the linear-depth chain (clamped to what
+    /// the half size allows).
+    pub fn resize_with_levels(&mut self, width: u32, height: u32, depth_levels: u32) -> Result<()> {
+        let (t, d, s, b) = create_targets(&self.gl, width, height, depth_levels)?;
         self.tex_depth = t;
         self.fbo_depth = d;
         self.fbo_sao = s;
@@ -181,21 +266,16 @@ impl SaoLesson {
     /// Rebuilds programs whose files changed (or all when `force`); returns the errors, keeping the
     /// previous programs running.
     pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
-        let mut errors = Vec::new();
-        for p in [
-            &mut self.prog_restore_depth,
-            &mut self.prog_down_sampling,
-            &mut self.prog_sao,
-            &mut self.prog_blur,
-            &mut self.prog_simple,
-        ] {
-            if force || p.sources_changed() {
-                if let Err(e) = p.reload() {
-                    errors.push(e);
-                }
-            }
-        }
-        errors
+        reload_programs(
+            [
+                &mut self.prog_restore_depth,
+                &mut self.prog_down_sampling,
+                &mut self.prog_sao,
+                &mut self.prog_blur,
+                &mut self.prog_simple,
+            ],
+            force,
+        )
     }
 
     /// Makes the injected camera planes and sampling constants follow the scene.
@@ -226,6 +306,20 @@ impl SaoLesson {
     pub fn restore_depth(&self, meshes: &MeshBuffer, main_depth: &Texture) {
         self.fullscreen_state();
         self.prog_restore_depth.use_program();
+        self.fbo_depth[0].bind();
+        main_depth.bind(0);
+        meshes.draw_plane_xy();
+    }
+
+    /// `restore_depth` with another program of the same interface (the engine's reversed-Z restore).
+    pub fn restore_depth_with(
+        &self,
+        program: &ProgramObject,
+        meshes: &MeshBuffer,
+        main_depth: &Texture,
+    ) {
+        self.fullscreen_state();
+        program.use_program();
         self.fbo_depth[0].bind();
         main_depth.bind(0);
         meshes.draw_plane_xy();
@@ -336,7 +430,8 @@ impl SaoLesson {
     }
 }
 
-fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+/// CAMERA_NEAR / CAMERA_FAR as the restore, down-sampling and blur shaders read them.
+pub fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
     vec![
         ("CAMERA_NEAR", glsl_float(camera.near)),
         ("CAMERA_FAR", glsl_float(camera.far)),
@@ -360,20 +455,22 @@ pub fn glsl_float(v: f32) -> String {
     }
 }
 
-type Targets = (
+/// The lesson's half-size targets: linear-depth chain, one FBO per level, SAO, blurred SAO.
+pub type SaoTargets = (
     Rc<Texture>,
     Vec<FramebufferObject>,
     FramebufferObject,
     FramebufferObject,
 );
 
-fn create_targets(gl: &Gl, width: u32, height: u32) -> Result<Targets> {
+/// Creates the lesson's targets for a `width`×`height` main image.
+pub fn create_targets(gl: &Gl, width: u32, height: u32, depth_levels: u32) -> Result<SaoTargets> {
     let (hw, hh) = half_size(width, height);
     // A mipmap filter: with the course's GL_LINEAR, textureLod(…, level) reads level 0 for every level.
     let tex_depth = Rc::new(Texture::new(
         gl,
         TextureDesc::target("FBO(sao depth)", hw, hh, glow::R32F)
-            .levels(SAO_DEPTH_LEVELS as u32)
+            .levels(depth_levels)
             .filter(glow::NEAREST_MIPMAP_NEAREST, glow::NEAREST),
     )?);
     let fbo_depth = (0..tex_depth.levels())

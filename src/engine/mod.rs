@@ -3,12 +3,16 @@
 //! processing into the output (the window's default framebuffer or a headless FBO).
 
 pub mod camera;
+pub mod depth;
 pub mod game_object;
+pub mod lazy_ao;
 
 pub use camera::{linear_depth_exact, Camera};
+pub use depth::DepthMode;
 pub use game_object::GameObject;
+pub use lazy_ao::LazySaoLesson;
 
-use crate::ao::{AoMethod, AoMethods, CompositeMode, SaoLesson, SaoParams};
+use crate::ao::{AoMethod, AoMethods, CompositeMode, SaoLesson, SaoParams, SaoPrograms};
 use crate::config::{binding, loc};
 use crate::gl::{
     mesh::MeshData, FramebufferObject, Gl, MeshBuffer, ProgramError, ProgramObject, Texture,
@@ -113,7 +117,8 @@ pub struct Engine {
     prog_image: ProgramObject,
     prog_debug: ProgramObject,
     prog_composite_tint: ProgramObject,
-    pub ao: SaoLesson,
+    /// The lesson's passes; their targets are created on the first frame that runs AO.
+    pub ao: LazySaoLesson,
     /// The other AO methods (built on first use).
     pub methods: AoMethods,
     width: u32,
@@ -121,11 +126,20 @@ pub struct Engine {
     pub fbo_main: FramebufferObject,
     fbo_shadow: FramebufferObject,
     fbo_bloom: Vec<FramebufferObject>,
+    /// Main depth buffer convention (`[output] depth`, `--depth`).
+    depth_mode: DepthMode,
+    /// Loaded once reversed-Z is first used; from then on every depth pass sets its clip range.
+    clip_control: Option<depth::ClipControl>,
+    /// The reversed-Z linear-depth restore (`Res/ao/restore_depth_reversed.frag`), built with the mode.
+    prog_restore_reversed: Option<ProgramObject>,
     /// Headless output (RGBA8), created on demand.
     fbo_output: Option<FramebufferObject>,
     /// Scratch R32F target for value read-back.
     fbo_values: Option<FramebufferObject>,
     black: Texture,
+    /// Forces the linear-depth chain's level count (comparisons in tests and benchmarks); `None` = per
+    /// method. Applied by `render_image`, `render_values`, `resize` and `sync_shader_constants`.
+    pub depth_levels_override: Option<u32>,
     /// When on, each pass is bracketed by glFinish and timed (slower; for `--stats` and benchmarks).
     pub collect_stats: bool,
     stats: std::cell::RefCell<Vec<PassStat>>,
@@ -164,8 +178,13 @@ impl Engine {
         let prog_image = p("simple.vert", "image_processing.frag")?;
         let prog_debug = p("simple.vert", "debug_view.frag")?;
         let prog_composite_tint = p("simple.vert", "ao/composite_tint.frag")?;
-        let ao = SaoLesson::new(gl, &res, width, height, &camera, &ao_params)?;
-        let mut methods = AoMethods::new(gl, &res, &ao, &camera)?;
+        let ao = LazySaoLesson::new(
+            gl,
+            SaoPrograms::new(gl, &res, &camera, &ao_params)?,
+            (width, height),
+            crate::config::SAO_DEPTH_LEVELS as u32,
+        );
+        let mut methods = AoMethods::new(gl, &res, &camera)?;
         methods.prepare(ao_params.method)?;
 
         let mut meshes = MeshBuffer::new(gl)?;
@@ -193,7 +212,8 @@ impl Engine {
             o.mesh = meshes.get(&d.mesh).unwrap();
         }
 
-        let fbo_main = create_main_fbo(gl, width, height)?;
+        let depth_mode = scene.output.depth;
+        let fbo_main = create_main_fbo(gl, width, height, depth_mode)?;
         let shadow_tex = Rc::new(Texture::new(
             gl,
             TextureDesc::target(
@@ -210,7 +230,7 @@ impl Engine {
         let black = Texture::new(gl, TextureDesc::target("black", 1, 1, glow::RGBA8))?;
         black.upload_f32(0, 4, &[0.0, 0.0, 0.0, 1.0])?;
 
-        let engine = Engine {
+        let mut engine = Engine {
             gl: gl.clone(),
             res,
             meshes,
@@ -236,12 +256,18 @@ impl Engine {
             fbo_main,
             fbo_shadow,
             fbo_bloom,
+            depth_mode: DepthMode::D32,
+            clip_control: None,
+            prog_restore_reversed: None,
             fbo_output: None,
             fbo_values: None,
             black,
+            depth_levels_override: None,
             collect_stats: false,
             stats: Default::default(),
         };
+        engine.set_depth_mode(depth_mode)?;
+        engine.configure_ao_targets()?;
         if let Some(e) = crate::gl::take_error(gl) {
             bail!("{e} while creating the engine");
         }
@@ -258,32 +284,141 @@ impl Engine {
         (self.width, self.height)
     }
 
+    pub fn depth_mode(&self) -> DepthMode {
+        self.depth_mode
+    }
+
+    /// Switches the main depth buffer's convention (re-creates the main FBO when the format changes).
+    pub fn set_depth_mode(&mut self, mode: DepthMode) -> Result<()> {
+        if mode.reversed() {
+            if self.clip_control.is_none() {
+                self.clip_control = Some(depth::ClipControl::load()?);
+            }
+            if self.prog_restore_reversed.is_none() {
+                self.prog_restore_reversed = Some(ProgramObject::from_res(
+                    &self.gl,
+                    &self.res,
+                    "simple.vert",
+                    "ao/restore_depth_reversed.frag",
+                    &crate::ao::sao_lesson::camera_defines(&self.camera),
+                )?);
+            }
+        }
+        if mode != self.depth_mode {
+            self.fbo_main = create_main_fbo(&self.gl, self.width, self.height, mode)?;
+            self.depth_mode = mode;
+        }
+        Ok(())
+    }
+
+    /// The camera's view-projection for drawing into the main depth buffer (reversed-Z when on).
+    /// Culling and the sky's view rays use `camera.view_projection`: the same frustum.
+    fn scene_view_projection(&self) -> Mat4 {
+        let c = &self.camera;
+        depth::projection(self.depth_mode, c.fov_y_deg, self.aspect(), c.near, c.far) * c.view()
+    }
+
+    /// Depth state of a pass drawing into the main depth buffer: clip range, test, optional clear.
+    fn begin_scene_depth_pass(&self, write: bool) {
+        if let Some(cc) = &self.clip_control {
+            cc.set(self.depth_mode.reversed());
+        }
+        unsafe {
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(self.depth_mode.nearer_or_equal());
+            self.gl.depth_mask(write);
+            self.gl.clear_depth_f32(self.depth_mode.clear_value());
+        }
+    }
+
+    /// Back to OpenGL's default clip range, for every pass that follows (shadow, full-screen, UI).
+    fn end_scene_depth_pass(&self) {
+        if let Some(cc) = &self.clip_control {
+            cc.set(false);
+        }
+    }
+
     /// Re-creates size-dependent targets. A 0×0 size (minimised window) keeps the old targets.
     pub fn resize(&mut self, width: u32, height: u32) -> Result<()> {
         if width == 0 || height == 0 || (width, height) == (self.width, self.height) {
             return Ok(());
         }
-        self.fbo_main = create_main_fbo(&self.gl, width, height)?;
+        self.fbo_main = create_main_fbo(&self.gl, width, height, self.depth_mode)?;
         self.fbo_bloom = create_bloom_fbos(&self.gl, width, height)?;
-        self.ao.resize(width, height)?;
-        self.methods.resize(&self.ao)?;
         self.fbo_output = None;
         self.fbo_values = None;
         self.width = width;
         self.height = height;
+        // With AO off the AO targets are not worth keeping at the new size: the next frame that
+        // needs them creates them.
+        if !self.needs_ao(self.view) {
+            self.ao.release_targets();
+            self.methods.release_targets();
+        }
+        self.configure_ao_targets()?;
         Ok(())
+    }
+
+    /// Whether a frame showing `view` runs the AO chain.
+    fn needs_ao(&self, view: View) -> bool {
+        self.ao_params.enabled || view != View::Composite
+    }
+
+    /// Level count of the linear-depth chain for the current method and size: the engine's `sao`
+    /// reads as many as its largest disc needs, every other method the lesson's 4.
+    pub fn wanted_depth_levels(&self) -> u32 {
+        if let Some(n) = self.depth_levels_override {
+            return n.max(1);
+        }
+        if self.ao_params.method == AoMethod::Sao {
+            let (hw, hh) = crate::ao::sao_lesson::half_size(self.width, self.height);
+            crate::ao::methods::sao_depth_levels(hw, hh)
+        } else {
+            crate::config::SAO_DEPTH_LEVELS as u32
+        }
+    }
+
+    /// Gives the lazily created AO targets the current size and level count (re-creating existing ones).
+    fn configure_ao_targets(&mut self) -> Result<()> {
+        let levels = self.wanted_depth_levels();
+        self.ao.configure((self.width, self.height), levels)
+    }
+
+    /// Every GL texture the engine owns for AO now (half-size depth chain, AO, blur targets,
+    /// method targets): empty until a frame runs AO, and after a resize while AO is off.
+    pub fn ao_textures(&self) -> Vec<AoTextureInfo> {
+        let mut out = Vec::new();
+        if let Some(l) = self.ao.get() {
+            out.push(AoTextureInfo::of(&l.tex_depth));
+            out.push(AoTextureInfo::of(l.sao_texture()));
+            out.push(AoTextureInfo::of(l.result_texture(true)));
+        }
+        out.extend(self.methods.textures().iter().map(|t| AoTextureInfo::of(t)));
+        out
     }
 
     /// Applies changed camera planes or AO sample counts to the shaders (they are compile-time constants).
     pub fn sync_shader_constants(&mut self) -> Result<(), ProgramError> {
         self.methods.update_camera(&self.camera)?;
         self.methods.prepare(self.ao_params.method)?;
-        self.ao.update_defines(&self.camera, &self.ao_params)
+        if let Some(p) = &mut self.prog_restore_reversed {
+            p.set_defines(&crate::ao::sao_lesson::camera_defines(&self.camera))?;
+        }
+        let (camera, params) = (self.camera, self.ao_params);
+        if let Err(e) = self.configure_ao_targets() {
+            log::error!("{e:#}");
+        }
+        self.ao
+            .with_programs(|p| p.update_defines(&camera, &params))
+            .unwrap_or(Ok(()))
     }
 
     /// Rebuilds shaders whose files changed; errors are returned, the last working programs stay.
     pub fn hot_reload(&mut self, force: bool) -> Vec<ProgramError> {
-        let mut errors = self.ao.reload(force);
+        let mut errors = self
+            .ao
+            .with_programs(|p| p.reload(force))
+            .unwrap_or_default();
         errors.extend(self.methods.reload(force));
         for p in [
             &mut self.prog_standard,
@@ -295,7 +430,10 @@ impl Engine {
             &mut self.prog_image,
             &mut self.prog_debug,
             &mut self.prog_composite_tint,
-        ] {
+        ]
+        .into_iter()
+        .chain(self.prog_restore_reversed.as_mut())
+        {
             if force || p.sources_changed() {
                 if let Err(e) = p.reload() {
                     errors.push(e);
@@ -353,6 +491,10 @@ impl Engine {
 
     fn draw_shadow_map(&self, shadow: &Mat4) {
         self.fbo_shadow.bind();
+        // The shadow map keeps the standard convention whatever the main depth buffer uses.
+        if let Some(cc) = &self.clip_control {
+            cc.set(false);
+        }
         unsafe {
             self.gl.enable(glow::DEPTH_TEST);
             self.gl.depth_func(glow::LEQUAL);
@@ -373,10 +515,7 @@ impl Engine {
 
     fn setup_standard(&self, shadow: &Mat4) {
         let p = &self.prog_standard;
-        p.set_mat4(
-            loc::VIEW_PROJECTION,
-            &self.camera.view_projection(self.aspect()),
-        );
+        p.set_mat4(loc::VIEW_PROJECTION, &self.scene_view_projection());
         p.set_mat4(loc::SHADOW_MATRIX, shadow);
         p.set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
         p.set_vec3(loc::LIGHT_COLOR, self.light.color);
@@ -403,13 +542,12 @@ impl Engine {
         unsafe {
             self.gl.disable(glow::BLEND);
             self.gl.disable(glow::SCISSOR_TEST);
-            self.gl.enable(glow::DEPTH_TEST);
-            self.gl.depth_func(glow::LEQUAL);
-            self.gl.depth_mask(true);
             // Some demo meshes are open (planes), so both faces are drawn.
             self.gl.disable(glow::CULL_FACE);
             self.gl.clear_color(0.0, 0.0, 0.0, 1.0);
-            self.gl.clear_depth_f32(1.0);
+        }
+        self.begin_scene_depth_pass(true);
+        unsafe {
             self.gl
                 .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
         }
@@ -419,40 +557,43 @@ impl Engine {
             false,
             &self.camera.view_projection(self.aspect()),
         );
+        self.end_scene_depth_pass();
     }
 
     /// Depth only (the pre-pass of AO-on-ambient): the AO chain needs depth before lighting.
     fn draw_depth_prepass(&self) {
         self.fbo_main.bind();
-        let vp = self.camera.view_projection(self.aspect());
         unsafe {
             self.gl.disable(glow::BLEND);
             self.gl.disable(glow::CULL_FACE);
-            self.gl.enable(glow::DEPTH_TEST);
-            self.gl.depth_func(glow::LEQUAL);
-            self.gl.depth_mask(true);
             self.gl.clear_color(0.0, 0.0, 0.0, 1.0);
-            self.gl.clear_depth_f32(1.0);
+        }
+        self.begin_scene_depth_pass(true);
+        unsafe {
             self.gl
                 .clear(glow::COLOR_BUFFER_BIT | glow::DEPTH_BUFFER_BIT);
             self.gl.color_mask(false, false, false, false);
         }
-        self.prog_shadow.set_mat4(loc::VIEW_PROJECTION, &vp);
+        self.prog_shadow
+            .set_mat4(loc::VIEW_PROJECTION, &self.scene_view_projection());
         self.prog_shadow.use_program();
-        self.draw_objects(&self.prog_shadow, false, &vp);
+        self.draw_objects(
+            &self.prog_shadow,
+            false,
+            &self.camera.view_projection(self.aspect()),
+        );
         unsafe { self.gl.color_mask(true, true, true, true) };
+        self.end_scene_depth_pass();
     }
 
     /// Lighting after the pre-pass, with occlusion applied to the ambient term only.
-    fn draw_opaque_ao_ambient(&self, shadow: &Mat4) {
+    fn draw_opaque_ao_ambient(&self, ao: &SaoLesson, shadow: &Mat4) {
         self.fbo_main.bind();
         unsafe {
             self.gl.disable(glow::BLEND);
             self.gl.disable(glow::CULL_FACE);
-            self.gl.enable(glow::DEPTH_TEST);
-            self.gl.depth_func(glow::LEQUAL);
-            self.gl.depth_mask(false);
         }
+        self.begin_scene_depth_pass(false);
         self.setup_standard(shadow);
         let p = &self.prog_standard;
         p.set_i32(loc::AO_AMBIENT_ONLY, 1);
@@ -461,18 +602,18 @@ impl Engine {
             [1.0 / self.width as f32, 1.0 / self.height as f32],
         );
         p.set_f32(loc::AO_POWER, self.ao_params.power);
-        self.ao
-            .result_texture(self.ao_params.blur)
+        ao.result_texture(self.ao_params.blur)
             .bind(binding::AO_AMBIENT);
         self.draw_objects(p, false, &self.camera.view_projection(self.aspect()));
         unsafe { self.gl.depth_mask(true) };
+        self.end_scene_depth_pass();
     }
 
     /// Blends the occlusion over the lit image: the lesson's swizzled blend, or tinted with a power.
-    fn draw_ao_composite(&self) {
+    fn draw_ao_composite(&self, ao: &SaoLesson) {
         let params = &self.ao_params;
         if params.composite == CompositeMode::Blend && params.power == 1.0 {
-            self.ao.composite(&self.meshes, &self.fbo_main, params.blur);
+            ao.composite(&self.meshes, &self.fbo_main, params.blur);
             return;
         }
         let tint = if params.composite == CompositeMode::Tinted {
@@ -493,7 +634,7 @@ impl Engine {
                 .blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
         }
         p.use_program();
-        self.ao.result_texture(params.blur).bind(0);
+        ao.result_texture(params.blur).bind(0);
         self.meshes.draw_plane_xy();
         unsafe { self.gl.disable(glow::BLEND) };
     }
@@ -503,9 +644,12 @@ impl Engine {
         unsafe {
             self.gl.disable(glow::BLEND);
             self.gl.disable(glow::CULL_FACE);
-            self.gl.enable(glow::DEPTH_TEST);
-            self.gl.depth_func(glow::LEQUAL);
-            self.gl.depth_mask(false);
+        }
+        self.begin_scene_depth_pass(false);
+        if self.depth_mode.reversed() {
+            // sky.vert puts the quad at clip z = w (window depth 1 = the far plane for the course's
+            // convention); with reversed-Z the far plane is 0, so the window range is squeezed to 0.
+            unsafe { self.gl.depth_range_f32(0.0, 0.0) };
         }
         let inv = self.camera.view_projection(self.aspect()).inverse();
         self.prog_sky.set_mat4(loc::INVERSE_VIEW_PROJECTION, &inv);
@@ -513,6 +657,11 @@ impl Engine {
             .set_vec3(loc::LIGHT_DIRECTION, self.light_direction().to_array());
         self.prog_sky.use_program();
         self.meshes.draw_plane_xy();
+        unsafe {
+            self.gl.depth_range_f32(0.0, 1.0);
+            self.gl.depth_mask(true);
+        }
+        self.end_scene_depth_pass();
     }
 
     fn draw_transparent(&self, shadow: &Mat4) {
@@ -525,11 +674,9 @@ impl Engine {
             self.gl.blend_equation(glow::FUNC_ADD);
             self.gl
                 .blend_func(glow::SRC_ALPHA, glow::ONE_MINUS_SRC_ALPHA);
-            self.gl.enable(glow::DEPTH_TEST);
-            self.gl.depth_func(glow::LEQUAL);
-            self.gl.depth_mask(false);
             self.gl.disable(glow::CULL_FACE);
         }
+        self.begin_scene_depth_pass(false);
         self.setup_standard(shadow);
         self.draw_objects(
             &self.prog_standard,
@@ -537,6 +684,7 @@ impl Engine {
             &self.camera.view_projection(self.aspect()),
         );
         unsafe { self.gl.depth_mask(true) };
+        self.end_scene_depth_pass();
     }
 
     fn draw_bloom(&self) {
@@ -611,12 +759,18 @@ impl Engine {
     }
 
     /// Shows one AO buffer as grey (window and PNG of the debug views).
-    fn draw_debug_view(&self, target: Option<&FramebufferObject>, view: View, raw_values: bool) {
+    fn draw_debug_view(
+        &self,
+        ao: &SaoLesson,
+        target: Option<&FramebufferObject>,
+        view: View,
+        raw_values: bool,
+    ) {
         self.bind_output(target);
         let (mode, tex, scale) = match view {
-            View::LinearDepth => (0, &self.ao.tex_depth, 0.02),
-            View::AoRaw => (1, self.ao.sao_texture(), 1.0),
-            _ => (1, self.ao.result_texture(self.ao_params.blur), 1.0),
+            View::LinearDepth => (0, &ao.tex_depth, 0.02),
+            View::AoRaw => (1, ao.sao_texture(), 1.0),
+            _ => (1, ao.result_texture(self.ao_params.blur), 1.0),
         };
         self.prog_debug.set_i32(loc::DEBUG_VIEW_MODE, mode);
         self.prog_debug
@@ -664,11 +818,24 @@ impl Engine {
     fn render_inner(&self, target: Option<&FramebufferObject>, view: View, raw_values: bool) {
         self.stats.borrow_mut().clear();
         let shadow = self.shadow_matrix();
-        let need_ao = self.ao_params.enabled || view != View::Composite;
+        // The AO targets are created here on the first frame that needs them; if GL cannot
+        // allocate them the frame is drawn without AO (and says why).
+        let ao_chain = if self.needs_ao(view) {
+            match self.ao.get_or_create() {
+                Ok(ao) => Some(ao),
+                Err(e) => {
+                    log::error!("AO skipped: {e:#}");
+                    None
+                }
+            }
+        } else {
+            None
+        };
         if self.light.shadow && view == View::Composite {
             self.pass("shadow map", "shadow", || self.draw_shadow_map(&shadow));
         }
         let ambient_only = view == View::Composite
+            && ao_chain.is_some()
             && self.ao_params.enabled
             && self.ao_params.composite == CompositeMode::AmbientOnly;
         if ambient_only {
@@ -676,10 +843,12 @@ impl Engine {
         } else {
             self.pass("opaque", "opaque", || self.draw_opaque(&shadow));
         }
-        if need_ao {
+        if let Some(ao) = ao_chain {
             let depth = self.fbo_main.depth_texture().unwrap();
-            let (m, ao) = (&self.meshes, &self.ao);
-            self.pass("sao restore depth", "ao", || ao.restore_depth(m, depth));
+            let m = &self.meshes;
+            self.pass("sao restore depth", "ao", || {
+                self.restore_linear_depth(ao, depth)
+            });
             self.pass("sao down sampling", "ao", || ao.down_sample(m));
             let method = self.ao_params.method;
             if view != View::LinearDepth && method == AoMethod::SaoLesson {
@@ -699,15 +868,19 @@ impl Engine {
                 }
             }
             if ambient_only {
-                self.pass("opaque", "opaque", || self.draw_opaque_ao_ambient(&shadow));
+                self.pass("opaque", "opaque", || {
+                    self.draw_opaque_ao_ambient(ao, &shadow)
+                });
             } else if view == View::Composite {
-                self.pass("sao composite", "ao", || self.draw_ao_composite());
+                self.pass("sao composite", "ao", || self.draw_ao_composite(ao));
             }
         }
         if view != View::Composite {
-            self.pass("debug view", "post", || {
-                self.draw_debug_view(target, view, raw_values)
-            });
+            if let Some(ao) = ao_chain {
+                self.pass("debug view", "post", || {
+                    self.draw_debug_view(ao, target, view, raw_values)
+                });
+            }
             return;
         }
         self.pass("sky", "sky", || self.draw_sky());
@@ -727,6 +900,7 @@ impl Engine {
     /// Renders into the headless RGBA8 output and reads it back (rows top-down).
     pub fn render_image(&mut self) -> Result<image::RgbaImage> {
         self.methods.prepare(self.ao_params.method)?;
+        self.configure_ao_targets()?;
         if self.fbo_output.is_none() {
             let tex = Rc::new(Texture::new(
                 &self.gl,
@@ -747,6 +921,7 @@ impl Engine {
     /// ambient visibility (1 = open). For `Composite`, the luminance-free RGB is not available: use `render_image`.
     pub fn render_values(&mut self, view: View) -> Result<Vec<f32>> {
         self.methods.prepare(self.ao_params.method)?;
+        self.configure_ao_targets()?;
         if view == View::Composite {
             bail!("the composite view has colour, not values: write it as PNG");
         }
@@ -767,6 +942,14 @@ impl Engine {
         Ok(v)
     }
 
+    /// Main depth → linear depth level 0, with the restore that matches the depth convention.
+    fn restore_linear_depth(&self, ao: &SaoLesson, depth: &Texture) {
+        match (&self.prog_restore_reversed, self.depth_mode.reversed()) {
+            (Some(p), true) => ao.restore_depth_with(p, &self.meshes, depth),
+            _ => ao.restore_depth(&self.meshes, depth),
+        }
+    }
+
     /// Runs the frame's passes up to the AO chain without drawing the output (tests inspect buffers).
     pub fn render_to_ao(&self) {
         let shadow = self.shadow_matrix();
@@ -774,12 +957,13 @@ impl Engine {
             self.draw_shadow_map(&shadow);
         }
         self.draw_opaque(&shadow);
-        self.ao.run(
-            &self.meshes,
-            self.fbo_main.depth_texture().unwrap(),
-            &self.camera,
-            &self.ao_params,
-        );
+        let ao: &SaoLesson = &self.ao;
+        self.restore_linear_depth(ao, self.fbo_main.depth_texture().unwrap());
+        ao.down_sample(&self.meshes);
+        ao.compute_sao(&self.meshes, &self.camera, &self.ao_params);
+        if self.ao_params.blur {
+            ao.blur(&self.meshes);
+        }
     }
 
     /// Triangles of every opaque object in world space (for the ray-traced reference).
@@ -792,6 +976,45 @@ impl Engine {
             }
         }
         out
+    }
+}
+
+/// One texture the engine owns for AO (`Engine::ao_textures`).
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AoTextureInfo {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub levels: u32,
+    pub internal_format: u32,
+    /// Bytes of storage, all levels.
+    pub bytes: u64,
+}
+
+impl AoTextureInfo {
+    fn of(t: &Texture) -> AoTextureInfo {
+        let d = t.desc();
+        let texel = match d.internal_format {
+            glow::R8 => 1,
+            glow::R16F | glow::RG8 => 2,
+            glow::R32F | glow::RG16F | glow::RGBA8 => 4,
+            glow::RG32F | glow::RGBA16F => 8,
+            _ => 16,
+        };
+        let bytes = (0..t.levels())
+            .map(|l| {
+                let (w, h) = t.size_at(l);
+                w as u64 * h as u64 * texel
+            })
+            .sum();
+        AoTextureInfo {
+            name: d.name.clone(),
+            width: d.width,
+            height: d.height,
+            levels: t.levels(),
+            internal_format: d.internal_format,
+            bytes,
+        }
     }
 }
 
@@ -836,8 +1059,8 @@ fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
     b
 }
 
-/// The main FBO: RGBA16F colour + DEPTH_COMPONENT32 depth, compare mode off (the AO passes read raw depth).
-fn create_main_fbo(gl: &Gl, width: u32, height: u32) -> Result<FramebufferObject> {
+/// The main FBO: RGBA16F colour + the mode's depth format, compare mode off (the AO passes read raw depth).
+fn create_main_fbo(gl: &Gl, width: u32, height: u32, mode: DepthMode) -> Result<FramebufferObject> {
     let color = Rc::new(Texture::new(
         gl,
         TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F)
@@ -845,7 +1068,7 @@ fn create_main_fbo(gl: &Gl, width: u32, height: u32) -> Result<FramebufferObject
     )?);
     let depth = Rc::new(Texture::new(
         gl,
-        TextureDesc::target("FBO(main depth)", width, height, glow::DEPTH_COMPONENT32)
+        TextureDesc::target("FBO(main depth)", width, height, mode.internal_format())
             .compare(false),
     )?);
     FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)
