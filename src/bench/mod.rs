@@ -5,12 +5,16 @@
 //! * `opengl3d bench --stress` ([`stress`]): extreme planes, radii, intensities, fields of view, sizes
 //!   and cameras, NaN/Inf counts of every output, and linear-depth reconstruction error against
 //!   distance for several depth formats → `stress.json`, `stress.md`.
+//! * `opengl3d bench --skips` ([`skips`]): what each skipped pass saves (AO off, the linear-depth
+//!   view, no shadow light, bloom off, frustum culling), as ratios measured in one run → `skips.json`,
+//!   `skips.md`.
 
 pub mod catalog;
 pub mod chart;
 pub mod depth_formats;
 pub mod metrics;
 pub mod perf;
+pub mod skips;
 pub mod stress;
 
 use crate::ao::AoMethod;
@@ -34,6 +38,10 @@ pub struct BenchArgs {
     /// Run the numerical stress tests instead.
     #[arg(long)]
     pub stress: bool,
+    /// Measure what each skipped pass saves instead (AO off, linear-depth view, no shadow light,
+    /// bloom off, frustum culling), writing skips.json and skips.md.
+    #[arg(long, conflicts_with = "stress")]
+    pub skips: bool,
     /// AO methods by name, comma-separated (default: every method the engine has).
     #[arg(long, value_delimiter = ',')]
     pub methods: Vec<String>,
@@ -113,6 +121,32 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
             report.total_non_finite,
             report.cases.iter().filter(|c| !c.ok).count()
         );
+        return Ok(());
+    }
+    if args.skips {
+        let cfg = skips::SkipsConfig {
+            scene: args.scenes.first().cloned(),
+            width: args.width,
+            height: args.height,
+            out: args.out.clone(),
+            warmup: args.warmup,
+            frames: args.frames,
+            progress: true,
+        };
+        let report = skips::run(res, &cfg)?;
+        for c in &report.cases {
+            println!(
+                "{:<36} saves {:7.1} ms of {:7.1} (ratio {:.2}, CPU {:.2}); draw calls {} → {}",
+                c.name,
+                c.saved_ms,
+                c.needed.frame_ms,
+                c.ratio,
+                c.ratio_cpu,
+                c.needed.draw_calls,
+                c.skipped.draw_calls
+            );
+        }
+        println!("wrote {}", args.out.join("skips.md").display());
         return Ok(());
     }
     let cfg = args.perf_config()?;

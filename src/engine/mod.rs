@@ -142,6 +142,9 @@ pub struct Engine {
     pub depth_levels_override: Option<u32>,
     /// When on, each pass is bracketed by glFinish and timed (slower; for `--stats` and benchmarks).
     pub collect_stats: bool,
+    /// Objects whose bounds miss the frustum are not drawn (on by default; `bench --skips` turns it
+    /// off to measure what it saves).
+    pub frustum_culling: bool,
     stats: std::cell::RefCell<Vec<PassStat>>,
 }
 
@@ -264,6 +267,7 @@ impl Engine {
             black,
             depth_levels_override: None,
             collect_stats: false,
+            frustum_culling: true,
             stats: Default::default(),
         };
         engine.set_depth_mode(depth_mode)?;
@@ -481,7 +485,7 @@ impl Engine {
             .objects
             .iter()
             .filter(|o| o.is_transparent() == transparent)
-            .filter(|o| box_in_frustum(&planes, o.bounds))
+            .filter(|o| !self.frustum_culling || box_in_frustum(&planes, o.bounds))
         {
             prog.set_mat4(loc::MODEL, &o.model());
             prog.set_vec4(loc::OBJECT_COLOR, o.color.to_array());
