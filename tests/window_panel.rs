@@ -13,6 +13,10 @@ use std::process::{Command, Output};
 
 const W: u32 = 320;
 const H: u32 = 240;
+/// At 320×240 a few pixels of the window's frame (llvmpipe through GLX) differ by one level from the
+/// headless EGL render, already on the first frame, before egui ever painted; anything egui leaks
+/// onto the scene differs by far more.
+const DRIVER_TOLERANCE: i32 = 1;
 
 /// False (after saying why) when Xvfb is missing outside CI; in CI a missing Xvfb fails.
 fn xvfb_available() -> bool {
@@ -31,8 +35,12 @@ fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).to_string()
 }
 
+/// `xvfb-run -a` picks a free display number racily: one window at a time.
+static XVFB: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// Runs `opengl3d [pre] window --frames 4 --width W --height H --screenshot shot` under Xvfb.
 fn window(pre: &[&str], shot: &Path, panel: &str) -> Output {
+    let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let o = Command::new("xvfb-run")
         .args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_opengl3d")])
         .args(pre)
@@ -114,9 +122,10 @@ fn panel_covers_its_region_and_leaves_the_rest_of_the_frame_untouched() {
         "the panel should cover the left of the window: only {:.0} % of its pixels differ from the scene",
         covered * 100.0
     );
+    eprintln!("panel region: {:.0} % of pixels differ from the scene", covered * 100.0);
     let (max, _) = compare(&win, &reference, W * 13 / 20..W, 0..H);
-    assert_eq!(
-        max, 0,
+    assert!(
+        max <= DRIVER_TOLERANCE,
         "pixels right of the panel must equal the headless render (max channel difference {max})"
     );
 
@@ -125,8 +134,8 @@ fn panel_covers_its_region_and_leaves_the_rest_of_the_frame_untouched() {
     window(&[], &shot, "off");
     let win = image::open(&shot).unwrap().to_rgb8();
     let (max, _) = compare(&win, &reference, 0..W, H / 4..H);
-    assert_eq!(
-        max, 0,
+    assert!(
+        max <= DRIVER_TOLERANCE,
         "with the panel hidden, the frame below the hint must equal the headless render (max difference {max})"
     );
     let (_, hint) = compare(&win, &reference, 0..W / 2, 0..H / 8);
@@ -164,13 +173,14 @@ fn broken_res_shader_keeps_the_window_rendering_and_shows_file_and_line() {
     // Rendering goes on with the project's own shaders: the scene above the overlay is the
     // headless render's (left of the top-left hint's width excluded).
     let (max, _) = compare(&win, &reference, W / 2..W, 0..H / 2);
-    assert_eq!(
-        max, 0,
+    assert!(
+        max <= DRIVER_TOLERANCE,
         "the scene should still render with the project's shaders (max channel difference {max})"
     );
     // The overlay: red text along the bottom, which the scene itself does not have.
     let bottom = H / 2..H;
     let (on_screen, in_scene) = (red_pixels(&win, bottom.clone()), red_pixels(&reference, bottom));
+    eprintln!("red pixels in the bottom half: {on_screen} on screen, {in_scene} in the headless scene");
     assert!(
         on_screen >= in_scene + 40,
         "the error overlay's red text should show at the bottom ({on_screen} red pixels, {in_scene} in the scene)"

@@ -9,7 +9,7 @@ use egui::{Color32, RichText};
 use std::collections::HashMap;
 
 /// Width the panel opens at (points); the user may drag its edge.
-const PANEL_WIDTH: f32 = 230.0;
+const PANEL_WIDTH: f32 = 260.0;
 /// The panel never covers more than this share of the window, so the scene stays visible.
 const PANEL_MAX_SHARE: f32 = 0.6;
 /// Weight of the newest frame in the smoothed pass times (single frames on llvmpipe jitter a lot).
