@@ -186,3 +186,108 @@ fn broken_res_shader_keeps_the_window_rendering_and_shows_file_and_line() {
         "the error overlay's red text should show at the bottom ({on_screen} red pixels, {in_scene} in the scene)"
     );
 }
+
+/// Kills the process group of a child started with `process_group(0)` (xvfb-run, Xvfb, the window).
+struct KillGroupOnDrop(std::process::Child);
+
+impl Drop for KillGroupOnDrop {
+    fn drop(&mut self) {
+        // SAFETY: plain kill(2) on the group this test created.
+        unsafe { libc::kill(-(self.0.id() as i32), libc::SIGTERM) };
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn shader_broken_while_running_stays_reported_until_fixed() {
+    use std::io::BufRead;
+    use std::os::unix::process::CommandExt;
+    use std::sync::mpsc;
+    use std::time::{Duration, Instant};
+    if !xvfb_available() {
+        return;
+    }
+    let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+    let dir = common::temp_dir("window-hot-reload");
+    let res = dir.join("res");
+    std::fs::create_dir_all(&res).unwrap();
+    let good = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/sao.frag"))
+        .unwrap();
+    let shader = res.join("sao.frag");
+    std::fs::write(&shader, &good).unwrap();
+
+    let mut child = Command::new("xvfb-run")
+        .args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_opengl3d")])
+        .args(["--res", res.to_str().unwrap(), "window", "--frames", "1000000"])
+        .args(["--width", &W.to_string(), "--height", &H.to_string()])
+        .env_remove("WAYLAND_DISPLAY")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .process_group(0)
+        .spawn()
+        .unwrap();
+    let (tx, rx) = mpsc::channel::<String>();
+    for pipe in [
+        Box::new(child.stdout.take().unwrap()) as Box<dyn std::io::Read + Send>,
+        Box::new(child.stderr.take().unwrap()),
+    ] {
+        let tx = tx.clone();
+        std::thread::spawn(move || {
+            for line in std::io::BufReader::new(pipe).lines().map_while(Result::ok) {
+                let _ = tx.send(line);
+            }
+        });
+    }
+    let _window = KillGroupOnDrop(child);
+    let mut seen: Vec<String> = Vec::new();
+    // Waits until a line satisfies `done`; every line read is kept in `seen`.
+    let mut wait_for = |what: &str, secs: u64, done: &dyn Fn(&str) -> bool| {
+        let end = Instant::now() + Duration::from_secs(secs);
+        while let Some(left) = end.checked_duration_since(Instant::now()) {
+            if let Ok(line) = rx.recv_timeout(left) {
+                let hit = done(&line);
+                seen.push(line);
+                if hit {
+                    return seen.clone();
+                }
+            }
+        }
+        panic!("no {what} within {secs} s; output so far:\n{}", seen.join("\n"));
+    };
+    wait_for("start-up line", 120, &|l| l.starts_with("window "));
+
+    const BROKEN_LINE: usize = 25;
+    let mut lines: Vec<&str> = good.lines().collect();
+    lines.insert(BROKEN_LINE - 1, "this is not GLSL;");
+    std::fs::write(&shader, lines.join("\n") + "\n").unwrap();
+    let out = wait_for("report of the broken shader", 60, &|l| {
+        l.contains("last working shaders keep running")
+    });
+    assert!(
+        out.iter().any(|l| l.contains(&format!("sao.frag:{BROKEN_LINE}:"))),
+        "the error should name sao.frag:{BROKEN_LINE}:\n{}",
+        out.join("\n")
+    );
+    let reported_at = out.len();
+
+    // Still broken: later reload checks (every 0.4 s) must neither announce a rebuild nor repeat it.
+    let end = Instant::now() + Duration::from_millis(1600);
+    let mut later = Vec::new();
+    while let Some(left) = end.checked_duration_since(Instant::now()) {
+        if let Ok(l) = rx.recv_timeout(left) {
+            later.push(l);
+        }
+    }
+    assert!(
+        !later
+            .iter()
+            .any(|l| l.contains("shaders rebuilt") || l.contains("keep running")),
+        "nothing was fixed, yet the window said:\n{}",
+        later.join("\n")
+    );
+    drop(later);
+
+    std::fs::write(&shader, &good).unwrap();
+    let out = wait_for("rebuild after the fix", 60, &|l| l.contains("shaders rebuilt"));
+    assert!(out.len() > reported_at);
+}

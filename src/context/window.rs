@@ -332,6 +332,11 @@ impl App {
             event_loop.system_theme(),
             Some(painter.max_texture_side()),
         );
+        // Scripts (and the tests) wait for this line before touching shader files.
+        println!(
+            "window {}x{} on {renderer}; F1 shows or hides the parameter panel",
+            size.width, size.height
+        );
         Ok(GlWindowState {
             engine,
             gui: Gui {
