@@ -27,7 +27,9 @@ fn xvfb_available() -> bool {
         std::env::var_os("CI").is_none(),
         "xvfb-run is required in CI (.ci/run installs it)"
     );
-    eprintln!("xvfb-run not installed: window panel tests not run here (apt-get install xvfb xauth)");
+    eprintln!(
+        "xvfb-run not installed: window panel tests not run here (apt-get install xvfb xauth)"
+    );
     false
 }
 
@@ -42,7 +44,12 @@ static XVFB: std::sync::Mutex<()> = std::sync::Mutex::new(());
 fn window(pre: &[&str], shot: &Path, panel: &str) -> Output {
     let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let o = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_opengl3d")])
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 640x480x24",
+            env!("CARGO_BIN_EXE_opengl3d"),
+        ])
         .args(pre)
         .args(["window", "--frames", "4"])
         .args(["--width", &W.to_string(), "--height", &H.to_string()])
@@ -64,7 +71,13 @@ fn window(pre: &[&str], shot: &Path, panel: &str) -> Output {
 /// The demo frame rendered headless with the project's own shaders.
 fn headless(out: &Path) -> RgbImage {
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
-        .args(["render", "--width", &W.to_string(), "--height", &H.to_string()])
+        .args([
+            "render",
+            "--width",
+            &W.to_string(),
+            "--height",
+            &H.to_string(),
+        ])
         .args(["--out", out.to_str().unwrap()])
         .output()
         .unwrap();
@@ -80,7 +93,12 @@ fn channel_diff(a: &image::Rgb<u8>, b: &image::Rgb<u8>) -> i32 {
 }
 
 /// Largest channel difference and share of pixels differing by more than 8 levels, over a region.
-fn compare(a: &RgbImage, b: &RgbImage, xs: std::ops::Range<u32>, ys: std::ops::Range<u32>) -> (i32, f64) {
+fn compare(
+    a: &RgbImage,
+    b: &RgbImage,
+    xs: std::ops::Range<u32>,
+    ys: std::ops::Range<u32>,
+) -> (i32, f64) {
     let (mut max, mut differing, mut n) = (0, 0usize, 0usize);
     for y in ys {
         for x in xs.clone() {
@@ -122,7 +140,10 @@ fn panel_covers_its_region_and_leaves_the_rest_of_the_frame_untouched() {
         "the panel should cover the left of the window: only {:.0} % of its pixels differ from the scene",
         covered * 100.0
     );
-    eprintln!("panel region: {:.0} % of pixels differ from the scene", covered * 100.0);
+    eprintln!(
+        "panel region: {:.0} % of pixels differ from the scene",
+        covered * 100.0
+    );
     let (max, _) = compare(&win, &reference, W * 13 / 20..W, 0..H);
     assert!(
         max <= DRIVER_TOLERANCE,
@@ -139,7 +160,10 @@ fn panel_covers_its_region_and_leaves_the_rest_of_the_frame_untouched() {
         "with the panel hidden, the frame below the hint must equal the headless render (max difference {max})"
     );
     let (_, hint) = compare(&win, &reference, 0..W / 2, 0..H / 8);
-    assert!(hint > 0.01, "the F1 hint should show when the panel is hidden");
+    assert!(
+        hint > 0.01,
+        "the F1 hint should show when the panel is hidden"
+    );
 }
 
 #[test]
@@ -150,10 +174,9 @@ fn broken_res_shader_keeps_the_window_rendering_and_shows_file_and_line() {
     let dir = common::temp_dir("window-broken-shader");
     let res = dir.join("res");
     std::fs::create_dir_all(&res).unwrap();
-    let original = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/sao.frag"),
-    )
-    .unwrap();
+    let original =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/sao.frag"))
+            .unwrap();
     // A line no GLSL compiler accepts, as line 31 of the copy.
     const BROKEN_LINE: usize = 31;
     let mut lines: Vec<&str> = original.lines().collect();
@@ -179,8 +202,13 @@ fn broken_res_shader_keeps_the_window_rendering_and_shows_file_and_line() {
     );
     // The overlay: red text along the bottom, which the scene itself does not have.
     let bottom = H / 2..H;
-    let (on_screen, in_scene) = (red_pixels(&win, bottom.clone()), red_pixels(&reference, bottom));
-    eprintln!("red pixels in the bottom half: {on_screen} on screen, {in_scene} in the headless scene");
+    let (on_screen, in_scene) = (
+        red_pixels(&win, bottom.clone()),
+        red_pixels(&reference, bottom),
+    );
+    eprintln!(
+        "red pixels in the bottom half: {on_screen} on screen, {in_scene} in the headless scene"
+    );
     assert!(
         on_screen >= in_scene + 40,
         "the error overlay's red text should show at the bottom ({on_screen} red pixels, {in_scene} in the scene)"
@@ -217,8 +245,19 @@ fn shader_broken_while_running_stays_reported_until_fixed() {
     std::fs::write(&shader, &good).unwrap();
 
     let mut child = Command::new("xvfb-run")
-        .args(["-a", "-s", "-screen 0 640x480x24", env!("CARGO_BIN_EXE_opengl3d")])
-        .args(["--res", res.to_str().unwrap(), "window", "--frames", "1000000"])
+        .args([
+            "-a",
+            "-s",
+            "-screen 0 640x480x24",
+            env!("CARGO_BIN_EXE_opengl3d"),
+        ])
+        .args([
+            "--res",
+            res.to_str().unwrap(),
+            "window",
+            "--frames",
+            "1000000",
+        ])
         .args(["--width", &W.to_string(), "--height", &H.to_string()])
         .env_remove("WAYLAND_DISPLAY")
         .stdout(std::process::Stdio::piped())
@@ -252,7 +291,10 @@ fn shader_broken_while_running_stays_reported_until_fixed() {
                 }
             }
         }
-        panic!("no {what} within {secs} s; output so far:\n{}", seen.join("\n"));
+        panic!(
+            "no {what} within {secs} s; output so far:\n{}",
+            seen.join("\n")
+        );
     };
     wait_for("start-up line", 120, &|l| l.starts_with("window "));
 
@@ -264,7 +306,8 @@ fn shader_broken_while_running_stays_reported_until_fixed() {
         l.contains("last working shaders keep running")
     });
     assert!(
-        out.iter().any(|l| l.contains(&format!("sao.frag:{BROKEN_LINE}:"))),
+        out.iter()
+            .any(|l| l.contains(&format!("sao.frag:{BROKEN_LINE}:"))),
         "the error should name sao.frag:{BROKEN_LINE}:\n{}",
         out.join("\n")
     );
@@ -288,6 +331,8 @@ fn shader_broken_while_running_stays_reported_until_fixed() {
     drop(later);
 
     std::fs::write(&shader, &good).unwrap();
-    let out = wait_for("rebuild after the fix", 60, &|l| l.contains("shaders rebuilt"));
+    let out = wait_for("rebuild after the fix", 60, &|l| {
+        l.contains("shaders rebuilt")
+    });
     assert!(out.len() > reported_at);
 }

@@ -127,7 +127,11 @@ impl Panel {
                 ui.color_edit_button_rgb(&mut p.tint);
                 ui.label("tint");
             });
-            ui.add(egui::Slider::new(&mut p.power, 0.05..=20.0).logarithmic(true).text("power"));
+            ui.add(
+                egui::Slider::new(&mut p.power, 0.05..=20.0)
+                    .logarithmic(true)
+                    .text("power"),
+            );
         }
 
         ui.separator();
@@ -142,13 +146,23 @@ impl Panel {
                 .suffix(" m")
                 .text("bias"),
         )
-        .on_hover_text("Samples closer than this along the normal do not occlude (no self-shadowing).");
-        ui.add(egui::Slider::new(&mut p.intensity, 0.0..=50.0).logarithmic(true).text("intensity"));
+        .on_hover_text(
+            "Samples closer than this along the normal do not occlude (no self-shadowing).",
+        );
+        ui.add(
+            egui::Slider::new(&mut p.intensity, 0.0..=50.0)
+                .logarithmic(true)
+                .text("intensity"),
+        );
 
         // Compile-time constants: apply when the slider is released, not at every step of a drag.
         let mut samples = self.pending_samples.unwrap_or(p.samples);
         let r = ui
-            .add(egui::Slider::new(&mut samples, 1..=256).logarithmic(true).text("samples"))
+            .add(
+                egui::Slider::new(&mut samples, 1..=256)
+                    .logarithmic(true)
+                    .text("samples"),
+            )
             .on_hover_text(
                 "Sample budget. SAO, Crytek, hemisphere: samples; angle-based: pairs = N/2; \
                  HBAO: 4 directions × N/4 steps; GTAO: 2 slices × N/4 steps per side.",
@@ -310,16 +324,21 @@ pub fn install_fonts(ctx: &egui::Context) -> Option<String> {
 
     let mut fonts = egui::FontDefinitions::empty();
     let mut add = |name: &str, bytes: Vec<u8>| {
-        fonts
-            .font_data
-            .insert(name.to_string(), std::sync::Arc::new(egui::FontData::from_owned(bytes)));
+        fonts.font_data.insert(
+            name.to_string(),
+            std::sync::Arc::new(egui::FontData::from_owned(bytes)),
+        );
         name.to_string()
     };
     let sans = sans.map(|b| add("sans", b));
     let mono = mono.map(|b| add("mono", b));
     let cjk = cjk.map(|b| add("cjk", b));
     let family = |first: &Option<String>, second: &Option<String>| {
-        [first, second, &cjk].into_iter().flatten().cloned().collect::<Vec<_>>()
+        [first, second, &cjk]
+            .into_iter()
+            .flatten()
+            .cloned()
+            .collect::<Vec<_>>()
     };
     let proportional = family(&sans, &mono);
     let monospace = family(&mono, &sans);
@@ -333,7 +352,9 @@ pub fn install_fonts(ctx: &egui::Context) -> Option<String> {
     fonts
         .families
         .insert(egui::FontFamily::Proportional, proportional);
-    fonts.families.insert(egui::FontFamily::Monospace, monospace);
+    fonts
+        .families
+        .insert(egui::FontFamily::Monospace, monospace);
     ctx.set_fonts(fonts);
     None
 }

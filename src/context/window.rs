@@ -60,7 +60,11 @@ impl WindowOptions {
     /// `OPENGL3D_PANEL=off` starts with the panel hidden and `OPENGL3D_SCREENSHOT_UI=1` puts the
     /// panel and overlay into the screenshot.
     pub fn from_env(view: View, frames: Option<u32>, screenshot: Option<PathBuf>) -> WindowOptions {
-        let flag = |name: &str| std::env::var(name).ok().map(|v| v.trim().to_ascii_lowercase());
+        let flag = |name: &str| {
+            std::env::var(name)
+                .ok()
+                .map(|v| v.trim().to_ascii_lowercase())
+        };
         WindowOptions {
             view,
             frames,
@@ -141,8 +145,10 @@ impl ShaderErrors {
     }
     /// Records `errors`, replacing older ones about the same files; true when any text is new.
     fn record(&mut self, errors: &[ProgramError]) -> bool {
-        let batch: Vec<(Option<PathBuf>, String)> =
-            errors.iter().map(|e| (error_file(e), e.to_string())).collect();
+        let batch: Vec<(Option<PathBuf>, String)> = errors
+            .iter()
+            .map(|e| (error_file(e), e.to_string()))
+            .collect();
         let new = batch
             .iter()
             .any(|(_, t)| !self.entries.iter().any(|x| &x.text == t));
@@ -172,7 +178,9 @@ impl ShaderErrors {
 /// Shader files of the student's folders, to notice when a broken start-up shader is saved again.
 fn shader_stamps(res: &ResDirs) -> Vec<(PathBuf, Option<SystemTime>)> {
     fn walk(dir: &Path, depth: u32, out: &mut Vec<(PathBuf, Option<SystemTime>)>) {
-        let Ok(entries) = std::fs::read_dir(dir) else { return };
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
         for e in entries.flatten() {
             let p = e.path();
             if p.is_dir() {
@@ -232,7 +240,11 @@ pub fn run(
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
 ) -> Result<()> {
-    run_with(res, scene, WindowOptions::from_env(view, frames, screenshot))
+    run_with(
+        res,
+        scene,
+        WindowOptions::from_env(view, frames, screenshot),
+    )
 }
 
 /// Opens the window with `options` and runs until it is closed (or the frames were shown).
@@ -372,7 +384,8 @@ impl App {
         eprintln!(
             "{shader_error}\n(running the project's own shaders until this compiles; save the file to retry)"
         );
-        self.shader_errors.record(std::slice::from_ref(shader_error));
+        self.shader_errors
+            .record(std::slice::from_ref(shader_error));
         self.fallback = Some(StartupFallback {
             stamps: shader_stamps(&self.res),
             student_res: std::mem::replace(&mut self.res, project),
@@ -683,7 +696,8 @@ impl ApplicationHandler for App {
             WindowEvent::MouseInput { state, button, .. } => {
                 if matches!(button, MouseButton::Left | MouseButton::Right) {
                     // A drag that starts on the panel belongs to the panel.
-                    self.dragging = state == ElementState::Pressed && !consumed && !pointer_over_egui;
+                    self.dragging =
+                        state == ElementState::Pressed && !consumed && !pointer_over_egui;
                 }
             }
             WindowEvent::CursorMoved { position, .. } => {
