@@ -42,6 +42,10 @@ static XVFB: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
 /// Runs `opengl3d [pre] window --frames 4 --width W --height H --screenshot shot` under Xvfb.
 fn window(pre: &[&str], shot: &Path, panel: &str) -> Output {
+    window_env(pre, shot, panel, &[])
+}
+
+fn window_env(pre: &[&str], shot: &Path, panel: &str, env: &[(&str, &str)]) -> Output {
     let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
     let o = Command::new("xvfb-run")
         .args([
@@ -56,6 +60,7 @@ fn window(pre: &[&str], shot: &Path, panel: &str) -> Output {
         .args(["--screenshot", shot.to_str().unwrap()])
         .env("OPENGL3D_SCREENSHOT_UI", "1")
         .env("OPENGL3D_PANEL", panel)
+        .envs(env.iter().copied())
         .env_remove("WAYLAND_DISPLAY")
         .output()
         .unwrap();
@@ -129,8 +134,9 @@ fn panel_covers_its_region_and_leaves_the_rest_of_the_frame_untouched() {
     let dir = common::temp_dir("window-panel");
     let reference = headless(&dir.join("headless.png"));
 
+    // With the pass-timing table shown too (it must not disturb the frame either).
     let shot = dir.join("with-panel.png");
-    window(&[], &shot, "on");
+    window_env(&[], &shot, "on", &[("OPENGL3D_TIME_PASSES", "1")]);
     let win = image::open(&shot).unwrap().to_rgb8();
     assert_eq!(win.dimensions(), (W, H));
     // The panel opens on the left, at most 60 % of the width (192 px here).

@@ -53,12 +53,14 @@ pub struct WindowOptions {
     /// engine's frame alone, which equals a headless `render`.
     pub screenshot_with_ui: bool,
     pub panel_visible: bool,
+    /// Start with per-pass timing on (the panel's "time each pass").
+    pub time_passes: bool,
 }
 
 impl WindowOptions {
     /// The panel starts visible and screenshots hold the engine's frame alone; for scripted runs
     /// `OPENGL3D_PANEL=off` starts with the panel hidden and `OPENGL3D_SCREENSHOT_UI=1` puts the
-    /// panel and overlay into the screenshot.
+    /// panel and overlay into the screenshot; `OPENGL3D_TIME_PASSES=1` starts with per-pass timing on.
     pub fn from_env(view: View, frames: Option<u32>, screenshot: Option<PathBuf>) -> WindowOptions {
         let flag = |name: &str| {
             std::env::var(name)
@@ -70,6 +72,8 @@ impl WindowOptions {
             frames,
             screenshot,
             screenshot_with_ui: flag("OPENGL3D_SCREENSHOT_UI")
+                .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
+            time_passes: flag("OPENGL3D_TIME_PASSES")
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             panel_visible: !flag("OPENGL3D_PANEL")
                 .is_some_and(|v| matches!(v.as_str(), "0" | "off" | "no" | "false" | "hidden")),
@@ -329,6 +333,7 @@ impl App {
         let size = window.inner_size();
         let mut engine = self.create_engine(&gl, size)?;
         engine.view = self.options.view;
+        engine.collect_stats = self.options.time_passes;
 
         let painter = egui_glow::Painter::new(gui_gl, "", None, false)
             .map_err(|e| anyhow!("cannot set up the parameter panel's painter: {e}"))?;
