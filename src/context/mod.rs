@@ -2,6 +2,7 @@
 //! Rendering code never depends on which one it runs in.
 
 pub mod headless;
+pub mod panel;
 pub mod window;
 
 pub use headless::HeadlessContext;

@@ -1,11 +1,19 @@
-//! The desktop window: winit + glutin, a fly camera, AO and view toggles, hot reload of shaders.
+//! The desktop window: winit + glutin, a fly camera, AO and view toggles, an egui parameter panel,
+//! hot reload of shaders.
 //!
 //! Keys: W/A/S/D/Q/E move, drag with a mouse button to look, Space toggles AO, M cycles AO methods, V cycles the views
-//! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, Esc quits.
+//! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, F1 shows or
+//! hides the parameter panel, Esc quits. Keys and drags go to the camera only when the panel does not use them.
+//! The panel (egui, painted over the frame) sets the AO method, composite mode, radius, bias, intensity,
+//! sample count, spiral turns, blur and view, and shows the wall-clock time of each pass.
 //! Shaders are also rebuilt automatically within half a second of being saved; a compile error is
-//! shown in the title bar and on the console with file:line, and the last working program keeps running.
+//! shown in the window (red, `file:line: message`, even with the panel hidden), in the title bar and on
+//! the console, and the last working program keeps running until the file compiles. When a `--res`
+//! shader is already broken at start-up, the project's own shaders run until it is fixed.
 
+use super::panel::{self, Panel};
 use crate::engine::{Engine, View};
+use crate::gl::ProgramError;
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
 use anyhow::{anyhow, Context as _, Result};
@@ -22,9 +30,10 @@ use raw_window_handle::HasWindowHandle;
 use std::collections::HashSet;
 use std::ffi::CStr;
 use std::num::NonZeroU32;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::rc::Rc;
-use std::time::{Duration, Instant};
+use std::sync::Arc;
+use std::time::{Duration, Instant, SystemTime};
 use winit::application::ApplicationHandler;
 use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, WindowEvent};
@@ -32,18 +41,185 @@ use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
 use winit::window::{Window, WindowId};
 
+/// How the window starts.
+#[derive(Clone, Debug)]
+pub struct WindowOptions {
+    pub view: View,
+    /// Close after this many frames (scripted runs and tests).
+    pub frames: Option<u32>,
+    /// Save the last frame to this PNG.
+    pub screenshot: Option<PathBuf>,
+    /// The screenshot shows what is on screen (panel and error overlay included) instead of the
+    /// engine's frame alone, which equals a headless `render`.
+    pub screenshot_with_ui: bool,
+    pub panel_visible: bool,
+    /// Start with per-pass timing on (the panel's "time each pass").
+    pub time_passes: bool,
+}
+
+impl WindowOptions {
+    /// The panel starts visible and screenshots hold the engine's frame alone; for scripted runs
+    /// `OPENGL3D_PANEL=off` starts with the panel hidden and `OPENGL3D_SCREENSHOT_UI=1` puts the
+    /// panel and overlay into the screenshot; `OPENGL3D_TIME_PASSES=1` starts with per-pass timing on.
+    pub fn from_env(view: View, frames: Option<u32>, screenshot: Option<PathBuf>) -> WindowOptions {
+        let flag = |name: &str| {
+            std::env::var(name)
+                .ok()
+                .map(|v| v.trim().to_ascii_lowercase())
+        };
+        WindowOptions {
+            view,
+            frames,
+            screenshot,
+            screenshot_with_ui: flag("OPENGL3D_SCREENSHOT_UI")
+                .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
+            time_passes: flag("OPENGL3D_TIME_PASSES")
+                .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
+            panel_visible: !flag("OPENGL3D_PANEL")
+                .is_some_and(|v| matches!(v.as_str(), "0" | "off" | "no" | "false" | "hidden")),
+        }
+    }
+}
+
+/// egui on this window: input from winit, painting with glow over the default framebuffer.
+struct Gui {
+    ctx: egui::Context,
+    input: egui_winit::State,
+    painter: egui_glow::Painter,
+}
+
 struct GlWindowState {
     engine: Engine,
+    gui: Gui,
+    panel: Panel,
     surface: Surface<WindowSurface>,
     context: PossiblyCurrentContext,
     // Dropped last: the GL objects above need the window's context.
     window: Window,
 }
 
+impl Drop for GlWindowState {
+    fn drop(&mut self) {
+        // egui's painter does not free its GL objects on drop; the context is still current here.
+        self.gui.painter.destroy();
+    }
+}
+
+/// Shader errors on screen, each kept until the file it names is saved and builds again.
+#[derive(Default)]
+struct ShaderErrors {
+    entries: Vec<ShaderErrorEntry>,
+}
+
+struct ShaderErrorEntry {
+    /// The file whose change may fix the error (None: only a forced rebuild clears it).
+    file: Option<PathBuf>,
+    stamp: Option<SystemTime>,
+    text: String,
+}
+
+fn mtime(p: &Path) -> Option<SystemTime> {
+    std::fs::metadata(p).and_then(|m| m.modified()).ok()
+}
+
+/// The file an error points at.
+fn error_file(e: &ProgramError) -> Option<PathBuf> {
+    match e {
+        ProgramError::Io { path, .. }
+        | ProgramError::Encoding { path }
+        | ProgramError::NoVersion { path }
+        | ProgramError::Compile { path, .. } => Some(PathBuf::from(path)),
+        ProgramError::Link { frag, .. } => Some(PathBuf::from(frag)),
+        ProgramError::NotFound { .. } | ProgramError::Gl(_) => None,
+    }
+}
+
+impl ShaderErrors {
+    fn is_empty(&self) -> bool {
+        self.entries.is_empty()
+    }
+    fn lines(&self) -> Vec<String> {
+        self.entries.iter().map(|e| e.text.clone()).collect()
+    }
+    fn text(&self) -> String {
+        self.lines().join("\n")
+    }
+    fn clear(&mut self) {
+        self.entries.clear();
+    }
+    /// Records `errors`, replacing older ones about the same files; true when any text is new.
+    fn record(&mut self, errors: &[ProgramError]) -> bool {
+        let batch: Vec<(Option<PathBuf>, String)> = errors
+            .iter()
+            .map(|e| (error_file(e), e.to_string()))
+            .collect();
+        let new = batch
+            .iter()
+            .any(|(_, t)| !self.entries.iter().any(|x| &x.text == t));
+        self.entries
+            .retain(|x| x.file.is_none() || !batch.iter().any(|(f, _)| *f == x.file));
+        for (file, text) in batch {
+            if !self.entries.iter().any(|x| x.text == text) {
+                self.entries.push(ShaderErrorEntry {
+                    stamp: file.as_deref().and_then(mtime),
+                    file,
+                    text,
+                });
+            }
+        }
+        new
+    }
+    /// Drops errors whose file changed since they were recorded and did not fail again (`still`).
+    fn drop_fixed(&mut self, still: &[ProgramError]) {
+        let failing: Vec<Option<PathBuf>> = still.iter().map(error_file).collect();
+        self.entries.retain(|x| match &x.file {
+            None => true,
+            Some(f) => mtime(f) == x.stamp || failing.contains(&x.file),
+        });
+    }
+}
+
+/// Shader files of the student's folders, to notice when a broken start-up shader is saved again.
+fn shader_stamps(res: &ResDirs) -> Vec<(PathBuf, Option<SystemTime>)> {
+    fn walk(dir: &Path, depth: u32, out: &mut Vec<(PathBuf, Option<SystemTime>)>) {
+        let Ok(entries) = std::fs::read_dir(dir) else {
+            return;
+        };
+        for e in entries.flatten() {
+            let p = e.path();
+            if p.is_dir() {
+                if depth > 0 {
+                    walk(&p, depth - 1, out);
+                }
+            } else if p
+                .extension()
+                .is_some_and(|x| matches!(x.to_str(), Some("vert" | "frag" | "glsl")))
+            {
+                let t = mtime(&p);
+                out.push((p, t));
+            }
+        }
+    }
+    let mut out = Vec::new();
+    // The last folder is the project's own Res/.
+    let dirs = res.dirs();
+    for d in &dirs[..dirs.len().saturating_sub(1)] {
+        walk(d, 3, &mut out);
+    }
+    out.sort();
+    out
+}
+
+/// Running on the project's shaders because the student's did not build at start-up.
+struct StartupFallback {
+    student_res: ResDirs,
+    stamps: Vec<(PathBuf, Option<SystemTime>)>,
+}
+
 struct App {
     res: ResDirs,
     scene: SceneDesc,
-    start_view: View,
+    options: WindowOptions,
     state: Option<GlWindowState>,
     error: Option<anyhow::Error>,
     keys: HashSet<KeyCode>,
@@ -53,10 +229,11 @@ struct App {
     pitch: f32,
     last_frame: Instant,
     last_reload_check: Instant,
-    shader_error: Option<String>,
+    shader_errors: ShaderErrors,
+    fallback: Option<StartupFallback>,
     minimised: bool,
     frames_left: Option<u32>,
-    screenshot: Option<PathBuf>,
+    title: String,
 }
 
 /// Opens the window and runs until it is closed (or `frames` frames were shown).
@@ -67,12 +244,20 @@ pub fn run(
     frames: Option<u32>,
     screenshot: Option<PathBuf>,
 ) -> Result<()> {
+    run_with(
+        res,
+        scene,
+        WindowOptions::from_env(view, frames, screenshot),
+    )
+}
+
+/// Opens the window with `options` and runs until it is closed (or the frames were shown).
+pub fn run_with(res: ResDirs, scene: SceneDesc, options: WindowOptions) -> Result<()> {
     let event_loop = EventLoop::new().context("cannot connect to the display")?;
     let fwd = (Vec3::from(scene.camera.target) - Vec3::from(scene.camera.eye)).normalize_or_zero();
     let mut app = App {
         res,
         scene,
-        start_view: view,
         state: None,
         error: None,
         keys: HashSet::new(),
@@ -82,16 +267,23 @@ pub fn run(
         pitch: fwd.y.clamp(-1.0, 1.0).asin(),
         last_frame: Instant::now(),
         last_reload_check: Instant::now(),
-        shader_error: None,
+        shader_errors: ShaderErrors::default(),
+        fallback: None,
         minimised: false,
-        frames_left: frames,
-        screenshot,
+        frames_left: options.frames,
+        options,
+        title: String::new(),
     };
     event_loop.run_app(&mut app).context("event loop")?;
     match app.error {
         Some(e) => Err(e),
         None => Ok(()),
     }
+}
+
+/// The shader error inside an engine start-up error, if that is what stopped it.
+fn startup_shader_error(e: &anyhow::Error) -> Option<&ProgramError> {
+    e.chain().find_map(|c| c.downcast_ref::<ProgramError>())
 }
 
 impl App {
@@ -129,63 +321,198 @@ impl App {
         let context = not_current.make_current(&surface).context("make current")?;
         let _ =
             surface.set_swap_interval(&context, SwapInterval::Wait(NonZeroU32::new(1).unwrap()));
-        let gl = Rc::new(unsafe {
+        // Two function tables for the same context: the engine shares an Rc, egui wants an Arc.
+        let load = || unsafe {
             glow::Context::from_loader_function_cstr(|s: &CStr| display.get_proc_address(s))
-        });
-        log::info!("window context: {}", crate::engine::describe_renderer(&gl));
+        };
+        let gl = Rc::new(load());
+        #[allow(clippy::arc_with_non_send_sync)]
+        let gui_gl = Arc::new(load());
+        let renderer = crate::engine::describe_renderer(&gl);
+        log::info!("window context: {renderer}");
         let size = window.inner_size();
-        let mut engine = Engine::new(
-            &gl,
-            self.res.clone(),
-            &self.scene,
-            size.width.max(1),
-            size.height.max(1),
-        )?;
-        engine.view = self.start_view;
+        let mut engine = self.create_engine(&gl, size)?;
+        engine.view = self.options.view;
+        engine.collect_stats = self.options.time_passes;
+
+        let painter = egui_glow::Painter::new(gui_gl, "", None, false)
+            .map_err(|e| anyhow!("cannot set up the parameter panel's painter: {e}"))?;
+        let ctx = egui::Context::default();
+        if let Some(warning) = panel::install_fonts(&ctx) {
+            eprintln!("{warning}");
+        }
+        let input = egui_winit::State::new(
+            ctx.clone(),
+            egui::ViewportId::ROOT,
+            event_loop,
+            Some(window.scale_factor() as f32),
+            event_loop.system_theme(),
+            Some(painter.max_texture_side()),
+        );
+        // Scripts (and the tests) wait for this line before touching shader files.
+        println!(
+            "window {}x{} on {renderer}; F1 shows or hides the parameter panel",
+            size.width, size.height
+        );
         Ok(GlWindowState {
             engine,
+            gui: Gui {
+                ctx,
+                input,
+                painter,
+            },
+            panel: Panel::new(self.options.panel_visible, renderer),
             surface,
             context,
             window,
         })
     }
 
-    fn update_title(&self) {
+    /// The engine on the chosen shaders or, when a student's shader does not build, on the
+    /// project's own ones (the error goes to the overlay and the folder is watched for a fix).
+    fn create_engine(&mut self, gl: &crate::gl::Gl, size: PhysicalSize<u32>) -> Result<Engine> {
+        let (w, h) = (size.width.max(1), size.height.max(1));
+        let err = match Engine::new(gl, self.res.clone(), &self.scene, w, h) {
+            Ok(e) => return Ok(e),
+            Err(e) => e,
+        };
+        let dirs = self.res.dirs();
+        let Some(shader_error) = startup_shader_error(&err).filter(|_| dirs.len() > 1) else {
+            return Err(err);
+        };
+        let project = ResDirs::only(vec![dirs[dirs.len() - 1].clone()]);
+        let engine = match Engine::new(gl, project.clone(), &self.scene, w, h) {
+            Ok(e) => e,
+            // The project's shaders do not help either: report the first problem.
+            Err(_) => return Err(err),
+        };
+        eprintln!(
+            "{shader_error}\n(running the project's own shaders until this compiles; save the file to retry)"
+        );
+        self.shader_errors
+            .record(std::slice::from_ref(shader_error));
+        self.fallback = Some(StartupFallback {
+            stamps: shader_stamps(&self.res),
+            student_res: std::mem::replace(&mut self.res, project),
+        });
+        Ok(engine)
+    }
+
+    /// After a start-up failure: rebuilds the engine on the student's shaders once they were saved again.
+    fn retry_student_shaders(&mut self) {
+        let (Some(fb), Some(s)) = (self.fallback.as_mut(), self.state.as_mut()) else {
+            return;
+        };
+        let stamps = shader_stamps(&fb.student_res);
+        if stamps == fb.stamps {
+            return;
+        }
+        fb.stamps = stamps;
+        let (w, h) = s.engine.size();
+        match Engine::new(s.engine.gl(), fb.student_res.clone(), &self.scene, w, h) {
+            Ok(mut engine) => {
+                engine.camera = s.engine.camera;
+                engine.view = s.engine.view;
+                engine.ao_params = s.engine.ao_params;
+                engine.collect_stats = s.engine.collect_stats;
+                self.shader_errors.clear();
+                if let Err(e) = engine.sync_shader_constants() {
+                    self.shader_errors.record(&[e]);
+                }
+                s.engine = engine;
+                self.res = fb.student_res.clone();
+                self.fallback = None;
+                eprintln!("shaders rebuilt: using {}", self.res.dirs()[0].display());
+            }
+            Err(e) => {
+                let text = match startup_shader_error(&e) {
+                    Some(p) => p.to_string(),
+                    None => format!("{e:#}"),
+                };
+                if self.shader_errors.text() != text {
+                    eprintln!("{text}\n(the project's own shaders keep running)");
+                }
+                self.shader_errors.clear();
+                match startup_shader_error(&e) {
+                    Some(p) => {
+                        self.shader_errors.record(std::slice::from_ref(p));
+                    }
+                    None => self.shader_errors.entries.push(ShaderErrorEntry {
+                        file: None,
+                        stamp: None,
+                        text,
+                    }),
+                }
+            }
+        }
+        self.update_title();
+    }
+
+    fn update_title(&mut self) {
         if let Some(s) = &self.state {
             let e = &s.engine;
             let mut t = format!(
-                "opengl3d — {} (M) — view: {} (V) — AO {} (Space) — blur {} (B)",
+                "opengl3d — {} (M) — view: {} (V) — AO {} (Space) — blur {} (B) — panel (F1)",
                 e.ao_params.method.name(),
                 e.view.label(),
                 if e.ao_params.enabled { "on" } else { "off" },
                 if e.ao_params.blur { "on" } else { "off" }
             );
-            if let Some(err) = &self.shader_error {
-                t = format!("SHADER ERROR {} — {t}", err.lines().next().unwrap_or(""));
+            if let Some(first) = self.shader_errors.entries.first() {
+                t = format!(
+                    "SHADER ERROR {} — {t}",
+                    first.text.lines().next().unwrap_or("")
+                );
             }
-            s.window.set_title(&t);
+            // Setting the title is a round trip to the display server: only on change.
+            if t != self.title {
+                s.window.set_title(&t);
+                self.title = t;
+            }
         }
     }
 
     fn check_reload(&mut self, force: bool) {
+        if self.fallback.is_some() {
+            self.retry_student_shaders();
+        }
         let Some(s) = self.state.as_mut() else { return };
+        let had_errors = !self.shader_errors.is_empty();
         let errors = s.engine.hot_reload(force);
-        if errors.is_empty() {
-            if self.shader_error.take().is_some() || force {
-                eprintln!("shaders rebuilt");
-            }
+        if force && self.fallback.is_none() {
+            self.shader_errors.clear();
         } else {
+            self.shader_errors.drop_fixed(&errors);
+        }
+        let new = self.shader_errors.record(&errors);
+        if new {
             let text = errors
                 .iter()
                 .map(|e| e.to_string())
                 .collect::<Vec<_>>()
                 .join("\n");
-            if self.shader_error.as_deref() != Some(text.as_str()) {
-                eprintln!("{text}\n(the last working shaders keep running)");
+            eprintln!("{text}\n(the last working shaders keep running)");
+        }
+        if self.shader_errors.is_empty() && (had_errors || force) {
+            // Constants changed while a shader was broken were not applied: apply them now.
+            match s.engine.sync_shader_constants() {
+                Ok(()) => eprintln!("shaders rebuilt"),
+                Err(e) => {
+                    eprintln!("{e}");
+                    self.shader_errors.record(&[e]);
+                }
             }
-            self.shader_error = Some(text);
         }
         self.update_title();
+    }
+
+    fn sync_constants(&mut self) {
+        let Some(s) = self.state.as_mut() else { return };
+        if let Err(e) = s.engine.sync_shader_constants() {
+            if self.shader_errors.record(std::slice::from_ref(&e)) {
+                eprintln!("{e}");
+            }
+        }
     }
 
     fn move_camera(&mut self, dt: f32) {
@@ -219,30 +546,90 @@ impl App {
         cam.target = cam.eye + fwd;
     }
 
-    fn draw(&mut self) -> Result<()> {
-        let Some(s) = self.state.as_mut() else {
+    fn save_screenshot(&self, s: &GlWindowState) -> Result<()> {
+        let Some(path) = &self.options.screenshot else {
             return Ok(());
         };
-        if self.minimised {
+        let (w, h) = s.engine.size();
+        let img = crate::engine::read_rgba8(s.engine.gl(), None, w, h);
+        if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+            std::fs::create_dir_all(dir)?;
+        }
+        image::DynamicImage::ImageRgba8(img).to_rgb8().save(path)?;
+        println!("wrote {} ({w}x{h})", path.display());
+        Ok(())
+    }
+
+    fn draw(&mut self) -> Result<()> {
+        if self.minimised || self.state.is_none() {
             return Ok(());
         }
+        let last_frame = self.frames_left.is_some_and(|n| n <= 1);
+        let s = self.state.as_mut().unwrap();
         s.engine.render(None);
-        if let Some(n) = self.frames_left {
-            if n <= 1 {
-                if let Some(path) = &self.screenshot {
-                    let (w, h) = s.engine.size();
-                    let img = crate::engine::read_rgba8(s.engine.gl(), None, w, h);
-                    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-                        std::fs::create_dir_all(dir)?;
-                    }
-                    image::DynamicImage::ImageRgba8(img).to_rgb8().save(path)?;
-                    println!("wrote {} ({w}x{h})", path.display());
-                }
-            }
+        if last_frame && !self.options.screenshot_with_ui {
+            self.save_screenshot(self.state.as_ref().unwrap())?;
         }
+
+        let s = self.state.as_mut().unwrap();
+        let errors = self.shader_errors.lines();
+        let raw_input = s.gui.input.take_egui_input(&s.window);
+        let mut actions = panel::PanelActions::default();
+        let (panel, engine) = (&mut s.panel, &mut s.engine);
+        let output = s.gui.ctx.run_ui(raw_input, |ui| {
+            actions = panel.show(ui, engine, &errors);
+        });
+        s.gui
+            .input
+            .handle_platform_output(&s.window, output.platform_output);
+        let primitives = s.gui.ctx.tessellate(output.shapes, output.pixels_per_point);
+        let mut textures = output.textures_delta;
+        let size = s.window.inner_size();
+        s.gui.painter.paint_and_update_textures(
+            [size.width, size.height],
+            output.pixels_per_point,
+            &primitives,
+            &mut textures,
+        );
+        if last_frame && self.options.screenshot_with_ui {
+            self.save_screenshot(self.state.as_ref().unwrap())?;
+        }
+        let s = self.state.as_mut().unwrap();
         s.window.pre_present_notify();
         s.surface.swap_buffers(&s.context).context("swap buffers")?;
+
+        if actions.sync_shader_constants {
+            self.sync_constants();
+        }
+        if actions.reload_shaders {
+            self.check_reload(true);
+        }
+        self.update_title();
         Ok(())
+    }
+
+    /// The window's own keys (camera, toggles), when egui does not want the keyboard.
+    fn on_key_pressed(&mut self, event_loop: &ActiveEventLoop, code: KeyCode) {
+        let Some(s) = self.state.as_mut() else { return };
+        match code {
+            KeyCode::Escape => event_loop.exit(),
+            KeyCode::F1 => s.panel.visible = !s.panel.visible,
+            KeyCode::Space => s.engine.ao_params.enabled = !s.engine.ao_params.enabled,
+            KeyCode::KeyV | KeyCode::Tab => s.engine.view = s.engine.view.next(),
+            KeyCode::KeyB => s.engine.ao_params.blur = !s.engine.ao_params.blur,
+            KeyCode::KeyR => self.check_reload(true),
+            KeyCode::KeyM => {
+                let all = crate::ao::AoMethod::ALL;
+                let i = all
+                    .iter()
+                    .position(|m| *m == s.engine.ao_params.method)
+                    .unwrap_or(0);
+                s.engine.ao_params.method = all[(i + 1) % all.len()];
+                self.sync_constants();
+            }
+            _ => {}
+        }
+        self.update_title();
     }
 }
 
@@ -265,6 +652,17 @@ impl ApplicationHandler for App {
     }
 
     fn window_event(&mut self, event_loop: &ActiveEventLoop, _id: WindowId, event: WindowEvent) {
+        let (consumed, egui_wants_keyboard, pointer_over_egui) = match self.state.as_mut() {
+            Some(s) => {
+                let r = s.gui.input.on_window_event(&s.window, &event);
+                (
+                    r.consumed,
+                    s.gui.ctx.egui_wants_keyboard_input(),
+                    s.gui.ctx.is_pointer_over_egui(),
+                )
+            }
+            None => (false, false, false),
+        };
         match event {
             WindowEvent::CloseRequested => event_loop.exit(),
             WindowEvent::Resized(size) => {
@@ -286,42 +684,25 @@ impl ApplicationHandler for App {
                     return;
                 };
                 if event.state == ElementState::Pressed {
+                    // Typing into a panel field must not move the camera or toggle things.
+                    if consumed || egui_wants_keyboard {
+                        return;
+                    }
                     self.keys.insert(code);
                     if !event.repeat {
-                        if let Some(s) = self.state.as_mut() {
-                            match code {
-                                KeyCode::Escape => event_loop.exit(),
-                                KeyCode::Space => {
-                                    s.engine.ao_params.enabled = !s.engine.ao_params.enabled
-                                }
-                                KeyCode::KeyV | KeyCode::Tab => {
-                                    s.engine.view = s.engine.view.next()
-                                }
-                                KeyCode::KeyB => s.engine.ao_params.blur = !s.engine.ao_params.blur,
-                                KeyCode::KeyR => self.check_reload(true),
-                                KeyCode::KeyM => {
-                                    let all = crate::ao::AoMethod::ALL;
-                                    let i = all
-                                        .iter()
-                                        .position(|m| *m == s.engine.ao_params.method)
-                                        .unwrap_or(0);
-                                    s.engine.ao_params.method = all[(i + 1) % all.len()];
-                                    if let Err(e) = s.engine.sync_shader_constants() {
-                                        eprintln!("{e}");
-                                    }
-                                }
-                                _ => {}
-                            }
-                        }
-                        self.update_title();
+                        self.on_key_pressed(event_loop, code);
                     }
                 } else {
+                    // Releases always count, or a key pressed before focusing a field would stick.
                     self.keys.remove(&code);
                 }
             }
+            WindowEvent::Focused(false) => self.keys.clear(),
             WindowEvent::MouseInput { state, button, .. } => {
                 if matches!(button, MouseButton::Left | MouseButton::Right) {
-                    self.dragging = state == ElementState::Pressed;
+                    // A drag that starts on the panel belongs to the panel.
+                    self.dragging =
+                        state == ElementState::Pressed && !consumed && !pointer_over_egui;
                 }
             }
             WindowEvent::CursorMoved { position, .. } => {
