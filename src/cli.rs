@@ -56,8 +56,12 @@ pub struct ReferenceArgs {
     #[arg(long, default_value_t = 256)]
     pub rays: u32,
     /// Ambient obscurance (hits weighted by (t/R)²) instead of binary visibility.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "screen_space")]
     pub obscurance: bool,
+    /// Screen-space reference instead: the same visibility computed exactly from the engine's
+    /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
+    #[arg(long)]
+    pub screen_space: bool,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,
@@ -483,7 +487,14 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         progress: true,
     };
     let (w, h) = (scene.output.width, scene.output.height);
-    let img = load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?;
+    let img = if args.screen_space {
+        let ctx = HeadlessContext::new()?;
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, w, h)?;
+        let depth = crate::reference::DepthBuffer::from_engine(&mut engine)?;
+        crate::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+    } else {
+        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?
+    };
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
@@ -494,8 +505,9 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     }
     let sky = img.sky_mask().iter().filter(|s| **s).count();
     println!(
-        "wrote {} ({w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
+        "wrote {} ({}, {w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
         args.out.display(),
+        if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
         bvh.triangle_count(),
         args.radius,
         args.rays,
