@@ -70,6 +70,26 @@ fn neighbourhood_on_screen(vp: &Mat4, near: f32, w: u32, h: u32, p: Vec3, r: f32
     })
 }
 
+/// Size of pixel `p`'s footprint on the crease scene's surfaces (floor y = 0 or wall x = 0): the
+/// depth buffer resolves nothing finer, so the heightfield cuts the crease by about this much.
+fn crease_footprint(cam: &RefCamera, h: u32, p: Vec3) -> f32 {
+    let normal = if p.y.abs() < p.x.abs() {
+        Vec3::Y
+    } else {
+        Vec3::X
+    };
+    let to_p = p - cam.eye;
+    let across = to_p.length() * 2.0 * (cam.fov_y_deg.to_radians() * 0.5).tan() / h as f32;
+    across / to_p.normalize().dot(normal).abs().max(1e-3)
+}
+
+/// Pixels whose surface the depth buffer resolves at the scale of `radius` and that lie at least
+/// two footprints away from the crease line.
+fn resolved(cam: &RefCamera, h: u32, p: Vec3, radius: f32) -> bool {
+    let f = crease_footprint(cam, h, p);
+    f < radius / 4.0 && p.x.max(p.y) > 2.0 * f
+}
+
 fn assert_valid(img: &RefImage) {
     for i in 0..img.ao.len() {
         let (a, e, d) = (img.ao[i], img.std_error[i], img.linear_depth[i]);
@@ -150,27 +170,28 @@ fn open_plane_is_unoccluded() {
 #[test]
 fn crease_matches_the_closed_form() {
     let ctx = context();
-    let (w, h) = (64, 48);
+    let (w, h) = (96, 72);
     let (mut e, _) = crease_engine(&ctx, "screen-crease", w, h);
     let depth = DepthBuffer::from_engine(&mut e).unwrap();
     let cam = ref_camera(&e);
     let vp = e.camera.view_projection(w as f32 / h as f32);
     let dist = |p: Vec3| p.x.max(p.y).max(0.0) as f64;
 
-    for radius in [0.35f32, 1.0] {
-        let img = render_screen_space(&depth, &params(radius, 1024)).unwrap();
+    for radius in [0.5f32, 1.0] {
+        let img = render_screen_space(&depth, &params(radius, 512)).unwrap();
         assert_valid(&img);
         let (mut checked, mut sum_err, mut sum_var) = (0usize, 0.0f64, 0.0f64);
         let (mut near_wall, mut far_from_wall) = (false, false);
         for (i, p) in surface_points(&img, &cam) {
             // The surface must be the floor or the wall face.
             assert!(p.y.abs() < 2e-3 || p.x.abs() < 2e-3, "pixel {i} at {p}");
-            if !neighbourhood_on_screen(&vp, cam.near, w, h, p, radius) {
+            if !neighbourhood_on_screen(&vp, cam.near, w, h, p, radius)
+                || !resolved(&cam, h, p, radius)
+            {
                 continue;
             }
             let want = 1.0 - crease_blocked(dist(p), radius as f64);
             let (ao, se) = (img.ao[i] as f64, img.std_error[i] as f64);
-            // The heightfield cuts the corner by up to a pixel: pixels next to the crease get slack.
             assert!(
                 (ao - want).abs() <= 4.0 * se + 0.03,
                 "R {radius}: pixel {i} at {p}: ao {ao} vs {want} (se {se})"
@@ -181,8 +202,11 @@ fn crease_matches_the_closed_form() {
             near_wall |= dist(p) < 0.5 * radius as f64;
             far_from_wall |= dist(p) > radius as f64;
         }
-        assert!(checked > 300, "R {radius}: only {checked} pixels checked");
-        assert!(near_wall && far_from_wall, "R {radius}: view lacks a range of distances");
+        assert!(checked > 100, "R {radius}: only {checked} pixels checked");
+        assert!(
+            near_wall && far_from_wall,
+            "R {radius}: view lacks a range of distances"
+        );
         let n = checked as f64;
         let mean_err = sum_err / n;
         assert!(
@@ -191,33 +215,47 @@ fn crease_matches_the_closed_form() {
         );
     }
 
-    // With a radius far beyond the scene's scale, the pixels at the bottom of the crease see the
-    // wall cover half of their cosine-weighted hemisphere.
-    let img = render_screen_space(&depth, &params(50.0, 256)).unwrap();
+    // With a radius far beyond the scene's scale, the resolved pixels at the bottom of the crease
+    // see the wall cover half of their cosine-weighted hemisphere.
+    let img = render_screen_space(&depth, &params(50.0, 128)).unwrap();
     let bottom: Vec<(usize, Vec3)> = surface_points(&img, &cam)
         .into_iter()
-        .filter(|(_, p)| dist(*p) < 0.03 && p.y < 3.0)
+        .filter(|(_, p)| {
+            dist(*p) < 0.05
+                && crease_footprint(&cam, h, *p) < 0.1
+                && neighbourhood_on_screen(&vp, cam.near, w, h, *p, 1.0)
+        })
         .collect();
-    assert!(bottom.len() >= 5, "{} pixels at the bottom", bottom.len());
-    for (i, p) in bottom {
-        let ao = img.ao[i] as f64;
-        assert!((ao - 0.5).abs() < 0.04, "pixel {i} at {p}: ao {ao}, want ≈ 0.5");
+    assert!(bottom.len() >= 2, "{} pixels at the bottom", bottom.len());
+    let mut mean = 0.0;
+    for (i, p) in &bottom {
+        let (ao, se) = (img.ao[*i] as f64, img.std_error[*i] as f64);
+        let want = 1.0 - crease_blocked(dist(*p), 50.0);
+        assert!((want - 0.5).abs() < 0.01);
+        // Rays meeting the wall beyond 1 m may leave the screen: at d < 0.05 m they are at most
+        // crease_blocked(0.05, 50) − crease_blocked(0.05, 1) ≈ 0.03 of the hemisphere.
+        assert!(
+            (ao - want).abs() <= 4.0 * se + 0.04,
+            "pixel {i} at {p}: ao {ao}, want {want}"
+        );
+        mean += ao / bottom.len() as f64;
     }
+    assert!((mean - 0.5).abs() < 0.04, "mean at the bottom {mean}");
 }
 
 #[test]
 fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
     let ctx = context();
-    let (w, h) = (64, 36);
+    let (w, h) = (96, 54);
     let (mut e, desc) = crease_engine(&ctx, "screen-vs-rt", w, h);
     let depth = DepthBuffer::from_engine(&mut e).unwrap();
     let cam = ref_camera(&e);
     let vp = e.camera.view_projection(w as f32 / h as f32);
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
-    let radius = 0.75;
+    let radius = 1.0;
     let cache = temp_dir("screen-vs-rt-cache");
-    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 512)).unwrap();
-    let ss = load_or_render_screen_cached(&cache, &depth, &params(radius, 512)).unwrap();
+    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 256)).unwrap();
+    let ss = load_or_render_screen_cached(&cache, &depth, &params(radius, 256)).unwrap();
     assert_valid(&ss);
     // Same pixels are surface, at the same depth (GL rasterisation vs ray casting).
     for i in 0..rt.ao.len() {
@@ -227,9 +265,10 @@ fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
             assert!((a - b).abs() < 1e-4 * a, "pixel {i}: depth {a} vs {b}");
         }
     }
-    let (mut checked, mut sum_diff, mut sum_var, mut occluded) = (0usize, 0.0, 0.0, 0usize);
+    let (mut checked, mut sum_diff, mut sum_var, mut occluded) = (0usize, 0.0f64, 0.0f64, 0usize);
     for (i, p) in surface_points(&rt, &cam) {
-        if !neighbourhood_on_screen(&vp, cam.near, w, h, p, radius) {
+        if !neighbourhood_on_screen(&vp, cam.near, w, h, p, radius) || !resolved(&cam, h, p, radius)
+        {
             continue;
         }
         let d = ss.ao[i] as f64 - rt.ao[i] as f64;
@@ -245,7 +284,10 @@ fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
         sum_var += var;
         occluded += (rt.ao[i] < 0.9) as usize;
     }
-    assert!(checked > 300 && occluded > 30, "{checked} pixels, {occluded} occluded");
+    assert!(
+        checked > 150 && occluded > 30,
+        "{checked} pixels, {occluded} occluded"
+    );
     let mean = sum_diff / checked as f64;
     assert!(
         mean.abs() <= 4.0 * sum_var.sqrt() / checked as f64 + 0.005,
@@ -253,13 +295,13 @@ fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
     );
 
     // The cache returns what was stored, keyed by the depth values themselves.
-    let again = load_or_render_screen_cached(&cache, &depth, &params(radius, 512)).unwrap();
+    let again = load_or_render_screen_cached(&cache, &depth, &params(radius, 256)).unwrap();
     assert_eq!(again, ss);
     let mut moved = depth.clone();
     moved.linear_depth[0] += 0.01;
     assert_ne!(
-        screen_cache_key(&moved, &params(radius, 512)),
-        screen_cache_key(&depth, &params(radius, 512))
+        screen_cache_key(&moved, &params(radius, 256)),
+        screen_cache_key(&depth, &params(radius, 256))
     );
 }
 
@@ -273,7 +315,11 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
     let dir = temp_dir("screen-hidden");
     let (w, h) = (64, 36);
     let mut slab = opengl3d::gl::mesh::MeshData::default();
-    shapes::add_box(&mut slab, Vec3::new(-1.0, 0.6, -1.0), Vec3::new(1.0, 0.7, 1.0));
+    shapes::add_box(
+        &mut slab,
+        Vec3::new(-1.0, 0.6, -1.0),
+        Vec3::new(1.0, 0.7, 1.0),
+    );
     let mut desc = SceneDesc::default();
     desc.objects.push(object(
         &dir,
@@ -297,16 +343,38 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
     let cache = temp_dir("screen-hidden-cache");
     let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &p).unwrap();
     let ss = render_screen_space(&depth, &p).unwrap();
-    let (mut darker, mut total) = (0.0f64, 0usize);
+    let vp = e.camera.view_projection(w as f32 / h as f32);
+    // Floor pixels by their distance from the slab's outline (in the floor plane).
+    let (mut beside, mut beside_n, mut away_n) = (0.0f64, 0usize, 0usize);
     for (i, q) in surface_points(&rt, &cam) {
+        if q.y.abs() > 1e-3 || !neighbourhood_on_screen(&vp, cam.near, w, h, q, 1.0) {
+            continue;
+        }
+        let gap = (q.x.abs() - 1.0).max(q.z.abs() - 1.0);
         let d = ss.ao[i] as f64 - rt.ao[i] as f64;
         let se = ((ss.std_error[i] as f64).powi(2) + (rt.std_error[i] as f64).powi(2)).sqrt();
-        assert!(d <= 4.0 * se + 0.03, "pixel {i} at {q}: screen-space lighter by {d}");
-        if q.y.abs() < 1e-3 && (q.x.abs() > 1.0 || q.z.abs() > 1.0) {
-            darker += -d;
-            total += 1;
+        if gap > 1.2 {
+            // Nothing within R: both must be open.
+            assert!(
+                d.abs() <= 4.0 * se + 1e-6,
+                "pixel {i} at {q}: {} vs {}",
+                ss.ao[i],
+                rt.ao[i]
+            );
+            assert_eq!(rt.ao[i], 1.0);
+            away_n += 1;
+        } else if gap > 0.1 && gap < 0.5 {
+            beside += -d;
+            beside_n += 1;
         }
     }
-    assert!(total > 100);
-    assert!(darker / total as f64 > 0.01, "floor beside the slab: mean darkening {}", darker / total as f64);
+    assert!(
+        away_n > 100 && beside_n > 20,
+        "{away_n} pixels away, {beside_n} beside"
+    );
+    let darkening = beside / beside_n as f64;
+    assert!(
+        darkening > 0.05,
+        "floor beside the slab: mean darkening {darkening}"
+    );
 }

@@ -186,7 +186,13 @@ impl Heightfield {
         let inv: Vec<f64> = buf
             .linear_depth
             .iter()
-            .map(|&d| if d.is_finite() && d > 0.0 { 1.0 / d as f64 } else { 0.0 })
+            .map(|&d| {
+                if d.is_finite() && d > 0.0 {
+                    1.0 / d as f64
+                } else {
+                    0.0
+                }
+            })
             .collect();
         let max_depth = buf
             .linear_depth
@@ -551,7 +557,10 @@ mod tests {
         DepthBuffer {
             width: w,
             height: h,
-            linear_depth: (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).map(|(x, y)| f(x, y)).collect(),
+            linear_depth: (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| f(x, y))
+                .collect(),
             fov_y_deg: 60.0,
             near: 0.1,
         }
@@ -597,7 +606,7 @@ mod tests {
         let probe = Heightfield::new(&buffer(w, h, |_, _| 1.0));
         let depth = |x: u32, y: u32| {
             let ray = probe.point(x as usize, y as usize).unwrap(); // depth 1: the view ray
-            // −z = 3 + 0.5·x with x = ray.x·depth → depth = 3 / (1 − 0.5·ray.x)
+                                                                    // −z = 3 + 0.5·x with x = ray.x·depth → depth = 3 / (1 − 0.5·ray.x)
             (3.0 / (1.0 - 0.5 * ray.x)) as f32
         };
         let field = Heightfield::new(&buffer(w, h, depth));
@@ -616,7 +625,10 @@ mod tests {
                 },
             )
             .unwrap();
-            assert!(img.ao.iter().all(|a| a.is_finite() && (0.0..=1.0).contains(a)));
+            assert!(img
+                .ao
+                .iter()
+                .all(|a| a.is_finite() && (0.0..=1.0).contains(a)));
         }
         assert!(render_screen_space(
             &buffer(2, 2, |_, _| 1.0),
