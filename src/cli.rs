@@ -47,11 +47,10 @@ pub enum Command {
 
 #[derive(Args, Debug)]
 pub struct ReferenceArgs {
+    /// Scene flags; `--radius` is the ray length (m): a ray that hits nothing within it counts as
+    /// open (default: the scene's AO radius, so the reference matches what `render` shows).
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Ray length (m): a ray that hits nothing within it counts as open.
-    #[arg(long, default_value_t = 1.0)]
-    pub radius: f32,
     /// Cosine-weighted rays per pixel.
     #[arg(long, default_value_t = 256)]
     pub rays: u32,
@@ -461,7 +460,9 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
     let scene = load_scene(&args.scene, res)?;
-    if !(args.radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
+    // One --radius flag (the scene's): the AO radius is the ray length.
+    let radius = scene.ao.radius;
+    if !(radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
         bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
     }
     let tris = scene.world_triangles(res)?;
@@ -476,7 +477,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         far: c.far,
     };
     let params = RefParams {
-        radius: args.radius,
+        radius,
         rays: args.rays,
         variant: if args.obscurance {
             AoVariant::Obscurance
@@ -509,7 +510,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         args.out.display(),
         if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
         bvh.triangle_count(),
-        args.radius,
+        radius,
         args.rays,
         img.mean_std_error(),
         sky
