@@ -10,6 +10,11 @@
 //! camera against the CPU ray-traced reference (binary visibility, cosine-weighted rays of length =
 //! the setting's radius) on the reference's non-sky pixels, raw and after fitting `min(1, a·v^b)` on
 //! the training cameras; rows report the mean over the test cameras.
+//!
+//! Error split: a screen-space reference (`reference::render_screen_space`, the exact visibility of
+//! the engine's depth buffer rendered at the reference's size, seen as a heightfield) separates what
+//! the depth buffer cannot know (screen-space reference against ray-traced) from what the method's
+//! sampling loses (method against screen-space reference).
 
 use super::catalog::{self, BenchCamera, Setting};
 use super::metrics::{self, Fit, Gray, Metrics};
