@@ -47,17 +47,20 @@ pub enum Command {
 
 #[derive(Args, Debug)]
 pub struct ReferenceArgs {
+    /// Scene flags; `--radius` is the ray length (m): a ray that hits nothing within it counts as
+    /// open (default: the scene's AO radius, so the reference matches what `render` shows).
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// Ray length (m): a ray that hits nothing within it counts as open.
-    #[arg(long, default_value_t = 1.0)]
-    pub radius: f32,
     /// Cosine-weighted rays per pixel.
     #[arg(long, default_value_t = 256)]
     pub rays: u32,
     /// Ambient obscurance (hits weighted by (t/R)²) instead of binary visibility.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "screen_space")]
     pub obscurance: bool,
+    /// Screen-space reference instead: the same visibility computed exactly from the engine's
+    /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
+    #[arg(long)]
+    pub screen_space: bool,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,
@@ -471,7 +474,9 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
     let scene = load_scene(&args.scene, res)?;
-    if !(args.radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
+    // One --radius flag (the scene's): the AO radius is the ray length.
+    let radius = scene.ao.radius;
+    if !(radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
         bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
     }
     let tris = scene.world_triangles(res)?;
@@ -486,7 +491,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         far: c.far,
     };
     let params = RefParams {
-        radius: args.radius,
+        radius,
         rays: args.rays,
         variant: if args.obscurance {
             AoVariant::Obscurance
@@ -497,7 +502,14 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         progress: true,
     };
     let (w, h) = (scene.output.width, scene.output.height);
-    let img = load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?;
+    let img = if args.screen_space {
+        let ctx = HeadlessContext::new()?;
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, w, h)?;
+        let depth = crate::reference::DepthBuffer::from_engine(&mut engine)?;
+        crate::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+    } else {
+        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?
+    };
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
         std::fs::create_dir_all(dir)?;
     }
@@ -508,10 +520,11 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     }
     let sky = img.sky_mask().iter().filter(|s| **s).count();
     println!(
-        "wrote {} ({w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
+        "wrote {} ({}, {w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
         args.out.display(),
+        if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
         bvh.triangle_count(),
-        args.radius,
+        radius,
         args.rays,
         img.mean_std_error(),
         sky

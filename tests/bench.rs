@@ -164,6 +164,23 @@ fn tiny_bench_writes_a_complete_finite_report() {
         // The fit is evaluated on other cameras than it was made on: it need not win, but it must be sane.
         assert!(row["fitted"]["rmse"].as_f64().unwrap() < 1.0);
     }
+    // The error split: the depth buffer's share depends on camera and radius only, so every row
+    // (all at R = 1 m) reports the same figures; the sampling share differs between methods.
+    let split = |row: &serde_json::Value, key: &str| row[key]["rmse"].as_f64().unwrap();
+    let depth_share = split(&rows[0], "depth_buffer_error");
+    assert!(depth_share > 0.0 && depth_share < 1.0, "{depth_share}");
+    for row in rows {
+        assert_eq!(split(row, "depth_buffer_error"), depth_share);
+        assert!(split(row, "sampling_error") > 0.0);
+        for cam in row["cameras"].as_array().unwrap() {
+            assert!(cam["depth_buffer_error"]["pixels"].as_u64().unwrap() > 0);
+        }
+    }
+    assert_ne!(
+        split(&rows[0], "sampling_error"),
+        split(&rows[2], "sampling_error")
+    );
+    assert!(report.reference.screen_rendered > 0);
     assert_eq!(rows[0]["method"], "sao-lesson");
     assert_eq!(rows[2]["method"], "gtao");
     let md = std::fs::read_to_string(out.join("report.md")).unwrap();
@@ -171,6 +188,7 @@ fn tiny_bench_writes_a_complete_finite_report() {
         md.contains("| sao-lesson | n4 r1 |") && md.contains("| gtao | n8 r1 |"),
         "{md}"
     );
+    assert!(md.contains("## Error split") && md.contains("screen-space reference"));
     // A second run reads the references from the cache.
     let again = perf::run(
         &ResDirs::default(),
@@ -184,6 +202,8 @@ fn tiny_bench_writes_a_complete_finite_report() {
     .expect("second run");
     assert_eq!(again.reference.rendered, 0);
     assert!(again.reference.cached > 0);
+    assert_eq!(again.reference.screen_rendered, 0);
+    assert!(again.reference.screen_cached > 0);
 }
 
 #[test]

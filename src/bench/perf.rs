@@ -10,13 +10,21 @@
 //! camera against the CPU ray-traced reference (binary visibility, cosine-weighted rays of length =
 //! the setting's radius) on the reference's non-sky pixels, raw and after fitting `min(1, a·v^b)` on
 //! the training cameras; rows report the mean over the test cameras.
+//!
+//! Error split: a screen-space reference (`reference::render_screen_space`, the exact visibility of
+//! the engine's depth buffer rendered at the reference's size, seen as a heightfield) separates what
+//! the depth buffer cannot know (screen-space reference against ray-traced) from what the method's
+//! sampling loses (method against screen-space reference).
 
 use super::catalog::{self, BenchCamera, Setting};
 use super::metrics::{self, Fit, Gray, Metrics};
 use crate::ao::AoMethod;
 use crate::context::HeadlessContext;
 use crate::engine::{Camera, Engine, View};
-use crate::reference::{load_or_render_cached, AoVariant, RefCamera, RefImage, RefParams, Scene};
+use crate::reference::{
+    load_or_render_cached, load_or_render_screen_cached, screen_cache_key, AoVariant, DepthBuffer,
+    RefCamera, RefImage, RefParams, Scene,
+};
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
 use anyhow::{bail, Context as _, Result};
@@ -59,6 +67,11 @@ pub struct CameraError {
     pub raw: Metrics,
     /// After the fit (test cameras only; the training cameras repeat the raw figures' pixels).
     pub fitted: Metrics,
+    /// The screen-space reference (exact AO of the depth buffer) against the ray-traced one: what
+    /// the depth buffer cannot know at this camera and radius, whatever the method (no FLIP).
+    pub depth_buffer_error: Metrics,
+    /// The method (raw) against the screen-space reference: what its sampling loses (no FLIP).
+    pub sampling_error: Metrics,
 }
 
 /// One row: a method at one setting.
@@ -91,6 +104,11 @@ pub struct Row {
     /// The fitted map min(1, a·v^b) (from the training cameras) and the error after it (test cameras).
     pub fit: Fit,
     pub fitted: Metrics,
+    /// Error split, means over the test cameras: the screen-space reference against the
+    /// ray-traced one (the depth buffer's limit), and the method against the screen-space
+    /// reference (its sampling).
+    pub depth_buffer_error: Metrics,
+    pub sampling_error: Metrics,
     pub cameras: Vec<CameraError>,
 }
 
@@ -135,6 +153,11 @@ pub struct ReferenceInfo {
     pub rendered: usize,
     pub cached: usize,
     pub render_s: f64,
+    /// Screen-space references (same size, rays and radii, from the engine's depth buffer
+    /// rendered at that size): rendered this run, read from the cache, seconds spent.
+    pub screen_rendered: usize,
+    pub screen_cached: usize,
+    pub screen_render_s: f64,
 }
 
 fn median(v: &mut [f64]) -> f64 {
@@ -312,12 +335,17 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     );
     let load_before = load_average();
     let mut rows = Vec::new();
+    let mut screen_stats = ScreenStats::default();
     for sd in &scenes {
-        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, cfg.width, cfg.height)?;
+        // The engine starts at the reference's size for the screen-space references' depth
+        // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
+        let screen = screen_references(&mut engine, sd, &radii, cfg, &pb, &mut screen_stats)?;
+        engine.resize(cfg.width, cfg.height)?;
         for (method, settings) in &plan {
             for s in settings {
                 pb.set_message(format!("{} {} {}", sd.name, method.name(), s.label()));
-                let row = run_setting(&mut engine, sd, *method, s, cfg, ref_scale)
+                let row = run_setting(&mut engine, sd, &screen, *method, s, cfg, ref_scale)
                     .with_context(|| format!("{} {} {}", sd.name, method.name(), s.label()))?;
                 rows.push(row);
                 pb.inc(1);
@@ -341,6 +369,9 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
             rendered,
             cached,
             render_s,
+            screen_rendered: screen_stats.rendered,
+            screen_cached: screen_stats.cached,
+            screen_render_s: screen_stats.render_s,
         },
         warmup_frames: cfg.warmup,
         timed_frames: cfg.frames,
@@ -358,9 +389,69 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     Ok(report)
 }
 
+#[derive(Default)]
+struct ScreenStats {
+    rendered: usize,
+    cached: usize,
+    render_s: f64,
+}
+
+/// Screen-space reference of every camera and radius, from the engine's depth buffer at its
+/// current size: (camera index, radius bits) → image.
+fn screen_references(
+    engine: &mut Engine,
+    sd: &SceneData,
+    radii: &[f32],
+    cfg: &PerfConfig,
+    pb: &ProgressBar,
+    stats: &mut ScreenStats,
+) -> Result<BTreeMap<(usize, u32), RefImage>> {
+    let mut out = BTreeMap::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        engine.camera = engine_camera(cam, &sd.desc);
+        engine.sync_shader_constants()?;
+        let depth = DepthBuffer::from_engine(engine)?;
+        for &r in radii {
+            let params = RefParams {
+                radius: r,
+                rays: cfg.ref_rays,
+                variant: AoVariant::Visibility,
+                seed: 1,
+                progress: cfg.progress,
+            };
+            let key = screen_cache_key(&depth, &params);
+            let hit = crate::reference::cache_path(&cfg.cache, &key).is_file();
+            if cfg.progress {
+                pb.suspend(|| {
+                    eprintln!(
+                        "screen-space reference {}/{} R = {r} m, {}x{}, {} rays: {}",
+                        sd.name,
+                        cam.name,
+                        depth.width,
+                        depth.height,
+                        cfg.ref_rays,
+                        if hit { "cached" } else { "rendering" }
+                    )
+                });
+            }
+            let t = Instant::now();
+            let img = pb.suspend(|| load_or_render_screen_cached(&cfg.cache, &depth, &params))?;
+            if hit {
+                stats.cached += 1;
+            } else {
+                stats.rendered += 1;
+                stats.render_s += t.elapsed().as_secs_f64();
+            }
+            out.insert((ci, r.to_bits()), img);
+        }
+    }
+    Ok(out)
+}
+
 fn run_setting(
     engine: &mut Engine,
     sd: &SceneData,
+    screen: &BTreeMap<(usize, u32), RefImage>,
     method: AoMethod,
     s: &Setting,
     cfg: &PerfConfig,
@@ -472,12 +563,28 @@ fn run_setting(
             let f = fit.apply_all(&views[ci]);
             metrics::compare(reference, Gray::new(rw, rh, &f), Some(&mask), cfg.flip)
         };
+        // The split uses the ray-traced reference's mask too, so the three figures cover the
+        // same pixels.
+        let ss = &screen[&(ci, s.radius.to_bits())];
+        if (ss.width, ss.height) != (r.width, r.height) {
+            bail!(
+                "screen-space reference size {}x{} does not match {rw}x{rh}",
+                ss.width,
+                ss.height
+            );
+        }
+        let ss_gray = Gray::new(rw, rh, &ss.ao);
+        let depth_buffer_error = metrics::compare(reference, ss_gray, Some(&mask), false);
+        let sampling_error =
+            metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false);
         cameras.push(CameraError {
             scene: sd.name.clone(),
             camera: cam.name.clone(),
             train: cam.train,
             raw,
             fitted,
+            depth_buffer_error,
+            sampling_error,
         });
     }
     let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
@@ -499,6 +606,20 @@ fn run_setting(
         flip: mean(&|m| m.flip, true),
         pixels,
     };
+    let mean_of = |pick: &dyn Fn(&CameraError) -> Metrics| {
+        let n = test.len().max(1) as f64;
+        let sum = |f: &dyn Fn(&Metrics) -> f64| test.iter().map(|c| f(&pick(c))).sum::<f64>() / n;
+        Metrics {
+            rmse: sum(&|m| m.rmse),
+            mae: sum(&|m| m.mae),
+            psnr: sum(&|m| m.psnr),
+            ssim: sum(&|m| m.ssim),
+            flip: 0.0,
+            pixels,
+        }
+    };
+    let depth_buffer_error = mean_of(&|c| c.depth_buffer_error);
+    let sampling_error = mean_of(&|c| c.sampling_error);
     Ok(Row {
         method: method.name().to_string(),
         setting: s.label(),
@@ -520,6 +641,8 @@ fn run_setting(
         flip: mean(&|m| m.flip, false),
         fit,
         fitted,
+        depth_buffer_error,
+        sampling_error,
         cameras,
     })
 }
@@ -635,6 +758,27 @@ fn markdown(r: &Report, cfg: &PerfConfig) -> String {
          on the test cameras only.",
         metrics::PSNR_CAP_DB
     );
+    let _ = writeln!(
+        s,
+        "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
+         buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
+         reference's): the same visibility (same rays per pixel, radius and sampling), but with the \
+         scene replaced by the depth buffer seen as a heightfield of infinite thickness (inverse \
+         depth interpolated between pixel centres, normals from the depth buffer) and every ray \
+         marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
+         count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
+         error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
+         off-screen occluders: the same for every method at a camera and radius); **sampling \
+         error** = the method (raw) against the screen-space reference (what its samples, mips, \
+         blur and intensity lose). Both on the ray-traced reference's non-sky pixels, means over \
+         the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
+         Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
+        r.reference.width,
+        r.reference.height,
+        r.reference.screen_rendered,
+        r.reference.screen_render_s,
+        r.reference.screen_cached
+    );
     let _ = writeln!(s, "- **Cameras** (train / test):");
     for (scene, c) in &r.cameras {
         let _ = writeln!(
@@ -716,6 +860,34 @@ fn markdown(r: &Report, cfg: &PerfConfig) -> String {
         "Best raw PSNR: {}. Best fitted PSNR: {}.\n",
         best(&|r| r.psnr),
         best(&|r| r.fitted.psnr)
+    );
+    let _ = writeln!(s, "## Error split: depth buffer against sampling\n");
+    let _ = writeln!(
+        s,
+        "| method | setting | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM |"
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for row in &r.rows {
+        let _ = writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            row.method,
+            row.setting,
+            f(row.rmse, 4),
+            f(row.psnr, 2),
+            f(row.depth_buffer_error.rmse, 4),
+            f(row.depth_buffer_error.psnr, 2),
+            f(row.sampling_error.rmse, 4),
+            f(row.sampling_error.psnr, 2),
+            f(row.sampling_error.ssim, 4),
+        );
+    }
+    let _ = writeln!(
+        s,
+        "\nThe depth-buffer columns depend only on the camera and radius. In squared error the \
+         method's error against the ray-traced reference is the sum of the two parts plus a cross \
+         term (the two can partly cancel, e.g. a method that under-darkens where the depth buffer \
+         over-darkens).\n"
     );
     let _ = writeln!(s, "## Per camera (PSNR dB, raw / fitted)\n");
     if let Some(first) = r.rows.first() {

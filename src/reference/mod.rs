@@ -27,6 +27,7 @@
 mod cache;
 mod sampling;
 mod scene;
+mod screen;
 
 use glam::{DVec3, Vec3};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -37,6 +38,10 @@ pub use cache::{
     CACHE_FORMAT_VERSION,
 };
 pub use scene::{hash_triangles, Hit, Scene};
+pub use screen::{
+    load_or_render_screen_cached, render_screen_space, screen_cache_key, DepthBuffer,
+    SCREEN_ALGORITHM_VERSION,
+};
 
 /// Pinhole camera, OpenGL conventions (right-handed look-at; the view looks down -Z).
 #[derive(Clone, Copy, Debug, PartialEq)]
