@@ -27,7 +27,8 @@ pub struct Cli {
 pub enum Command {
     /// Render one frame headless and write it to a PNG or PFM file.
     Render(RenderArgs),
-    /// Open the interactive window (WASD + mouse, Space: AO, V: view, B: blur, R: reload shaders).
+    /// Open the interactive window (WASD + mouse, F1: parameter panel, Space: AO, M: method, V: view,
+    /// B: blur, R: reload shaders).
     Window(WindowArgs),
     /// Run the AO lesson at step N (1-12) showing that step's view, or `lesson start DIR` to write a
     /// starting folder whose lesson shaders are stubs.
@@ -168,9 +169,18 @@ pub struct WindowArgs {
     /// Close after this many frames (for scripted runs and tests).
     #[arg(long)]
     pub frames: Option<u32>,
-    /// Save the last frame shown to this PNG (with --frames).
+    /// Save the last frame shown to this PNG (with --frames): the engine's frame, as `render` draws it.
     #[arg(long)]
     pub screenshot: Option<PathBuf>,
+    /// The screenshot holds what is on screen, parameter panel and error overlay included.
+    #[arg(long)]
+    pub screenshot_ui: bool,
+    /// Start with the parameter panel hidden (F1 shows it). Also: OPENGL3D_PANEL=off.
+    #[arg(long)]
+    pub no_panel: bool,
+    /// Start with per-pass timing on (the panel's "time each pass"). Also: OPENGL3D_TIME_PASSES=1.
+    #[arg(long)]
+    pub time_passes: bool,
 }
 
 fn parse_vec3(s: &str) -> Result<Vec3, String> {
@@ -289,7 +299,12 @@ pub fn run() -> Result<()> {
         Some(Command::Render(args)) => render(&res, &args),
         Some(Command::Window(args)) => {
             let scene = load_scene(&args.scene, &res)?;
-            context::window::run(res, scene, args.view, args.frames, args.screenshot)
+            let mut options =
+                context::window::WindowOptions::from_env(args.view, args.frames, args.screenshot);
+            options.screenshot_with_ui |= args.screenshot_ui;
+            options.panel_visible &= !args.no_panel;
+            options.time_passes |= args.time_passes;
+            context::window::run_with(res, scene, options)
         }
         Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
         Some(Command::Reference(args)) => reference(&res, &args),

@@ -290,71 +290,51 @@ fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String]) {
         });
 }
 
-/// Fonts for the panel. egui is built without its bundled fonts, so system TrueType fonts are
-/// loaded (the same packages the benchmark charts use); `OPENGL3D_FONT` overrides the sans-serif one.
-/// Returns a warning when none is found: text then shows as boxes, but the window still works.
+/// Fonts for the panel: egui's bundled fonts, with `OPENGL3D_FONT` (a TrueType file) tried first
+/// when set, and a system CJK font added as a fallback so Japanese file names and messages (the
+/// course's language) show. Returns a warning when `OPENGL3D_FONT` cannot be read.
 pub fn install_fonts(ctx: &egui::Context) -> Option<String> {
-    const SANS: [&str; 5] = [
-        "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf",
-        "/usr/share/fonts/TTF/DejaVuSans.ttf",
-        "/usr/share/fonts/dejavu/DejaVuSans.ttf",
-        "/usr/share/fonts/truetype/liberation/LiberationSans-Regular.ttf",
-        "/usr/share/fonts/truetype/freefont/FreeSans.ttf",
-    ];
-    const MONO: [&str; 5] = [
-        "/usr/share/fonts/truetype/dejavu/DejaVuSansMono.ttf",
-        "/usr/share/fonts/TTF/DejaVuSansMono.ttf",
-        "/usr/share/fonts/dejavu/DejaVuSansMono.ttf",
-        "/usr/share/fonts/truetype/liberation/LiberationMono-Regular.ttf",
-        "/usr/share/fonts/truetype/freefont/FreeMono.ttf",
-    ];
-    // Japanese file names and messages (the course's language), when such a font is installed.
     const CJK: [&str; 3] = [
         "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
         "/usr/share/fonts/noto-cjk/NotoSansCJK-Regular.ttc",
         "/usr/share/fonts/truetype/fonts-japanese-gothic.ttf",
     ];
-    fn read_first(paths: impl IntoIterator<Item = std::path::PathBuf>) -> Option<Vec<u8>> {
-        paths.into_iter().find_map(|p| std::fs::read(p).ok())
-    }
-    let env_font = std::env::var_os("OPENGL3D_FONT").map(std::path::PathBuf::from);
-    let sans = read_first(env_font.into_iter().chain(SANS.iter().map(Into::into)));
-    let mono = read_first(MONO.iter().map(Into::into));
-    let cjk = read_first(CJK.iter().map(Into::into));
-
-    let mut fonts = egui::FontDefinitions::empty();
-    let mut add = |name: &str, bytes: Vec<u8>| {
+    let mut fonts = egui::FontDefinitions::default();
+    let mut warning = None;
+    let add = |fonts: &mut egui::FontDefinitions, name: &str, bytes: Vec<u8>, first: bool| {
         fonts.font_data.insert(
             name.to_string(),
             std::sync::Arc::new(egui::FontData::from_owned(bytes)),
         );
-        name.to_string()
+        for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+            let list = fonts.families.entry(family).or_default();
+            if first {
+                list.insert(0, name.to_string());
+            } else {
+                list.push(name.to_string());
+            }
+        }
     };
-    let sans = sans.map(|b| add("sans", b));
-    let mono = mono.map(|b| add("mono", b));
-    let cjk = cjk.map(|b| add("cjk", b));
-    let family = |first: &Option<String>, second: &Option<String>| {
-        [first, second, &cjk]
-            .into_iter()
-            .flatten()
-            .cloned()
-            .collect::<Vec<_>>()
-    };
-    let proportional = family(&sans, &mono);
-    let monospace = family(&mono, &sans);
-    if proportional.is_empty() {
-        return Some(
-            "no TrueType font found for the panel (install fonts-dejavu-core or set OPENGL3D_FONT): \
-             its text shows as boxes"
-                .into(),
-        );
+    if let Some(path) = std::env::var_os("OPENGL3D_FONT") {
+        match std::fs::read(&path) {
+            // Only the proportional family: a user font is rarely monospaced.
+            Ok(bytes) => {
+                add(&mut fonts, "user", bytes, true);
+                if let Some(mono) = fonts.families.get_mut(&egui::FontFamily::Monospace) {
+                    mono.retain(|n| n != "user");
+                }
+            }
+            Err(e) => {
+                warning = Some(format!(
+                    "OPENGL3D_FONT={}: {e}; using the bundled font",
+                    std::path::Path::new(&path).display()
+                ))
+            }
+        }
     }
-    fonts
-        .families
-        .insert(egui::FontFamily::Proportional, proportional);
-    fonts
-        .families
-        .insert(egui::FontFamily::Monospace, monospace);
+    if let Some(bytes) = CJK.iter().find_map(|p| std::fs::read(p).ok()) {
+        add(&mut fonts, "cjk", bytes, false);
+    }
     ctx.set_fonts(fonts);
-    None
+    warning
 }
