@@ -389,3 +389,42 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
         "ultra {n_ultra} should be smoother than low {n_low}"
     );
 }
+
+#[test]
+fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
+    use opengl3d::ao::AoMethod;
+    let ctx = common::context();
+    let dir = common::temp_dir("packed-blur");
+    let mut scene = common::crease_scene(
+        &dir,
+        Vec3::new(4.0, 2.0, 4.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        320,
+        240,
+    );
+    scene.ao.method = AoMethod::Sao;
+    let mut eng = common::engine(&ctx, &scene);
+    eng.render_image().unwrap();
+    let names: Vec<String> = eng.ao_textures().into_iter().map(|t| t.name).collect();
+    assert!(names.iter().any(|n| n == "FBO(sao packed)"), "{names:?}");
+    let packed = eng.ao.result_texture(true).read_f32(0, 1);
+    common::assert_finite("packed blur", &packed);
+    // The same raw occlusion through the plain blur (occlusion and depth from two textures).
+    eng.methods.blur(&eng.ao, &eng.meshes);
+    let plain = eng.ao.result_texture(true).read_f32(0, 1);
+    let occluded = plain.iter().filter(|v| **v > 0.05).count();
+    assert!(
+        occluded > 100,
+        "the crease must be occluded ({occluded} texels)"
+    );
+    // The packed pass blurs the unquantised occlusion; the plain one its R8 copy: within 1.5/255.
+    let worst = packed
+        .iter()
+        .zip(&plain)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(
+        worst <= 1.5 / 255.0,
+        "packed vs plain blur differ by {worst}"
+    );
+}
