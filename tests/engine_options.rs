@@ -275,6 +275,10 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
         .zip(&four)
         .filter(|(a, b)| (*a - *b).abs() > 1.0 / 255.0)
         .count();
+    eprintln!(
+        "close-up, {want} levels vs 4: {changed} of {} AO texels differ by more than 1/255",
+        auto.len()
+    );
     assert!(
         changed > 0,
         "the close-up must read level 4 somewhere (no pixel changed with 4 levels)"
@@ -323,6 +327,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     let five = mean_occlusion(5, 2.5);
     let control = mean_occlusion(5, 3.0);
     let capped = mean_occlusion(4, 2.5);
+    eprintln!("synthetic levels: mean occlusion {five} (5 levels), {control} (control), {capped} (4 levels)");
     assert!(five > 0.02, "level 4 was not read (mean occlusion {five})");
     assert!(
         control < 0.005,
@@ -423,6 +428,7 @@ fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
         .zip(&plain)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0f32, f32::max);
+    eprintln!("packed vs plain blur: worst difference {worst}");
     assert!(
         worst <= 1.5 / 255.0,
         "packed vs plain blur differ by {worst}"
