@@ -275,6 +275,10 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
         .zip(&four)
         .filter(|(a, b)| (*a - *b).abs() > 1.0 / 255.0)
         .count();
+    eprintln!(
+        "close-up, {want} levels vs 4: {changed} of {} AO texels differ by more than 1/255",
+        auto.len()
+    );
     assert!(
         changed > 0,
         "the close-up must read level 4 somewhere (no pixel changed with 4 levels)"
@@ -323,6 +327,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     let five = mean_occlusion(5, 2.5);
     let control = mean_occlusion(5, 3.0);
     let capped = mean_occlusion(4, 2.5);
+    eprintln!("synthetic levels: mean occlusion {five} (5 levels), {control} (control), {capped} (4 levels)");
     assert!(five > 0.02, "level 4 was not read (mean occlusion {five})");
     assert!(
         control < 0.005,
@@ -387,5 +392,45 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
     assert!(
         n_ultra < n_low,
         "ultra {n_ultra} should be smoother than low {n_low}"
+    );
+}
+
+#[test]
+fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
+    use opengl3d::ao::AoMethod;
+    let ctx = common::context();
+    let dir = common::temp_dir("packed-blur");
+    let mut scene = common::crease_scene(
+        &dir,
+        Vec3::new(4.0, 2.0, 4.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        320,
+        240,
+    );
+    scene.ao.method = AoMethod::Sao;
+    let mut eng = common::engine(&ctx, &scene);
+    eng.render_image().unwrap();
+    let names: Vec<String> = eng.ao_textures().into_iter().map(|t| t.name).collect();
+    assert!(names.iter().any(|n| n == "FBO(sao packed)"), "{names:?}");
+    let packed = eng.ao.result_texture(true).read_f32(0, 1);
+    common::assert_finite("packed blur", &packed);
+    // The same raw occlusion through the plain blur (occlusion and depth from two textures).
+    eng.methods.blur(&eng.ao, &eng.meshes);
+    let plain = eng.ao.result_texture(true).read_f32(0, 1);
+    let occluded = plain.iter().filter(|v| **v > 0.05).count();
+    assert!(
+        occluded > 100,
+        "the crease must be occluded ({occluded} texels)"
+    );
+    // The packed pass blurs the unquantised occlusion; the plain one its R8 copy: within 1.5/255.
+    let worst = packed
+        .iter()
+        .zip(&plain)
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    eprintln!("packed vs plain blur: worst difference {worst}");
+    assert!(
+        worst <= 1.5 / 255.0,
+        "packed vs plain blur differ by {worst}"
     );
 }

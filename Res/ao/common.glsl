@@ -19,7 +19,7 @@ layout(location=203) uniform float maxRadiusPixels;
 #define AO_INTENSITY (aoInfo.z)
 #define AO_PROJ_SCALE (aoInfo.w)
 
-out float outColor;
+layout(location=0) out float outColor;
 
 const float PI = 3.14159265;
 

@@ -144,6 +144,9 @@ pub struct AoMethods {
     /// Intermediate of the two blur passes (half size, R8), created on the first blur and dropped
     /// by `release_targets` (an engine with AO off owns no AO texture).
     fbo_tmp: RefCell<Option<FramebufferObject>>,
+    /// The engine's `sao`: its packed (occlusion, depth) targets and blur, on first use.
+    packed: RefCell<Option<PackedSaoTargets>>,
+    blur_packed: Option<ProgramObject>,
     defines: Vec<(&'static str, String)>,
 }
 
@@ -192,6 +195,8 @@ impl AoMethods {
             programs: HashMap::new(),
             blur,
             fbo_tmp: RefCell::new(None),
+            packed: RefCell::new(None),
+            blur_packed: None,
             defines,
         })
     }
@@ -199,18 +204,34 @@ impl AoMethods {
     /// Drops the size-dependent targets (re-created at the right size on next use).
     pub fn release_targets(&mut self) {
         self.fbo_tmp = RefCell::new(None);
+        self.packed = RefCell::new(None);
     }
 
     /// The textures this object currently owns.
     pub fn textures(&self) -> Vec<Rc<Texture>> {
         let tmp = self.fbo_tmp.borrow();
-        tmp.iter()
+        let mut out: Vec<Rc<Texture>> = tmp
+            .iter()
             .filter_map(|f| f.color_texture().cloned())
-            .collect()
+            .collect();
+        if let Some(p) = self.packed.borrow().as_ref() {
+            out.push(p.packed.clone());
+            out.extend(p.fbo_tmp.color_texture().cloned());
+        }
+        out
     }
 
     /// Builds the method's program if needed (errors name the file and line).
     pub fn prepare(&mut self, method: AoMethod) -> Result<(), ProgramError> {
+        if method == AoMethod::Sao && self.blur_packed.is_none() {
+            self.blur_packed = Some(ProgramObject::from_res(
+                &self.gl,
+                &self.res,
+                "simple.vert",
+                "ao/blur_packed.frag",
+                &self.defines,
+            )?);
+        }
         if method == AoMethod::SaoLesson || self.programs.contains_key(&method) {
             return Ok(());
         }
@@ -232,6 +253,9 @@ impl AoMethods {
         }
         self.defines = d.clone();
         self.blur.set_defines(&d)?;
+        if let Some(p) = &mut self.blur_packed {
+            p.set_defines(&d)?;
+        }
         for p in self.programs.values_mut() {
             p.set_defines(&d)?;
         }
@@ -244,6 +268,7 @@ impl AoMethods {
             .programs
             .values_mut()
             .chain(std::iter::once(&mut self.blur))
+            .chain(self.blur_packed.as_mut())
         {
             if force || p.sources_changed() {
                 if let Err(e) = p.reload() {
@@ -294,9 +319,71 @@ impl AoMethods {
         p.set_f32(LOC_MAX_RADIUS, max_radius_pixels(w as u32, h as u32));
         fullscreen_state(&self.gl);
         p.use_program();
-        lesson.fbo_sao.bind();
+        let packed = (method == AoMethod::Sao && self.blur_packed.is_some())
+            .then(|| self.packed_targets(lesson))
+            .flatten();
+        match &packed {
+            // Occlusion into the lesson's target as every method, and the pair for the blur.
+            Some(t) => t.fbo_sao_and_packed.bind(),
+            None => lesson.fbo_sao.bind(),
+        }
         lesson.tex_depth.bind(0);
         meshes.draw_plane_xy();
+    }
+
+    /// The packed targets for `lesson`'s current SAO texture (re-created when it changed).
+    fn packed_targets(&self, lesson: &SaoLesson) -> Option<std::cell::Ref<'_, PackedSaoTargets>> {
+        let current = self
+            .packed
+            .borrow()
+            .as_ref()
+            .is_some_and(|p| Rc::ptr_eq(&p.lesson_sao, lesson.sao_texture()));
+        if !current {
+            *self.packed.borrow_mut() = None;
+            match PackedSaoTargets::new(&self.gl, lesson.sao_texture()) {
+                Ok(t) => *self.packed.borrow_mut() = Some(t),
+                Err(e) => {
+                    log::error!("packed SAO targets: {e:#}; using the plain blur");
+                    return None;
+                }
+            }
+        }
+        std::cell::Ref::filter_map(self.packed.borrow(), |p| p.as_ref()).ok()
+    }
+
+    /// The blur of `method`'s output: the packed one for the engine's `sao` (one fetch per tap),
+    /// else the plain separable blur.
+    pub fn blur_method(&self, method: AoMethod, lesson: &SaoLesson, meshes: &MeshBuffer) {
+        let packed = match (&self.blur_packed, method) {
+            (Some(prog), AoMethod::Sao) => self
+                .packed
+                .borrow()
+                .as_ref()
+                .filter(|p| Rc::ptr_eq(&p.lesson_sao, lesson.sao_texture()))
+                .is_some()
+                .then_some(prog),
+            _ => None,
+        };
+        let Some(prog) = packed else {
+            self.blur(lesson, meshes);
+            return;
+        };
+        let guard = self.packed.borrow();
+        let t = guard.as_ref().expect("checked above");
+        fullscreen_state(&self.gl);
+        prog.use_program();
+        unsafe {
+            use glow::HasContext;
+            let loc = glow::NativeUniformLocation(LOC_BLUR_AXIS as u32);
+            self.gl.program_uniform_2_i32(prog.id(), Some(&loc), 1, 0);
+            t.fbo_tmp.bind();
+            t.packed.bind(0);
+            meshes.draw_plane_xy();
+            self.gl.program_uniform_2_i32(prog.id(), Some(&loc), 0, 1);
+            lesson.fbo_blur.bind();
+            t.fbo_tmp.color_texture().unwrap().bind(0);
+            meshes.draw_plane_xy();
+        }
     }
 
     /// Two-pass separable bilateral blur: SAO target → intermediate → the lesson's blur target.
@@ -331,6 +418,60 @@ impl AoMethods {
             fbo_tmp.color_texture().unwrap().bind(0);
             meshes.draw_plane_xy();
         }
+    }
+}
+
+/// The engine's `sao` writes occlusion into the lesson's R8 target (raw view, blur off) and the
+/// (occlusion, linear depth) pair into an RG32F target in the same pass; the packed blur then reads
+/// one texture per tap. RG32F keeps the depth exact, so the blur's `depth >= far` sky test holds.
+struct PackedSaoTargets {
+    /// The lesson's texture attached as the second target (held so it outlives this FBO, and to
+    /// notice when the lesson re-created its targets).
+    lesson_sao: Rc<Texture>,
+    packed: Rc<Texture>,
+    /// Attachment 0 = `packed`, 1 = the lesson's SAO texture; draw buffers map the shader's output
+    /// 0 (occlusion) to attachment 1 and output 1 (the pair) to attachment 0.
+    fbo_sao_and_packed: FramebufferObject,
+    /// Between the two blur passes (RG32F).
+    fbo_tmp: FramebufferObject,
+}
+
+impl PackedSaoTargets {
+    fn new(gl: &Gl, lesson_sao: &Rc<Texture>) -> Result<PackedSaoTargets> {
+        use glow::HasContext;
+        let (w, h) = lesson_sao.size_at(0);
+        let packed = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target("FBO(sao packed)", w, h, glow::RG32F),
+        )?);
+        let fbo = FramebufferObject::new(gl, Some(packed.clone()), None, 0, 0)?;
+        unsafe {
+            gl.named_framebuffer_texture(
+                Some(fbo.id()),
+                glow::COLOR_ATTACHMENT1,
+                Some(lesson_sao.id()),
+                0,
+            );
+            gl.named_framebuffer_draw_buffers(
+                Some(fbo.id()),
+                &[glow::COLOR_ATTACHMENT1, glow::COLOR_ATTACHMENT0],
+            );
+            let status = gl.check_named_framebuffer_status(Some(fbo.id()), glow::FRAMEBUFFER);
+            if status != glow::FRAMEBUFFER_COMPLETE {
+                anyhow::bail!("packed SAO framebuffer is incomplete (status 0x{status:x})");
+            }
+        }
+        let tmp = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target("FBO(sao packed blur tmp)", w, h, glow::RG32F),
+        )?);
+        let fbo_tmp = FramebufferObject::new(gl, Some(tmp), None, 0, 0)?;
+        Ok(PackedSaoTargets {
+            lesson_sao: lesson_sao.clone(),
+            packed,
+            fbo_sao_and_packed: fbo,
+            fbo_tmp,
+        })
     }
 }
 

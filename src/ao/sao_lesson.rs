@@ -396,6 +396,10 @@ impl SaoLesson {
     /// reads the occlusion. Sets its own viewport (the printed listing lost it).
     pub fn composite(&self, meshes: &MeshBuffer, main: &FramebufferObject, blurred: bool) {
         self.fullscreen_state();
+        self.composite_inner(meshes, main, blurred);
+    }
+
+    fn composite_inner(&self, meshes: &MeshBuffer, main: &FramebufferObject, blurred: bool) {
         let tex = self.result_texture(blurred);
         tex.set_swizzle([glow::ZERO, glow::ZERO, glow::ZERO, glow::RED]);
         unsafe {
@@ -411,6 +415,30 @@ impl SaoLesson {
         // Other readers (debug views, tests) see plain R again.
         tex.set_swizzle([glow::RED, glow::GREEN, glow::BLUE, glow::ALPHA]);
         unsafe { self.gl.disable(glow::BLEND) };
+    }
+
+    /// `composite` limited to pixels where geometry was drawn: the quad sits at the depth buffer's
+    /// cleared value (`sky_depth`) and passes the test (`farther_func`, strict) only where something
+    /// nearer was written, so sky pixels (nothing to darken) are neither shaded nor blended.
+    pub fn composite_geometry_only(
+        &self,
+        meshes: &MeshBuffer,
+        main: &FramebufferObject,
+        blurred: bool,
+        sky_depth: f32,
+        farther_func: u32,
+    ) {
+        self.fullscreen_state();
+        unsafe {
+            self.gl.enable(glow::DEPTH_TEST);
+            self.gl.depth_func(farther_func);
+            self.gl.depth_range_f32(sky_depth, sky_depth);
+        }
+        self.composite_inner(meshes, main, blurred);
+        unsafe {
+            self.gl.depth_range_f32(0.0, 1.0);
+            self.gl.disable(glow::DEPTH_TEST);
+        }
     }
 
     /// The whole chain: restore → down-sample → SAO → blur (when on).

@@ -617,7 +617,23 @@ impl Engine {
     fn draw_ao_composite(&self, ao: &SaoLesson) {
         let params = &self.ao_params;
         if params.composite == CompositeMode::Blend && params.power == 1.0 {
-            ao.composite(&self.meshes, &self.fbo_main, params.blur);
+            if params.method == AoMethod::Sao {
+                // The engine's SAO leaves sky pixels out of the composite (the lesson's blends all).
+                let farther = if self.depth_mode.reversed() {
+                    glow::LESS
+                } else {
+                    glow::GREATER
+                };
+                ao.composite_geometry_only(
+                    &self.meshes,
+                    &self.fbo_main,
+                    params.blur,
+                    self.depth_mode.clear_value(),
+                    farther,
+                );
+            } else {
+                ao.composite(&self.meshes, &self.fbo_main, params.blur);
+            }
             return;
         }
         let tint = if params.composite == CompositeMode::Tinted {
@@ -868,7 +884,9 @@ impl Engine {
                     methods.compute(method, ao, m, &self.camera, &self.ao_params)
                 });
                 if self.ao_params.blur && view != View::AoRaw {
-                    self.pass("separable blur", "ao", || methods.blur(ao, m));
+                    self.pass("separable blur", "ao", || {
+                        methods.blur_method(method, ao, m)
+                    });
                 }
             }
             if ambient_only {

@@ -1,0 +1,42 @@
+#version 450
+
+// The separable bilateral blur of blur_separable.frag (same 9 taps, weights and 0.15 m depth falloff)
+// for the engine's `sao`, whose AO pass also writes (occlusion, linear depth) into one RG texture:
+// each tap is one fetch instead of two (McGuire packs the blur key next to the AO value the same
+// way). The first pass writes the pair on for the second; the second writes occlusion into R8.
+
+layout(binding=0) uniform sampler2D texPacked; // r = occlusion, g = linear depth (m)
+
+layout(location=210) uniform ivec2 axis;       // (1,0) then (0,1)
+
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
+
+layout(location=0) out vec2 outColor;
+
+const float gaussian[5] = float[5](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
+
+void main()
+{
+  ivec2 uv = ivec2(gl_FragCoord.xy);
+  ivec2 maxUV = textureSize(texPacked, 0) - 1;
+  vec2 center = texelFetch(texPacked, uv, 0).xy;
+  float depth = center.y;
+  outColor = center;
+  if (depth >= CAMERA_FAR) {
+    return;
+  }
+  float sum = center.x * gaussian[0];
+  float total = gaussian[0];
+  for (int r = -4; r <= 4; ++r) {
+    if (r == 0) {
+      continue;
+    }
+    vec2 tap = texelFetch(texPacked, clamp(uv + axis * r, ivec2(0), maxUV), 0).xy;
+    float w = gaussian[abs(r)] * max(0.0, 1.0 - abs(tap.y - depth) / 0.15);
+    sum += tap.x * w;
+    total += w;
+  }
+  outColor = vec2(sum / total, depth);
+}
