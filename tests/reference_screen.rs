@@ -378,3 +378,60 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
         "floor beside the slab: mean darkening {darkening}"
     );
 }
+
+#[test]
+fn cli_writes_the_screen_space_reference() {
+    let dir = temp_dir("screen-cli");
+    let out = dir.join("ss.pfm");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args([
+            "reference",
+            "--screen-space",
+            "--width",
+            "32",
+            "--height",
+            "18",
+        ])
+        .args(["--rays", "4", "--radius", "0.5", "--out"])
+        .arg(&out)
+        .arg("--cache")
+        .arg(dir.join("cache"))
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(
+        run.status.success(),
+        "{stdout}\n{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert!(
+        stdout.contains("screen-space") && stdout.contains("R = 0.5 m"),
+        "{stdout}"
+    );
+    // PFM header "Pf\n32 18\n-1.0\n" then 32·18 little-endian floats in [0, 1].
+    let bytes = std::fs::read(&out).unwrap();
+    let header_end = bytes
+        .iter()
+        .enumerate()
+        .filter(|(_, b)| **b == b'\n')
+        .nth(2)
+        .unwrap()
+        .0;
+    assert!(bytes.starts_with(b"Pf\n32 18\n"));
+    let values: Vec<f32> = bytes[header_end + 1..]
+        .chunks_exact(4)
+        .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
+        .collect();
+    assert_eq!(values.len(), 32 * 18);
+    assert!(values.iter().all(|v| (0.0..=1.0).contains(v)));
+    assert!(
+        values.iter().any(|v| *v < 1.0),
+        "the demo scene has occlusion"
+    );
+    // Obscurance is not something the screen-space reference computes: a clear error.
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args(["reference", "--screen-space", "--obscurance"])
+        .output()
+        .unwrap();
+    assert!(!run.status.success());
+}
