@@ -127,6 +127,7 @@ fn tiny_bench_writes_a_complete_finite_report() {
         samples: vec![4, 8],
         radii: vec![1.0],
         ref_rays: 8,
+        screen_rays: 8,
         ref_scale: 1,
         cache: out.join("cache"),
         warmup: 0,
@@ -172,8 +173,10 @@ fn tiny_bench_writes_a_complete_finite_report() {
     for row in rows {
         assert_eq!(split(row, "depth_buffer_error"), depth_share);
         assert!(split(row, "sampling_error") > 0.0);
+        // The split is computed on the test cameras only (their screen-space references).
         for cam in row["cameras"].as_array().unwrap() {
-            assert!(cam["depth_buffer_error"]["pixels"].as_u64().unwrap() > 0);
+            let pixels = cam["depth_buffer_error"]["pixels"].as_u64().unwrap();
+            assert_eq!(pixels > 0, cam["train"] == false, "{cam}");
         }
     }
     assert_ne!(

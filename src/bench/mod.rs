@@ -54,6 +54,9 @@ pub struct BenchArgs {
     /// Rays per pixel of the ray-traced reference.
     #[arg(long, default_value_t = 256)]
     pub ref_rays: u32,
+    /// Rays per pixel of the screen-space references (the error split; test cameras only).
+    #[arg(long, default_value_t = 64)]
+    pub screen_rays: u32,
     /// Render the reference at 1/N of the size and box-average the engine's output by N to compare.
     #[arg(long, default_value_t = 1)]
     pub ref_scale: u32,
@@ -93,6 +96,7 @@ impl BenchArgs {
             samples: self.samples.clone(),
             radii: self.radii.clone(),
             ref_rays: self.ref_rays.max(1),
+            screen_rays: self.screen_rays.max(1),
             ref_scale: self.ref_scale.max(1),
             cache: self.cache.clone(),
             warmup: self.warmup,

@@ -47,6 +47,9 @@ pub struct PerfConfig {
     pub samples: Vec<u32>,
     pub radii: Vec<f32>,
     pub ref_rays: u32,
+    /// Rays per pixel of the screen-space references (a dense march per ray is far slower than a
+    /// BVH ray; they are rendered for the test cameras only, where the split is reported).
+    pub screen_rays: u32,
     /// The reference is rendered at width/ref_scale × height/ref_scale and the engine's output is
     /// box-averaged by the same factor before comparing.
     pub ref_scale: u32,
@@ -155,6 +158,7 @@ pub struct ReferenceInfo {
     pub render_s: f64,
     /// Screen-space references (same size, rays and radii, from the engine's depth buffer
     /// rendered at that size): rendered this run, read from the cache, seconds spent.
+    pub screen_rays: u32,
     pub screen_rendered: usize,
     pub screen_cached: usize,
     pub screen_render_s: f64,
@@ -298,7 +302,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
                     eprintln!(
                         "reference {name}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
                         cam.name,
-                        cfg.ref_rays,
+                        cfg.screen_rays,
                         if hit { "cached" } else { "rendering" }
                     );
                 }
@@ -369,6 +373,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
             rendered,
             cached,
             render_s,
+            screen_rays: cfg.screen_rays,
             screen_rendered: screen_stats.rendered,
             screen_cached: screen_stats.cached,
             screen_render_s: screen_stats.render_s,
@@ -407,14 +412,14 @@ fn screen_references(
     stats: &mut ScreenStats,
 ) -> Result<BTreeMap<(usize, u32), RefImage>> {
     let mut out = BTreeMap::new();
-    for (ci, cam) in sd.cameras.iter().enumerate() {
+    for (ci, cam) in sd.cameras.iter().enumerate().filter(|(_, c)| !c.train) {
         engine.camera = engine_camera(cam, &sd.desc);
         engine.sync_shader_constants()?;
         let depth = DepthBuffer::from_engine(engine)?;
         for &r in radii {
             let params = RefParams {
                 radius: r,
-                rays: cfg.ref_rays,
+                rays: cfg.screen_rays,
                 variant: AoVariant::Visibility,
                 seed: 1,
                 progress: cfg.progress,
@@ -565,18 +570,24 @@ fn run_setting(
         };
         // The split uses the ray-traced reference's mask too, so the three figures cover the
         // same pixels.
-        let ss = &screen[&(ci, s.radius.to_bits())];
-        if (ss.width, ss.height) != (r.width, r.height) {
-            bail!(
-                "screen-space reference size {}x{} does not match {rw}x{rh}",
-                ss.width,
-                ss.height
-            );
-        }
-        let ss_gray = Gray::new(rw, rh, &ss.ao);
-        let depth_buffer_error = metrics::compare(reference, ss_gray, Some(&mask), false);
-        let sampling_error =
-            metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false);
+        // Training cameras have no screen-space reference (the split is reported on test cameras).
+        let (depth_buffer_error, sampling_error) = match screen.get(&(ci, s.radius.to_bits())) {
+            None => (Metrics::default(), Metrics::default()),
+            Some(ss) => {
+                if (ss.width, ss.height) != (r.width, r.height) {
+                    bail!(
+                        "screen-space reference size {}x{} does not match {rw}x{rh}",
+                        ss.width,
+                        ss.height
+                    );
+                }
+                let ss_gray = Gray::new(rw, rh, &ss.ao);
+                (
+                    metrics::compare(reference, ss_gray, Some(&mask), false),
+                    metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false),
+                )
+            }
+        };
         cameras.push(CameraError {
             scene: sd.name.clone(),
             camera: cam.name.clone(),
@@ -762,7 +773,7 @@ fn markdown(r: &Report, cfg: &PerfConfig) -> String {
         s,
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
-         reference's): the same visibility (same rays per pixel, radius and sampling), but with the \
+         reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
          scene replaced by the depth buffer seen as a heightfield of infinite thickness (inverse \
          depth interpolated between pixel centres, normals from the depth buffer) and every ray \
          marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
@@ -775,6 +786,7 @@ fn markdown(r: &Report, cfg: &PerfConfig) -> String {
          Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
         r.reference.width,
         r.reference.height,
+        r.reference.screen_rays,
         r.reference.screen_rendered,
         r.reference.screen_render_s,
         r.reference.screen_cached
