@@ -15,11 +15,32 @@ use serde::Serialize;
 pub struct Setting {
     pub samples: u32,
     pub radius: f32,
+    /// A GTAO quality preset (slices × steps) instead of the sample count.
+    pub quality: Option<crate::ao::GtaoQuality>,
 }
 
 impl Setting {
+    fn new(samples: u32, radius: f32) -> Setting {
+        Setting {
+            samples,
+            radius,
+            quality: None,
+        }
+    }
+    /// A GTAO preset; `samples` is its tap count (2 sides × slices × steps).
+    fn preset(q: crate::ao::GtaoQuality, radius: f32) -> Setting {
+        let (slices, steps) = q.slices_steps();
+        Setting {
+            samples: 2 * slices * steps,
+            radius,
+            quality: Some(q),
+        }
+    }
     pub fn label(&self) -> String {
-        format!("n{} r{}", self.samples, self.radius)
+        match self.quality {
+            Some(q) => format!("{} r{}", q.name(), self.radius),
+            None => format!("n{} r{}", self.samples, self.radius),
+        }
     }
 }
 
@@ -41,13 +62,14 @@ pub fn method_by_name(name: &str) -> Result<AoMethod> {
 /// Settings of `method`. `samples` / `radii` override the defaults when not empty (then the grid of
 /// both is run). Defaults: the lesson's SAO runs the full grid LESSON_SAMPLES × LESSON_RADII; the
 /// other methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost
-/// grows with samples the same way, and the radius mostly moves their error).
+/// grows with samples the same way, and the radius mostly moves their error); GTAO also runs its
+/// high and ultra presets at 1 m and 0.5 m.
 pub fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> Vec<Setting> {
     let grid = |s: &[u32], r: &[f32]| {
         let mut v = Vec::new();
         for &radius in r {
             for &samples in s {
-                v.push(Setting { samples, radius });
+                v.push(Setting::new(samples, radius));
             }
         }
         v
@@ -67,27 +89,21 @@ pub fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> Vec<Set
     }
     match method {
         AoMethod::SaoLesson => grid(&LESSON_SAMPLES, &LESSON_RADII),
+        AoMethod::Gtao => {
+            // Its presets too: the accuracy target is on "high".
+            let mut v = settings_for(AoMethod::Sao, &[], &[]);
+            for radius in [1.0, 0.5] {
+                v.push(Setting::preset(crate::ao::GtaoQuality::High, radius));
+                v.push(Setting::preset(crate::ao::GtaoQuality::Ultra, radius));
+            }
+            v
+        }
         _ => vec![
-            Setting {
-                samples: 4,
-                radius: 1.0,
-            },
-            Setting {
-                samples: 8,
-                radius: 1.0,
-            },
-            Setting {
-                samples: 16,
-                radius: 1.0,
-            },
-            Setting {
-                samples: 8,
-                radius: 0.5,
-            },
-            Setting {
-                samples: 8,
-                radius: 2.0,
-            },
+            Setting::new(4, 1.0),
+            Setting::new(8, 1.0),
+            Setting::new(16, 1.0),
+            Setting::new(8, 0.5),
+            Setting::new(8, 2.0),
         ],
     }
 }
@@ -127,4 +143,30 @@ pub fn camera_variants(c: &CameraDesc) -> Vec<BenchCamera> {
         cam("orbit-right-low", orbit(28.0, 0.6, 0.9), true),
         cam("close-high", orbit(-8.0, 1.6, 0.6), false),
     ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn gtao_runs_its_presets_and_explicit_samples_replace_them() {
+        let labels: Vec<String> = settings_for(AoMethod::Gtao, &[], &[])
+            .iter()
+            .map(Setting::label)
+            .collect();
+        assert!(labels.contains(&"high r1".to_string()), "{labels:?}");
+        assert!(labels.contains(&"ultra r0.5".to_string()), "{labels:?}");
+        let high = settings_for(AoMethod::Gtao, &[], &[])
+            .into_iter()
+            .find(|s| s.quality == Some(crate::ao::GtaoQuality::High))
+            .unwrap();
+        assert_eq!(high.samples, 2 * 3 * 6);
+        assert!(settings_for(AoMethod::Gtao, &[16], &[])
+            .iter()
+            .all(|s| s.quality.is_none()));
+        assert!(settings_for(AoMethod::Sao, &[], &[])
+            .iter()
+            .all(|s| s.quality.is_none()));
+    }
 }

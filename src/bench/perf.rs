@@ -464,6 +464,7 @@ fn run_setting(
 ) -> Result<Row> {
     engine.ao_params.method = method;
     engine.ao_params.samples = s.samples;
+    engine.ao_params.quality = s.quality;
     engine.ao_params.radius = s.radius;
     engine.ao_params.enabled = true;
     engine.camera = engine_camera(&sd.cameras[0], &sd.desc);
