@@ -302,7 +302,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
                     eprintln!(
                         "reference {name}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
                         cam.name,
-                        cfg.screen_rays,
+                        cfg.ref_rays,
                         if hit { "cached" } else { "rendering" }
                     );
                 }
@@ -434,7 +434,7 @@ fn screen_references(
                         cam.name,
                         depth.width,
                         depth.height,
-                        cfg.ref_rays,
+                        cfg.screen_rays,
                         if hit { "cached" } else { "rendering" }
                     )
                 });
