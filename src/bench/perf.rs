@@ -164,7 +164,7 @@ pub struct ReferenceInfo {
     pub screen_render_s: f64,
 }
 
-fn median(v: &mut [f64]) -> f64 {
+pub(crate) fn median(v: &mut [f64]) -> f64 {
     if v.is_empty() {
         return 0.0;
     }

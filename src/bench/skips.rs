@@ -115,16 +115,7 @@ fn cases() -> Vec<CaseDef> {
 }
 
 fn median(mut v: Vec<f64>) -> f64 {
-    if v.is_empty() {
-        return 0.0;
-    }
-    v.sort_by(|a, b| a.total_cmp(b));
-    let n = v.len();
-    if n % 2 == 1 {
-        v[n / 2]
-    } else {
-        0.5 * (v[n / 2 - 1] + v[n / 2])
-    }
+    super::perf::median(&mut v)
 }
 
 fn frame(engine: &mut Engine) -> Result<Vec<PassStat>> {

@@ -237,15 +237,7 @@ pub fn render_reference(
         }
     };
 
-    let bar = params.progress.then(|| {
-        let bar = ProgressBar::new(height as u64);
-        if let Ok(style) = ProgressStyle::with_template(
-            "reference AO {bar:40} {pos}/{len} rows [{elapsed_precise} < {eta_precise}]",
-        ) {
-            bar.set_style(style);
-        }
-        bar
-    });
+    let bar = params.progress.then(|| rows_bar("reference AO", height));
 
     let w = width as usize;
     ao.par_chunks_mut(w)
@@ -484,4 +476,15 @@ mod tests {
         assert_eq!(a, b);
         assert!(a.ao.iter().any(|&v| v < 1.0));
     }
+}
+
+/// A progress bar over the `height` rows of an image, labelled `what`.
+pub(crate) fn rows_bar(what: &str, height: u32) -> ProgressBar {
+    let bar = ProgressBar::new(height as u64);
+    let template =
+        format!("{what} {{bar:40}} {{pos}}/{{len}} rows [{{elapsed_precise}} < {{eta_precise}}]");
+    if let Ok(style) = ProgressStyle::with_template(&template) {
+        bar.set_style(style);
+    }
+    bar
 }

@@ -34,7 +34,6 @@ use std::path::Path;
 
 use anyhow::{bail, Result};
 use glam::DVec3;
-use indicatif::{ProgressBar, ProgressStyle};
 use rayon::prelude::*;
 
 use super::{cache, sampling, scene::Fnv64, AoVariant, RefCamera, RefImage, RefParams};
@@ -443,15 +442,9 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
         });
     }
     let field = Heightfield::new(depth);
-    let bar = params.progress.then(|| {
-        let bar = ProgressBar::new(height as u64);
-        if let Ok(style) = ProgressStyle::with_template(
-            "screen-space reference {bar:40} {pos}/{len} rows [{elapsed_precise} < {eta_precise}]",
-        ) {
-            bar.set_style(style);
-        }
-        bar
-    });
+    let bar = params
+        .progress
+        .then(|| super::rows_bar("screen-space reference", height));
     let w = width as usize;
     ao.par_chunks_mut(w)
         .zip(std_error.par_chunks_mut(w))
