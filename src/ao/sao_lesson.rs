@@ -128,6 +128,20 @@ pub struct SaoLesson {
     pub fbo_blur: FramebufferObject,
 }
 
+/// Camera planes into restore, down-sampling and blur, and sampling constants into SAO (all
+/// compile-time constants of the lesson's shaders).
+fn set_lesson_defines(
+    [restore, down_sampling, blur, sao]: [&mut ProgramObject; 4],
+    camera: &Camera,
+    params: &SaoParams,
+) -> Result<(), ProgramError> {
+    let planes = camera_defines(camera);
+    restore.set_defines(&planes)?;
+    down_sampling.set_defines(&planes)?;
+    blur.set_defines(&planes)?;
+    sao.set_defines(&sao_defines(camera, params))
+}
+
 /// Half of the main size, never 0.
 pub fn half_size(width: u32, height: u32) -> (u32, u32) {
     ((width / 2).max(1), (height / 2).max(1))
@@ -177,11 +191,16 @@ impl SaoPrograms {
         camera: &Camera,
         params: &SaoParams,
     ) -> Result<(), ProgramError> {
-        let planes = camera_defines(camera);
-        self.restore_depth.set_defines(&planes)?;
-        self.down_sampling.set_defines(&planes)?;
-        self.blur.set_defines(&planes)?;
-        self.sao.set_defines(&sao_defines(camera, params))
+        set_lesson_defines(
+            [
+                &mut self.restore_depth,
+                &mut self.down_sampling,
+                &mut self.blur,
+                &mut self.sao,
+            ],
+            camera,
+            params,
+        )
     }
 }
 
@@ -284,11 +303,16 @@ impl SaoLesson {
         camera: &Camera,
         params: &SaoParams,
     ) -> Result<(), ProgramError> {
-        let planes = camera_defines(camera);
-        self.prog_restore_depth.set_defines(&planes)?;
-        self.prog_down_sampling.set_defines(&planes)?;
-        self.prog_blur.set_defines(&planes)?;
-        self.prog_sao.set_defines(&sao_defines(camera, params))
+        set_lesson_defines(
+            [
+                &mut self.prog_restore_depth,
+                &mut self.prog_down_sampling,
+                &mut self.prog_blur,
+                &mut self.prog_sao,
+            ],
+            camera,
+            params,
+        )
     }
 
     /// Common state of every full-screen AO pass: no cull, no depth test, no blend.
