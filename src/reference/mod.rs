@@ -219,46 +219,52 @@ pub fn render_reference(
     height: u32,
     params: &RefParams,
 ) -> RefImage {
+    let Some(frame) = cam.frame() else {
+        // A camera with no usable frame: nothing to trace (all sky).
+        return shade_image(width, height, "reference AO", false, |_, _| None);
+    };
+    shade_image(width, height, "reference AO", params.progress, |x, y| {
+        Some(shade_pixel(
+            scene, &frame, cam, x as u32, y as u32, width, height, params,
+        ))
+    })
+}
+
+/// Runs `shade` over every pixel in parallel (rows on rayon, a progress bar labelled `what`):
+/// `Some((ao, std_error, linear depth))`, or `None` for sky (ao 1, error 0, depth ∞).
+pub(crate) fn shade_image(
+    width: u32,
+    height: u32,
+    what: &str,
+    progress: bool,
+    shade: impl Fn(usize, usize) -> Option<(f32, f32, f32)> + Sync,
+) -> RefImage {
     let n = width as usize * height as usize;
     let mut ao = vec![1.0f32; n];
     let mut std_error = vec![0.0f32; n];
     let mut linear_depth = vec![f32::INFINITY; n];
-    let frame = match cam.frame() {
-        Some(frame) if n > 0 => frame,
-        // Empty image, or a camera with no usable frame: nothing to trace (all sky).
-        _ => {
-            return RefImage {
-                width,
-                height,
-                ao,
-                std_error,
-                linear_depth,
-            }
-        }
-    };
-
-    let bar = params.progress.then(|| rows_bar("reference AO", height));
-
     let w = width as usize;
-    ao.par_chunks_mut(w)
-        .zip(std_error.par_chunks_mut(w))
-        .zip(linear_depth.par_chunks_mut(w))
-        .enumerate()
-        .for_each(|(y, ((ao_row, se_row), depth_row))| {
-            for x in 0..w {
-                let (a, e, d) = shade_pixel(
-                    scene, &frame, cam, x as u32, y as u32, width, height, params,
-                );
-                ao_row[x] = a;
-                se_row[x] = e;
-                depth_row[x] = d;
-            }
-            if let Some(bar) = &bar {
-                bar.inc(1);
-            }
-        });
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
+    if n > 0 {
+        let bar = progress.then(|| rows_bar(what, height));
+        ao.par_chunks_mut(w)
+            .zip(std_error.par_chunks_mut(w))
+            .zip(linear_depth.par_chunks_mut(w))
+            .enumerate()
+            .for_each(|(y, ((ao_row, se_row), depth_row))| {
+                for x in 0..w {
+                    if let Some((a, e, d)) = shade(x, y) {
+                        ao_row[x] = a;
+                        se_row[x] = e;
+                        depth_row[x] = d;
+                    }
+                }
+                if let Some(bar) = &bar {
+                    bar.inc(1);
+                }
+            });
+        if let Some(bar) = bar {
+            bar.finish_and_clear();
+        }
     }
     RefImage {
         width,

@@ -34,7 +34,6 @@ use std::path::Path;
 
 use anyhow::{bail, Result};
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::{cache, sampling, scene::Fnv64, AoVariant, RefCamera, RefImage, RefParams};
 
@@ -427,51 +426,14 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
     if params.variant != AoVariant::Visibility {
         bail!("the screen-space reference computes visibility only, not obscurance");
     }
-    let (width, height) = (depth.width, depth.height);
-    let n = width as usize * height as usize;
-    let mut ao = vec![1.0f32; n];
-    let mut std_error = vec![0.0f32; n];
-    let mut linear_depth = vec![f32::INFINITY; n];
-    if n == 0 {
-        return Ok(RefImage {
-            width,
-            height,
-            ao,
-            std_error,
-            linear_depth,
-        });
-    }
     let field = Heightfield::new(depth);
-    let bar = params
-        .progress
-        .then(|| super::rows_bar("screen-space reference", height));
-    let w = width as usize;
-    ao.par_chunks_mut(w)
-        .zip(std_error.par_chunks_mut(w))
-        .zip(linear_depth.par_chunks_mut(w))
-        .enumerate()
-        .for_each(|(y, ((ao_row, se_row), depth_row))| {
-            for x in 0..w {
-                if let Some((a, e, d)) = shade_pixel(&field, x, y, params) {
-                    ao_row[x] = a;
-                    se_row[x] = e;
-                    depth_row[x] = d;
-                }
-            }
-            if let Some(bar) = &bar {
-                bar.inc(1);
-            }
-        });
-    if let Some(bar) = bar {
-        bar.finish_and_clear();
-    }
-    Ok(RefImage {
-        width,
-        height,
-        ao,
-        std_error,
-        linear_depth,
-    })
+    Ok(super::shade_image(
+        depth.width,
+        depth.height,
+        "screen-space reference",
+        params.progress,
+        |x, y| shade_pixel(&field, x, y, params),
+    ))
 }
 
 /// (ao, std_error, linear depth) of one pixel; `None` for sky.
