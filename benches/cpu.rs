@@ -8,12 +8,12 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
-use opengl3d::bench::metrics::{self, Gray};
-use opengl3d::reference::{
-    render_reference, render_screen_space, AoVariant, DepthBuffer, RefCamera, RefParams, Scene,
-};
 use opengl3d::res::ResDirs;
 use opengl3d::scene::SceneDesc;
+use opengl3d::tools::bench::metrics::{self, Gray};
+use opengl3d::tools::reference::{
+    render_reference, render_screen_space, AoVariant, DepthBuffer, RefCamera, RefParams, Scene,
+};
 
 fn main() {
     divan::main();
@@ -66,7 +66,7 @@ fn bvh_build_demo(bencher: divan::Bencher) {
 }
 
 #[divan::bench(sample_count = 10)]
-fn ray_traced_reference_64x36_16_rays() -> opengl3d::reference::RefImage {
+fn ray_traced_reference_64x36_16_rays() -> opengl3d::tools::reference::RefImage {
     let (w, h) = SMALL;
     render_reference(demo_bvh(), &demo().1, w, h, &small_params())
 }

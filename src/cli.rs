@@ -1,10 +1,13 @@
 //! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
 
-use crate::context::{self, HeadlessContext};
-use crate::engine::{Engine, View};
+use crate::ao::{AoMethod, CompositeMode, GtaoQuality};
+use crate::math::DepthMode;
+use crate::platform::{self, HeadlessContext};
+use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
 use anyhow::{bail, Context as _, Result};
+use clap::builder::TypedValueParser as _;
 use clap::{Args, Parser, Subcommand, ValueEnum};
 use glam::Vec3;
 use std::path::{Path, PathBuf};
@@ -36,12 +39,12 @@ pub enum Command {
     /// World-space ray-traced ambient occlusion of the scene on the CPU (the ground truth).
     Reference(ReferenceArgs),
     /// Grade a student's shaders (--res DIR) against the lesson's steps; exits non-zero on a failed step.
-    Grade(crate::grade::GradeArgs),
+    Grade(crate::tools::grade::GradeArgs),
     /// (Internal) grade one step in a child process of `grade`; prints one JSON line.
     #[command(hide = true)]
-    GradeStep(crate::grade::GradeStepArgs),
+    GradeStep(crate::tools::grade::GradeStepArgs),
     /// Run time against error of the AO methods, or `--stress` for numerical stability.
-    Bench(crate::bench::BenchArgs),
+    Bench(crate::tools::bench::BenchArgs),
     /// Regenerate the demo meshes in Res/meshes.
     GenDemo,
 }
@@ -117,26 +120,26 @@ pub struct SceneArgs {
     #[arg(long)]
     pub height: Option<u32>,
     /// Main depth buffer: d32 (the course's) or d32f-reversed (reversed-Z: far surfaces keep precision).
-    #[arg(long, value_enum)]
-    pub depth: Option<crate::engine::DepthMode>,
+    #[arg(long, value_parser = choice(&DepthMode::ALL, DepthMode::name))]
+    pub depth: Option<DepthMode>,
     /// Ambient occlusion on or off.
     #[arg(long, value_enum)]
     pub ao: Option<OnOff>,
     /// AO method.
-    #[arg(long, value_enum)]
-    pub method: Option<crate::ao::AoMethod>,
+    #[arg(long, value_parser = choice(&AoMethod::ALL, AoMethod::name))]
+    pub method: Option<AoMethod>,
     /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
     #[arg(long, conflicts_with = "quality")]
     pub samples: Option<u32>,
     /// GTAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
-    #[arg(long, value_enum)]
-    pub quality: Option<crate::ao::GtaoQuality>,
+    #[arg(long, value_parser = choice(&GtaoQuality::ALL, GtaoQuality::name))]
+    pub quality: Option<GtaoQuality>,
     /// AO radius in metres.
     #[arg(long)]
     pub radius: Option<f32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
-    #[arg(long, value_enum)]
-    pub composite: Option<crate::ao::CompositeMode>,
+    #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
+    pub composite: Option<CompositeMode>,
     /// Tint colour for `--composite tinted`, "r,g,b" in 0..1.
     #[arg(long, value_parser = parse_vec3)]
     pub tint: Option<Vec3>,
@@ -150,7 +153,7 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 = open).
-    #[arg(long, value_enum, default_value_t = View::Composite)]
+    #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
     pub view: View,
     /// Output file: .png (8-bit) or .pfm (raw floats).
     #[arg(long, default_value = "out/frame.png")]
@@ -164,7 +167,7 @@ pub struct RenderArgs {
 pub struct WindowArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    #[arg(long, value_enum, default_value_t = View::Composite)]
+    #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
     pub view: View,
     /// Close after this many frames (for scripted runs and tests).
     #[arg(long)]
@@ -181,6 +184,20 @@ pub struct WindowArgs {
     /// Start with per-pass timing on (the panel's "time each pass"). Also: OPENGL3D_TIME_PASSES=1.
     #[arg(long)]
     pub time_passes: bool,
+}
+
+/// A parser for one of `all`, by the names `name` gives (the domain types know their names; only
+/// the command line knows clap).
+pub fn choice<T: Copy + Send + Sync + 'static>(
+    all: &'static [T],
+    name: fn(T) -> &'static str,
+) -> impl clap::builder::TypedValueParser<Value = T> {
+    let names: Vec<&'static str> = all.iter().map(|v| name(*v)).collect();
+    clap::builder::PossibleValuesParser::new(names).map(move |s: String| {
+        *all.iter()
+            .find(|v| name(**v) == s)
+            .expect("clap accepted only listed names")
+    })
 }
 
 fn parse_vec3(s: &str) -> Result<Vec3, String> {
@@ -213,7 +230,7 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
             let dist = r / (d.camera.fov_y.to_radians() * 0.5).sin() * 1.1;
             d.camera.target = c.to_array();
             d.camera.eye = (c + Vec3::new(0.55, 0.45, 1.0).normalize() * dist).to_array();
-            d.camera.near = (dist - r).max(0.01).min(crate::config::NEAR);
+            d.camera.near = (dist - r).max(0.01).min(crate::math::camera::NEAR);
         }
         d
     } else {
@@ -300,23 +317,23 @@ pub fn run() -> Result<()> {
         Some(Command::Window(args)) => {
             let scene = load_scene(&args.scene, &res)?;
             let mut options =
-                context::window::WindowOptions::from_env(args.view, args.frames, args.screenshot);
+                platform::window::WindowOptions::from_env(args.view, args.frames, args.screenshot);
             options.screenshot_with_ui |= args.screenshot_ui;
             options.panel_visible &= !args.no_panel;
             options.time_passes |= args.time_passes;
-            context::window::run_with(res, scene, options)
+            platform::window::run_with(res, scene, options)
         }
         Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
         Some(Command::Reference(args)) => reference(&res, &args),
         Some(Command::Grade(args)) => {
-            let code = crate::grade::run(&res, cli.res.as_deref(), &args)?;
+            let code = crate::tools::grade::run(&res, cli.res.as_deref(), &args)?;
             if code != 0 {
                 std::process::exit(code);
             }
             Ok(())
         }
-        Some(Command::Bench(args)) => crate::bench::run(&res, &args),
-        Some(Command::GradeStep(args)) => crate::grade::run_step(cli.res.as_deref(), &args),
+        Some(Command::Bench(args)) => crate::tools::bench::run(&res, &args),
+        Some(Command::GradeStep(args)) => crate::tools::grade::run_step(cli.res.as_deref(), &args),
         Some(Command::GenDemo) => {
             let dir = crate::res::project_res_dir().join("meshes");
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {
@@ -325,9 +342,9 @@ pub fn run() -> Result<()> {
             Ok(())
         }
         None => {
-            if context::display_available() {
+            if platform::display_available() {
                 let scene = load_scene(&SceneArgs::default(), &res)?;
-                match context::window::run(res.clone(), scene, View::Composite, None, None) {
+                match platform::window::run(res.clone(), scene, View::Composite, None, None) {
                     Ok(()) => return Ok(()),
                     Err(e) => {
                         eprintln!("could not open a window ({e:#}); rendering headless instead")
@@ -442,7 +459,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .dir
             .as_ref()
             .context("usage: opengl3d lesson start DIR")?;
-        let files = crate::lesson::start(dir)?;
+        let files = crate::tools::lesson::start(dir)?;
         println!("wrote {} files to {}", files.len(), dir.display());
         println!("the four lesson shaders are stubs: follow lessons/README.md, then run");
         println!("  opengl3d lesson 2 --res {}", dir.display());
@@ -452,12 +469,12 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
         anyhow::anyhow!(
             "'{}' is not a step: use 1-{} or start",
             args.step,
-            crate::lesson::STEPS
+            crate::tools::lesson::STEPS
         )
     })?;
-    let view = crate::lesson::view_for_step(n)?;
+    let view = crate::tools::lesson::view_for_step(n)?;
     if let Some(dir) = student {
-        for f in crate::lesson::shaders_for_step(n) {
+        for f in crate::tools::lesson::shaders_for_step(n) {
             if !dir.join(f).is_file() {
                 eprintln!(
                     "note: {} has no {f}; using the project's own",
@@ -468,7 +485,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     }
     println!("lesson step {n}: showing {}", view.label());
     let scene = load_scene(&args.scene, res)?;
-    if args.headless || !context::display_available() {
+    if args.headless || !platform::display_available() {
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::new(
             &ctx.gl,
@@ -482,12 +499,12 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
         println!("wrote {}", args.out.display());
         Ok(())
     } else {
-        context::window::run(res.clone(), scene, view, None, None)
+        platform::window::run(res.clone(), scene, view, None, None)
     }
 }
 
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
-    use crate::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
+    use crate::tools::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
     let scene = load_scene(&args.scene, res)?;
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
@@ -520,8 +537,8 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     let img = if args.screen_space {
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, w, h)?;
-        let depth = crate::reference::DepthBuffer::from_engine(&mut engine)?;
-        crate::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+        let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
+        crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?
     };

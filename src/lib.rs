@@ -1,20 +1,21 @@
 //! opengl3d: a Rust port of an OpenGL 4.5 course engine and its screen-space ambient occlusion
 //! lessons (McGuire's Scalable Ambient Obscurance), running in a window or headless on Mesa.
 //!
-//! Layout: `gl` (GL object owners) · `engine` (Engine, camera, game objects) · `ao` (AO methods and
-//! their passes) · `scene` (scene files, demo meshes) · `context` (window, headless) · `io` (images)
-//! · `reference` (ray-traced ground truth) · `cli` (the command line).
+//! Layers, each using only those before it: `res`, `io` (files) → `gl` (GL object owners, shader
+//! preprocessor, pass state) → `math` (camera, depth conventions, frusta) → `shader_interface`
+//! (uniform locations and bindings) → `ao` (settings, targets, depth chain, blurs, composite, one
+//! module per method) → `scene` (scene files, demo shapes, game objects) → `render` (the Engine and
+//! its passes) → `platform` (headless EGL, the window) → `tools` (reference, bench, grader,
+//! lessons) → `cli`.
 
 pub mod ao;
-pub mod bench;
 pub mod cli;
-pub mod config;
-pub mod context;
-pub mod engine;
 pub mod gl;
-pub mod grade;
 pub mod io;
-pub mod lesson;
-pub mod reference;
+pub mod math;
+pub mod platform;
+pub mod render;
 pub mod res;
 pub mod scene;
+pub mod shader_interface;
+pub mod tools;

@@ -1,8 +1,22 @@
 //! Finding files in `Res/`: a list of folders searched in order (a student's folder first, then the
 //! project's own `Res/`), so a student folder may hold only the shaders they changed.
 
-use crate::gl::ProgramError;
 use std::path::{Path, PathBuf};
+use std::time::SystemTime;
+
+/// A file that none of the searched folders holds.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("'{name}' not found in {searched}")]
+pub struct NotFound {
+    pub name: String,
+    pub searched: String,
+}
+
+/// When the file was last written (`None` when it cannot be read): the window's and the programs'
+/// hot reload compare these.
+pub fn modified_time(path: &Path) -> Option<SystemTime> {
+    std::fs::metadata(path).and_then(|m| m.modified()).ok()
+}
 
 #[derive(Clone, Debug)]
 pub struct ResDirs {
@@ -53,15 +67,29 @@ impl ResDirs {
         &self.dirs
     }
     /// The first folder holding `name`.
-    pub fn find(&self, name: &str) -> Result<PathBuf, ProgramError> {
+    pub fn find(&self, name: &str) -> Result<PathBuf, NotFound> {
+        self.find_path(Path::new(name))
+    }
+    /// Resolves a data path: an absolute path as given, a relative one in the `Res/` folders. The
+    /// working directory is never searched: a file there must not silently replace a scene's mesh
+    /// (scene files resolve their meshes relative to themselves when they are loaded).
+    pub fn resolve_data(&self, name: &Path) -> Result<PathBuf, NotFound> {
+        if name.is_absolute() {
+            return Ok(name.to_path_buf());
+        }
+        self.find_path(name)
+    }
+
+    /// `find` for a relative path that need not be UTF-8.
+    pub fn find_path(&self, name: &Path) -> Result<PathBuf, NotFound> {
         for d in &self.dirs {
             let p = d.join(name);
             if p.is_file() {
                 return Ok(p);
             }
         }
-        Err(ProgramError::NotFound {
-            name: name.to_string(),
+        Err(NotFound {
+            name: name.display().to_string(),
             searched: self
                 .dirs
                 .iter()
@@ -69,13 +97,5 @@ impl ResDirs {
                 .collect::<Vec<_>>()
                 .join(", "),
         })
-    }
-    /// Resolves a data path: absolute or existing relative to the working directory as given, else in `Res/`.
-    pub fn resolve_data(&self, name: &str) -> PathBuf {
-        let p = Path::new(name);
-        if p.is_absolute() || p.exists() {
-            return p.to_path_buf();
-        }
-        self.find(name).unwrap_or_else(|_| p.to_path_buf())
     }
 }

@@ -2,9 +2,9 @@
 //! produce complete, finite reports. Speed is never asserted.
 
 use opengl3d::ao::AoMethod;
-use opengl3d::bench::metrics::{self, Fit, Gray};
-use opengl3d::bench::{perf, stress};
 use opengl3d::res::ResDirs;
+use opengl3d::tools::bench::metrics::{self, Fit, Gray};
+use opengl3d::tools::bench::{perf, stress};
 use std::path::{Path, PathBuf};
 
 fn temp_dir(name: &str) -> PathBuf {
@@ -211,12 +211,12 @@ fn tiny_bench_writes_a_complete_finite_report() {
 
 #[test]
 fn unknown_method_names_are_rejected_with_the_list() {
-    let e = opengl3d::bench::catalog::method_by_name("ssao-deluxe")
+    let e = opengl3d::tools::bench::catalog::method_by_name("ssao-deluxe")
         .unwrap_err()
         .to_string();
     assert!(e.contains("sao-lesson") && e.contains("gtao"), "{e}");
     assert_eq!(
-        opengl3d::bench::catalog::method_by_name("hbao").unwrap(),
+        opengl3d::tools::bench::catalog::method_by_name("hbao").unwrap(),
         AoMethod::Hbao
     );
 }

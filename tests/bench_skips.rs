@@ -1,8 +1,8 @@
 //! `bench --skips`: each case must really run the skipped passes in one configuration and not in
 //! the other (checked by pass names and draw calls, never by timings).
 
-use opengl3d::bench::skips::{run, SkipsConfig};
 use opengl3d::res::ResDirs;
+use opengl3d::tools::bench::skips::{run, SkipsConfig};
 
 #[test]
 fn each_skip_drops_its_passes_and_the_report_is_written() {

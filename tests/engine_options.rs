@@ -4,7 +4,7 @@
 mod common;
 
 use glam::Vec3;
-use opengl3d::engine::View;
+use opengl3d::render::View;
 
 /// Mean luminance (0–255) of a small window around GL pixel (x, y from the bottom) of a top-down image.
 fn lum_around(img: &image::RgbaImage, x: usize, y: usize, r: usize) -> f32 {
@@ -49,8 +49,8 @@ fn ao_off_allocates_no_ao_texture_until_ao_is_turned_on() {
         opengl3d::ao::AoMethod::SaoLesson,
         opengl3d::ao::AoMethod::Sao,
     ] {
-        eng.ao_params.enabled = true;
-        eng.ao_params.method = method;
+        eng.ao_settings.enabled = true;
+        eng.ao_settings.method = method;
         eng.sync_shader_constants().unwrap();
         let img_on = eng.render_image().unwrap();
         let textures = eng.ao_textures();
@@ -81,10 +81,10 @@ fn ao_off_allocates_no_ao_texture_until_ao_is_turned_on() {
     assert!(sao_bytes > 0);
 
     // A resize while AO is off drops them; a resize while on re-creates them at the new size.
-    eng.ao_params.enabled = false;
+    eng.ao_settings.enabled = false;
     eng.resize(200, 100).unwrap();
     assert!(eng.ao_textures().is_empty(), "{:?}", eng.ao_textures());
-    eng.ao_params.enabled = true;
+    eng.ao_settings.enabled = true;
     eng.render_image().unwrap();
     eng.resize(256, 128).unwrap();
     let depth = eng
@@ -95,7 +95,7 @@ fn ao_off_allocates_no_ao_texture_until_ao_is_turned_on() {
     assert_eq!((depth.width, depth.height), (128, 64));
 
     // The debug views need the chain even with AO off.
-    eng.ao_params.enabled = false;
+    eng.ao_settings.enabled = false;
     eng.resize(320, 240).unwrap();
     assert!(eng.ao_textures().is_empty());
     let v = eng.render_values(View::LinearDepth).unwrap();
@@ -132,7 +132,7 @@ fn facing_wall_scene(dir: &std::path::Path, d: f32, w: u32, h: u32) -> opengl3d:
 
 #[test]
 fn reversed_z_restores_far_distances_far_more_precisely_than_d32() {
-    use opengl3d::engine::DepthMode;
+    use opengl3d::math::DepthMode;
     let ctx = common::context();
     let dir = common::temp_dir("reversed-z");
     let mut worst = [0.0f64; 2];
@@ -184,7 +184,7 @@ fn reversed_z_restores_far_distances_far_more_precisely_than_d32() {
 
 #[test]
 fn reversed_z_composite_matches_the_standard_picture() {
-    use opengl3d::engine::DepthMode;
+    use opengl3d::math::DepthMode;
     let ctx = common::context();
     let res = opengl3d::res::ResDirs::default();
     let scene_path = res.find("scenes/demo.toml").unwrap();
@@ -241,9 +241,11 @@ fn levels_for_radius(radius_px: f64) -> u32 {
 
 #[test]
 fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level() {
-    use opengl3d::ao::{sao_lesson, AoMethod, AoMethods, SaoLesson, SaoParams, SaoPrograms};
-    use opengl3d::engine::Camera;
+    use opengl3d::ao::method::sao::SaoMethod;
+    use opengl3d::ao::method_pass::{AoInputs, AoMethodPass};
+    use opengl3d::ao::{AoMethod, AoSettings, AoTargets};
     use opengl3d::gl::MeshBuffer;
+    use opengl3d::math::Camera;
     use opengl3d::res::ResDirs;
     let ctx = common::context();
     let (w, h) = (1280u32, 720u32);
@@ -265,11 +267,11 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     let mut eng = common::engine(&ctx, &scene);
     let auto = eng.render_values(View::AoRaw).unwrap();
     common::assert_finite("sao, automatic levels", &auto);
-    assert_eq!(eng.ao.tex_depth.levels(), want);
+    assert_eq!(eng.ao_targets().unwrap().tex_depth.levels(), want);
     eng.depth_levels_override = Some(4);
     let four = eng.render_values(View::AoRaw).unwrap();
     common::assert_finite("sao, 4 levels", &four);
-    assert_eq!(eng.ao.tex_depth.levels(), 4);
+    assert_eq!(eng.ao_targets().unwrap().tex_depth.levels(), 4);
     let changed = auto
         .iter()
         .zip(&four)
@@ -284,11 +286,11 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
         "the close-up must read level 4 somewhere (no pixel changed with 4 levels)"
     );
     eng.depth_levels_override = None;
-    eng.ao_params.method = AoMethod::SaoLesson;
+    eng.ao_settings.method = AoMethod::SaoLesson;
     eng.sync_shader_constants().unwrap();
     common::assert_finite("sao-lesson", &eng.render_values(View::Ao).unwrap());
     assert_eq!(
-        eng.ao.tex_depth.levels(),
+        eng.ao_targets().unwrap().tex_depth.levels(),
         4,
         "the lesson keeps its 4 levels"
     );
@@ -296,7 +298,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     // The shader really reads the top level: levels 0–3 hold a wall facing the camera at 3 m (no
     // occlusion), level 4 claims it 0.5 m closer. Only samples farther than 2^(4+3) = 128 px read it.
     let cam = Camera::default();
-    let params = SaoParams {
+    let params = AoSettings {
         method: AoMethod::Sao,
         radius: 2.0,
         intensity: 1000.0,
@@ -305,22 +307,27 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     };
     let res = ResDirs::default();
     let meshes = MeshBuffer::new(&ctx.gl).unwrap();
-    let mut methods = AoMethods::new(&ctx.gl, &res, &cam).unwrap();
-    methods.prepare(AoMethod::Sao).unwrap();
+    let sao = SaoMethod::build(&ctx.gl, &res, &cam).unwrap();
     let mean_occlusion = |levels: u32, top: f32| {
-        let programs = SaoPrograms::new(&ctx.gl, &res, &cam, &params).unwrap();
-        let targets = sao_lesson::create_targets(&ctx.gl, w, h, levels).unwrap();
-        let ao = SaoLesson::from_parts(&ctx.gl, programs, targets);
-        assert_eq!(ao.tex_depth.levels(), levels);
+        let targets = AoTargets::new(&ctx.gl, w, h, levels).unwrap();
+        assert_eq!(targets.tex_depth.levels(), levels);
         for l in 0..levels {
-            let (lw, lh) = ao.tex_depth.size_at(l);
+            let (lw, lh) = targets.tex_depth.size_at(l);
             let v = if l == 4 { top } else { 3.0 };
-            ao.tex_depth
+            targets
+                .tex_depth
                 .upload_f32(l, 1, &vec![v; (lw * lh) as usize])
                 .unwrap();
         }
-        methods.compute(AoMethod::Sao, &ao, &meshes, &cam, &params);
-        let occ = ao.sao_texture().read_f32(0, 1);
+        let inputs = AoInputs {
+            gl: &ctx.gl,
+            meshes: &meshes,
+            targets: &targets,
+            camera: &cam,
+            settings: &params,
+        };
+        sao.compute(&inputs).unwrap();
+        let occ = targets.sao_texture().read_f32(0, 1);
         common::assert_finite("sao on synthetic levels", &occ);
         occ.iter().sum::<f32>() / occ.len() as f32
     };
@@ -366,7 +373,7 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
     let mut eng = common::engine(&ctx, &scene);
     assert_eq!(eng.render_values(View::AoRaw).unwrap(), raw[1]);
     // And an explicit count is not overridden by anything: 8 samples = 2 slices × 2 steps ≠ medium.
-    eng.ao_params.samples = 8;
+    eng.ao_settings.samples = 8;
     assert_ne!(eng.render_values(View::AoRaw).unwrap(), raw[1]);
 
     // More slices and steps: less per-pixel noise. Noise = mean |difference| between horizontal
@@ -412,11 +419,22 @@ fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
     eng.render_image().unwrap();
     let names: Vec<String> = eng.ao_textures().into_iter().map(|t| t.name).collect();
     assert!(names.iter().any(|n| n == "FBO(sao packed)"), "{names:?}");
-    let packed = eng.ao.result_texture(true).read_f32(0, 1);
+    let packed = eng
+        .ao_targets()
+        .unwrap()
+        .result_texture(true)
+        .read_f32(0, 1);
     common::assert_finite("packed blur", &packed);
     // The same raw occlusion through the plain blur (occlusion and depth from two textures).
-    eng.methods.blur(&eng.ao, &eng.meshes);
-    let plain = eng.ao.result_texture(true).read_f32(0, 1);
+    eng.ao
+        .separable_blur
+        .run(eng.gl(), eng.ao_targets().unwrap(), &eng.meshes)
+        .unwrap();
+    let plain = eng
+        .ao_targets()
+        .unwrap()
+        .result_texture(true)
+        .read_f32(0, 1);
     let occluded = plain.iter().filter(|v| **v > 0.05).count();
     assert!(
         occluded > 100,

@@ -3,7 +3,8 @@
 mod common;
 
 use glow::HasContext;
-use opengl3d::gl::program::{decode_shader_bytes, ProgramError};
+use opengl3d::gl::preprocess::{decode_shader_bytes, TextEncoding};
+use opengl3d::gl::ProgramError;
 use opengl3d::gl::ProgramObject;
 use opengl3d::res::{project_res_dir, ResDirs};
 
@@ -131,8 +132,8 @@ fn shift_jis_shader_with_japanese_comments_is_decoded() {
     let res = ResDirs::with_override(Some(&dir));
     ProgramObject::from_res(&ctx.gl, &res, "simple.vert", "simple.frag", &[])
         .expect("Shift-JIS shader should build");
-    let (decoded, was_sjis) = decode_shader_bytes(&sjis).unwrap();
-    assert!(was_sjis && decoded.contains("テクスチャ"));
+    let (decoded, encoding) = decode_shader_bytes(&sjis).unwrap();
+    assert!(encoding == TextEncoding::ShiftJis && decoded.contains("テクスチャ"));
 }
 
 #[test]

@@ -4,7 +4,7 @@ mod common;
 
 use glam::Vec3;
 use opengl3d::ao::AoMethod;
-use opengl3d::engine::View;
+use opengl3d::render::View;
 
 #[test]
 fn every_method_is_finite_open_on_a_floor_and_dark_in_a_crease() {
@@ -55,7 +55,10 @@ fn every_method_is_finite_open_on_a_floor_and_dark_in_a_crease() {
         assert_eq!(img.dimensions(), (320, 240));
         common::assert_finite(
             &format!("{} blurred", method.name()),
-            &eng.ao.result_texture(true).read_f32(0, 1),
+            &eng.ao_targets()
+                .unwrap()
+                .result_texture(true)
+                .read_f32(0, 1),
         );
     }
     eprintln!("{}", report.join("\n"));

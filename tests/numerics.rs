@@ -3,8 +3,8 @@
 mod common;
 
 use glam::Vec3;
-use opengl3d::engine::{Engine, View};
 use opengl3d::gl::mesh::MeshData;
+use opengl3d::render::{Engine, View};
 use opengl3d::scene::{shapes, SceneDesc};
 
 /// Renders every view and checks every intermediate buffer.
@@ -15,7 +15,7 @@ fn check_all_buffers(label: &str, eng: &mut Engine) {
         &format!("{label}: main colour"),
         &eng.fbo_main.color_texture().unwrap().read_f32(0, 4),
     );
-    let t = &eng.ao.tex_depth;
+    let t = &eng.ao_targets().unwrap().tex_depth;
     for level in 0..t.levels() {
         let v = t.read_f32(level, 1);
         common::assert_finite(&format!("{label}: linear depth level {level}"), &v);
@@ -26,11 +26,14 @@ fn check_all_buffers(label: &str, eng: &mut Engine) {
     }
     common::assert_finite(
         &format!("{label}: SAO"),
-        &eng.ao.sao_texture().read_f32(0, 1),
+        &eng.ao_targets().unwrap().sao_texture().read_f32(0, 1),
     );
     common::assert_finite(
         &format!("{label}: blurred SAO"),
-        &eng.ao.result_texture(true).read_f32(0, 1),
+        &eng.ao_targets()
+            .unwrap()
+            .result_texture(true)
+            .read_f32(0, 1),
     );
     for view in [View::LinearDepth, View::AoRaw, View::Ao] {
         let v = eng.render_values(view).unwrap();

@@ -9,7 +9,7 @@
 use std::f64::consts::PI;
 
 use glam::Vec3;
-use opengl3d::reference::{
+use opengl3d::tools::reference::{
     cache_key, cache_path, load_or_render_cached, read_cached, render_reference, write_cached,
     AoVariant, RefCamera, RefImage, RefParams, Scene,
 };

@@ -7,13 +7,13 @@ mod common;
 
 use common::*;
 use glam::{Mat4, Vec3, Vec4};
-use opengl3d::engine::Engine;
-use opengl3d::reference::{
+use opengl3d::render::Engine;
+use opengl3d::res::ResDirs;
+use opengl3d::scene::{shapes, SceneDesc};
+use opengl3d::tools::reference::{
     load_or_render_cached, load_or_render_screen_cached, render_screen_space, screen_cache_key,
     AoVariant, DepthBuffer, RefCamera, RefImage, RefParams, Scene,
 };
-use opengl3d::res::ResDirs;
-use opengl3d::scene::{shapes, SceneDesc};
 use std::f64::consts::PI;
 
 fn params(radius: f32, rays: u32) -> RefParams {
@@ -108,7 +108,7 @@ fn crease_blocked(d: f64, r: f64) -> f64 {
 }
 
 fn crease_engine(
-    ctx: &opengl3d::context::HeadlessContext,
+    ctx: &opengl3d::platform::HeadlessContext,
     name: &str,
     w: u32,
     h: u32,

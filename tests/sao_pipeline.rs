@@ -3,17 +3,19 @@
 mod common;
 
 use glam::Vec3;
-use opengl3d::ao::{SaoLesson, SaoParams};
-use opengl3d::engine::{linear_depth_exact, Camera, View};
+use opengl3d::ao::{AoSettings, SaoLesson};
 use opengl3d::gl::{MeshBuffer, Texture, TextureDesc};
+use opengl3d::math::depth::linearize;
+use opengl3d::math::{Camera, DepthMode};
+use opengl3d::render::View;
 use opengl3d::res::ResDirs;
 
 fn lesson(
-    ctx: &opengl3d::context::HeadlessContext,
+    ctx: &opengl3d::platform::HeadlessContext,
     w: u32,
     h: u32,
     cam: &Camera,
-    p: &SaoParams,
+    p: &AoSettings,
 ) -> (SaoLesson, MeshBuffer) {
     let ao = SaoLesson::new(&ctx.gl, &ResDirs::default(), w, h, cam, p).expect("SAO passes");
     (ao, MeshBuffer::new(&ctx.gl).unwrap())
@@ -31,7 +33,7 @@ fn restored_linear_depth_matches_cpu_over_the_whole_range() {
     let ctx = common::context();
     let cam = Camera::default();
     let (w, h) = (128u32, 64u32);
-    let (ao, meshes) = lesson(&ctx, w, h, &cam, &SaoParams::default());
+    let (ao, meshes) = lesson(&ctx, w, h, &cam, &AoSettings::default());
     let (n, f) = (cam.near as f64, cam.far as f64);
     // Distances log-spaced from near to far, plus exact sky (1.0), one per texel.
     let count = (w * h) as usize;
@@ -51,7 +53,7 @@ fn restored_linear_depth_matches_cpu_over_the_whole_range() {
     // What the shader really reads: the values as stored (32-bit unorm).
     let stored = depth.read_f32(0, 1);
     ao.restore_depth(&meshes, &depth);
-    let got = ao.tex_depth.read_f32(0, 1);
+    let got = ao.targets.tex_depth.read_f32(0, 1);
     let (hw, hh) = (w as usize / 2, h as usize / 2);
     let mut worst_f64 = 0.0f64;
     for y in 0..hh {
@@ -63,7 +65,7 @@ fn restored_linear_depth_matches_cpu_over_the_whole_range() {
                 assert_eq!(g, f, "sky must restore to exactly far");
                 continue;
             }
-            let exact = linear_depth_exact(dmin as f64, n, f);
+            let exact = linearize(DepthMode::D32, dmin as f64, n, f);
             // An f32 evaluation of A / ((2D − 1) − B) loses up to a few ulps of B (≈ 1.0007) in the
             // subtraction, amplified by 1/|D' − B| near the far plane (the compiler may also
             // reassociate the constants, so the GPU need not match a CPU f32 evaluation bit for bit).
@@ -86,8 +88,8 @@ fn each_mip_level_is_the_min_of_its_2x2_parent_texels() {
     let ctx = common::context();
     let cam = Camera::default();
     // Odd sizes on purpose: 203×117 → 101×58 → 50×29 → 25×14.
-    let (ao, meshes) = lesson(&ctx, 203, 117, &cam, &SaoParams::default());
-    let (w0, h0) = ao.tex_depth.size_at(0);
+    let (ao, meshes) = lesson(&ctx, 203, 117, &cam, &AoSettings::default());
+    let (w0, h0) = ao.targets.tex_depth.size_at(0);
     let mut seed = 12345u32;
     let level0: Vec<f32> = (0..w0 * h0)
         .map(|_| {
@@ -95,15 +97,15 @@ fn each_mip_level_is_the_min_of_its_2x2_parent_texels() {
             0.35 + (seed >> 8) as f32 / (1u32 << 24) as f32 * 100.0
         })
         .collect();
-    ao.tex_depth.upload_f32(0, 1, &level0).unwrap();
+    ao.targets.tex_depth.upload_f32(0, 1, &level0).unwrap();
     ao.down_sample(&meshes);
-    assert_eq!(ao.tex_depth.levels(), 4);
-    let mut parent = ao.tex_depth.read_f32(0, 1);
+    assert_eq!(ao.targets.tex_depth.levels(), 4);
+    let mut parent = ao.targets.tex_depth.read_f32(0, 1);
     assert_eq!(parent, level0);
     for level in 1..4 {
-        let (pw, ph) = ao.tex_depth.size_at(level - 1);
-        let (w, h) = ao.tex_depth.size_at(level);
-        let got = ao.tex_depth.read_f32(level, 1);
+        let (pw, ph) = ao.targets.tex_depth.size_at(level - 1);
+        let (w, h) = ao.targets.tex_depth.size_at(level);
+        let got = ao.targets.tex_depth.read_f32(level, 1);
         for y in 0..h as usize {
             for x in 0..w as usize {
                 let at = |dx: usize, dy: usize| {
@@ -128,7 +130,7 @@ fn sao_really_reads_mip_levels_1_to_3() {
     // surface 1 m closer. Only a shader that really samples the coarse levels sees occlusion.
     let ctx = common::context();
     let cam = Camera::default();
-    let params = SaoParams {
+    let params = AoSettings {
         radius: 2.0,
         intensity: 1000.0,
         blur: false,
@@ -136,8 +138,9 @@ fn sao_really_reads_mip_levels_1_to_3() {
     };
     let (ao, meshes) = lesson(&ctx, 512, 256, &cam, &params);
     let fill = |level: u32, v: f32| {
-        let (w, h) = ao.tex_depth.size_at(level);
-        ao.tex_depth
+        let (w, h) = ao.targets.tex_depth.size_at(level);
+        ao.targets
+            .tex_depth
             .upload_f32(level, 1, &vec![v; (w * h) as usize])
             .unwrap();
     };
@@ -178,10 +181,10 @@ fn sao_is_zero_on_open_floor_and_clearly_positive_in_a_crease() {
         240,
     );
     let mut eng = common::engine(&ctx, &scene);
-    eng.ao_params.blur = false;
-    eng.render_to_ao();
-    let occ = eng.ao.sao_texture().read_f32(0, 1);
-    let (w, h) = eng.ao.sao_texture().size_at(0);
+    eng.ao_settings.blur = false;
+    eng.render_to_ao().unwrap();
+    let occ = eng.ao_targets().unwrap().sao_texture().read_f32(0, 1);
+    let (w, h) = eng.ao_targets().unwrap().sao_texture().size_at(0);
     let (w, h) = (w as usize, h as usize);
     let (cx, cy) = common::project(&eng, Vec3::new(0.05, 0.05, 0.0), w as u32, h as u32);
     let (fx, fy) = common::project(&eng, Vec3::new(3.0, 0.0, -1.0), w as u32, h as u32);
@@ -195,8 +198,8 @@ fn sao_is_zero_on_open_floor_and_clearly_positive_in_a_crease() {
 fn blur_keeps_a_depth_edge_sharp_and_smooths_within_a_surface() {
     let ctx = common::context();
     let cam = Camera::default();
-    let (ao, meshes) = lesson(&ctx, 128, 64, &cam, &SaoParams::default());
-    let (w, h) = ao.tex_depth.size_at(0);
+    let (ao, meshes) = lesson(&ctx, 128, 64, &cam, &AoSettings::default());
+    let (w, h) = ao.targets.tex_depth.size_at(0);
     let (w, h) = (w as usize, h as usize);
     // Left half near (2 m) and fully occluded, right half far (10 m) and open.
     let depth: Vec<f32> = (0..w * h)
@@ -205,7 +208,7 @@ fn blur_keeps_a_depth_edge_sharp_and_smooths_within_a_surface() {
     let occ: Vec<f32> = (0..w * h)
         .map(|i| if i % w < w / 2 { 1.0 } else { 0.0 })
         .collect();
-    ao.tex_depth.upload_f32(0, 1, &depth).unwrap();
+    ao.targets.tex_depth.upload_f32(0, 1, &depth).unwrap();
     ao.sao_texture().upload_f32(0, 1, &occ).unwrap();
     ao.blur(&meshes);
     let out = ao.result_texture(true).read_f32(0, 1);
@@ -226,7 +229,10 @@ fn blur_keeps_a_depth_edge_sharp_and_smooths_within_a_surface() {
         }
     }
     // Control: the same occlusion step on one flat surface is smoothed across.
-    ao.tex_depth.upload_f32(0, 1, &vec![5.0; w * h]).unwrap();
+    ao.targets
+        .tex_depth
+        .upload_f32(0, 1, &vec![5.0; w * h])
+        .unwrap();
     ao.blur(&meshes);
     let out = ao.result_texture(true).read_f32(0, 1);
     let v = out[(h / 2) * w + w / 2];

@@ -1,7 +1,17 @@
-//! Ambient-occlusion methods, each with its own passes and shaders.
+//! Ambient occlusion: settings, the shared half-size targets and depth chain, the blurs and the
+//! composite, and one module per method under `method/` (its shader beside it in `Res/ao/`).
 
-pub mod methods;
-pub mod sao_lesson;
+pub mod blur;
+pub mod composite;
+pub mod depth_chain;
+pub mod lesson;
+pub mod method;
+pub mod method_pass;
+pub mod pipeline;
+pub mod settings;
+pub mod targets;
 
-pub use methods::{AoMethod, AoMethods, GtaoQuality};
-pub use sao_lesson::{CompositeMode, SaoLesson, SaoParams, SaoPrograms};
+pub use lesson::SaoLesson;
+pub use pipeline::AoPipeline;
+pub use settings::{AoMethod, AoSettings, CompositeMode, GtaoQuality};
+pub use targets::AoTargets;

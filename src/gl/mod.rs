@@ -1,14 +1,23 @@
 //! Thin owners of OpenGL objects, mirroring the course's classes (Texture, FramebufferObject,
-//! ProgramObject, MeshBuffer). Each type deletes its GL object when dropped.
+//! ProgramObject, MeshBuffer), each deleting its GL object when dropped; the shader preprocessor;
+//! the render state every pass states (`PassState`).
 
+pub mod clip_control;
 pub mod framebuffer;
 pub mod mesh;
+pub mod pass_state;
+pub mod preprocess;
 pub mod program;
+pub mod readback;
+pub mod shader_error;
 pub mod texture;
 
 pub use framebuffer::FramebufferObject;
 pub use mesh::{MeshBuffer, StaticMesh, Vertex};
-pub use program::{ProgramError, ProgramObject, ShaderSource};
+pub use pass_state::PassState;
+pub use preprocess::ShaderSource;
+pub use program::ProgramObject;
+pub use shader_error::ProgramError;
 pub use texture::{Texture, TextureDesc};
 
 use std::rc::Rc;
@@ -35,4 +44,25 @@ pub fn take_error(gl: &glow::Context) -> Option<&'static str> {
         });
     }
     first
+}
+
+/// An error naming `what` when GL recorded one since the last check.
+pub fn check_error(gl: &glow::Context, what: &str) -> anyhow::Result<()> {
+    match take_error(gl) {
+        Some(e) => anyhow::bail!("{e} while {what}"),
+        None => Ok(()),
+    }
+}
+
+/// "vendor / renderer / version" of the current context.
+pub fn describe_renderer(gl: &glow::Context) -> String {
+    use glow::HasContext;
+    unsafe {
+        format!(
+            "{} {} (OpenGL {})",
+            gl.get_parameter_string(glow::VENDOR),
+            gl.get_parameter_string(glow::RENDERER),
+            gl.get_parameter_string(glow::VERSION)
+        )
+    }
 }

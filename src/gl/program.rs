@@ -1,204 +1,17 @@
 //! `ProgramObject`: a vertex + fragment program built from shader files in `Res/`.
 //!
 //! Errors name the file and line (`Res/sao.frag:42: ...`), a failed rebuild keeps the last working
-//! program, and files saved as Shift-JIS (common on Japanese Windows) are decoded rather than rejected.
+//! program; sources go through the preprocessor (`preprocess.rs`).
 
+use super::preprocess::{
+    format_compile_log_sources, prepare_source_with_includes, ShaderSource, TextEncoding,
+};
+use super::shader_error::ProgramError;
 use super::Gl;
-use crate::res::ResDirs;
+use crate::res::{modified_time as mtime, ResDirs};
 use glow::HasContext;
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
-
-#[derive(Debug, thiserror::Error)]
-pub enum ProgramError {
-    #[error("{path}: cannot read shader file: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
-    #[error("{path}: shader file is neither UTF-8 nor Shift-JIS text; save it as UTF-8")]
-    Encoding { path: String },
-    #[error("{path}: no '#version' line (the course's shaders start with '#version 450')")]
-    NoVersion { path: String },
-    #[error("{}", .messages.join("\n"))]
-    Compile { path: String, messages: Vec<String> },
-    #[error("{vert} + {frag}: link error: {log}")]
-    Link {
-        vert: String,
-        frag: String,
-        log: String,
-    },
-    #[error("shader '{name}' not found in {searched}")]
-    NotFound { name: String, searched: String },
-    #[error("GL error: {0}")]
-    Gl(String),
-}
-
-impl ProgramError {
-    /// The first `file:line` this error points at, if any (for an editor or the window's overlay).
-    pub fn location(&self) -> Option<String> {
-        match self {
-            ProgramError::Compile { messages, .. } => messages.first().and_then(|m| {
-                let mut parts = m.splitn(3, ':');
-                Some(format!("{}:{}", parts.next()?, parts.next()?))
-            }),
-            _ => None,
-        }
-    }
-}
-
-/// Decoded shader source with its path (for messages).
-#[derive(Clone, Debug)]
-pub struct ShaderSource {
-    pub path: PathBuf,
-    pub text: String,
-    /// True when the file was not UTF-8 and was decoded as Shift-JIS.
-    pub was_shift_jis: bool,
-}
-
-impl ShaderSource {
-    pub fn load(path: &Path) -> Result<ShaderSource, ProgramError> {
-        let shown = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| ProgramError::Io {
-            path: shown.clone(),
-            source,
-        })?;
-        let (text, was_shift_jis) =
-            decode_shader_bytes(&bytes).ok_or(ProgramError::Encoding { path: shown })?;
-        Ok(ShaderSource {
-            path: path.to_path_buf(),
-            text,
-            was_shift_jis,
-        })
-    }
-}
-
-/// UTF-8 (with or without BOM) first, then Shift-JIS; `None` when neither decodes cleanly.
-pub fn decode_shader_bytes(bytes: &[u8]) -> Option<(String, bool)> {
-    let bytes = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
-    if let Ok(s) = std::str::from_utf8(bytes) {
-        return Some((s.to_string(), false));
-    }
-    let (text, _, had_errors) = encoding_rs::SHIFT_JIS.decode(bytes);
-    if had_errors || text.contains('\0') {
-        return None;
-    }
-    Some((text.into_owned(), true))
-}
-
-/// Prepares source for the GL compiler: inserts `#define`s after `#version` (with `#line` so that
-/// error lines still match the file) and blanks non-ASCII characters (Japanese comments), which GLSL
-/// does not allow, without moving any line.
-pub fn prepare_source(
-    src: &ShaderSource,
-    defines: &[(String, String)],
-) -> Result<String, ProgramError> {
-    prepare_source_with_includes(src, defines).map(|(text, _)| text)
-}
-
-/// As `prepare_source`, also expanding `#include "file"` lines (relative to the shader's folder,
-/// one level deep) with `#line` directives so that errors map back to the right file: source string
-/// 0 is the shader itself, k is the k-th included file (the returned list, in order).
-pub fn prepare_source_with_includes(
-    src: &ShaderSource,
-    defines: &[(String, String)],
-) -> Result<(String, Vec<PathBuf>), ProgramError> {
-    let mut out = String::with_capacity(src.text.len() + 128);
-    let mut includes = Vec::new();
-    let mut seen_version = false;
-    let ascii_only = |line: &str| -> String {
-        line.chars()
-            .map(|c| if c.is_ascii() { c } else { ' ' })
-            .collect()
-    };
-    for (i, line) in src.text.lines().enumerate() {
-        let ascii = ascii_only(line);
-        if let Some(rest) = ascii.trim_start().strip_prefix("#include") {
-            let name = rest.trim().trim_matches('"');
-            let path = src.path.parent().unwrap_or(Path::new(".")).join(name);
-            let inc = ShaderSource::load(&path)?;
-            includes.push(path);
-            out.push_str(&format!("#line 1 {}\n", includes.len()));
-            for l in inc.text.lines() {
-                out.push_str(&ascii_only(l));
-                out.push('\n');
-            }
-            out.push_str(&format!("#line {} 0\n", i + 2));
-            continue;
-        }
-        out.push_str(&ascii);
-        out.push('\n');
-        if !seen_version && ascii.trim_start().starts_with("#version") {
-            seen_version = true;
-            for (k, v) in defines {
-                out.push_str(&format!("#define {k} {v}\n"));
-            }
-            // GLSL's #line N says the *next* line is N.
-            out.push_str(&format!("#line {}\n", i + 2));
-        }
-    }
-    if !seen_version {
-        return Err(ProgramError::NoVersion {
-            path: src.path.display().to_string(),
-        });
-    }
-    Ok((out, includes))
-}
-
-/// Turns a driver log ("0:12(5): error: ...") into "path:12:5: error: ..." lines.
-pub fn format_compile_log(path: &str, log: &str) -> Vec<String> {
-    format_compile_log_sources(path, &[], log)
-}
-
-/// As `format_compile_log`, naming included files by their source-string number (1, 2, …).
-pub fn format_compile_log_sources(path: &str, includes: &[PathBuf], log: &str) -> Vec<String> {
-    let mut out = Vec::new();
-    for line in log.lines().map(str::trim).filter(|l| !l.is_empty()) {
-        // Mesa: "0:12(5): error: msg"; NVIDIA: "0(12) : error C0000: msg".
-        let parsed = parse_mesa(line).or_else(|| parse_nvidia(line));
-        let source: usize = line
-            .split(|c| c == ':' || c == '(')
-            .next()
-            .and_then(|s| s.trim().parse().ok())
-            .unwrap_or(0);
-        let inc_name;
-        let path = match source.checked_sub(1).and_then(|k| includes.get(k)) {
-            Some(p) => {
-                inc_name = p.display().to_string();
-                inc_name.as_str()
-            }
-            None => path,
-        };
-        match parsed {
-            Some((l, c, msg)) => out.push(match c {
-                Some(c) => format!("{path}:{l}:{c}: {msg}"),
-                None => format!("{path}:{l}: {msg}"),
-            }),
-            None => out.push(format!("{path}: {line}")),
-        }
-    }
-    if out.is_empty() {
-        out.push(format!("{path}: compile failed (driver gave no log)"));
-    }
-    out
-}
-
-fn parse_mesa(line: &str) -> Option<(u32, Option<u32>, String)> {
-    let (head, msg) = line.split_once("): ")?;
-    let (_, rest) = head.split_once(':')?;
-    let (l, c) = rest.split_once('(')?;
-    Some((
-        l.trim().parse().ok()?,
-        c.trim().parse().ok(),
-        msg.trim().to_string(),
-    ))
-}
-
-fn parse_nvidia(line: &str) -> Option<(u32, Option<u32>, String)> {
-    let (head, msg) = line.split_once(") :")?;
-    let (_, l) = head.split_once('(')?;
-    Some((l.trim().parse().ok()?, None, msg.trim().to_string()))
-}
 
 pub struct ProgramObject {
     gl: Gl,
@@ -224,10 +37,6 @@ fn active_locations(gl: &glow::Context, p: glow::Program) -> std::collections::H
         }
     }
     out
-}
-
-fn mtime(p: &Path) -> Option<SystemTime> {
-    std::fs::metadata(p).and_then(|m| m.modified()).ok()
 }
 
 impl ProgramObject {
@@ -400,10 +209,11 @@ fn compile(
     defines: &[(String, String)],
 ) -> Result<glow::Shader, ProgramError> {
     let src = ShaderSource::load(path)?;
-    if src.was_shift_jis {
+    if src.encoding != TextEncoding::Utf8 {
         log::warn!(
-            "{}: decoded as Shift-JIS; consider saving it as UTF-8",
-            path.display()
+            "{}: decoded as {}; consider saving it as UTF-8",
+            path.display(),
+            src.encoding.name()
         );
     }
     let (text, includes) = prepare_source_with_includes(&src, defines)?;

@@ -1,9 +1,10 @@
 //! Scene descriptions: small TOML files in `Res/scenes/`, and the generator of the demo meshes.
 
+pub mod game_object;
 pub mod shapes;
 
-use crate::ao::SaoParams;
-use crate::config;
+use crate::ao::AoSettings;
+use crate::math::camera as camera_defaults;
 use anyhow::{bail, Context as _, Result};
 use serde::{Deserialize, Serialize};
 use std::path::Path;
@@ -14,14 +15,14 @@ pub struct OutputDesc {
     pub width: u32,
     pub height: u32,
     /// Main depth buffer: "d32" (the course's) or "d32f-reversed" (reversed-Z, float depth).
-    pub depth: crate::engine::DepthMode,
+    pub depth: crate::math::DepthMode,
 }
 impl Default for OutputDesc {
     fn default() -> Self {
         OutputDesc {
             width: 1280,
             height: 720,
-            depth: crate::engine::DepthMode::D32,
+            depth: crate::math::DepthMode::D32,
         }
     }
 }
@@ -41,9 +42,9 @@ impl Default for CameraDesc {
         CameraDesc {
             eye: [0.0, 1.6, 6.0],
             target: [0.0, 1.0, 0.0],
-            fov_y: config::FOV_Y_DEG,
-            near: config::NEAR,
-            far: config::FAR,
+            fov_y: camera_defaults::FOV_Y_DEG,
+            near: camera_defaults::NEAR,
+            far: camera_defaults::FAR,
         }
     }
 }
@@ -113,7 +114,7 @@ pub struct SceneDesc {
     pub output: OutputDesc,
     pub camera: CameraDesc,
     pub light: LightDesc,
-    pub ao: SaoParams,
+    pub ao: AoSettings,
     pub bloom: BloomDesc,
     #[serde(rename = "object")]
     pub objects: Vec<ObjectDesc>,
@@ -151,9 +152,10 @@ impl SceneDesc {
     pub fn world_triangles(&self, res: &crate::res::ResDirs) -> Result<Vec<[glam::Vec3; 3]>> {
         let mut out = Vec::new();
         for (i, o) in self.objects.iter().enumerate() {
-            let data = crate::gl::mesh::MeshData::load_obj(&res.resolve_data(&o.mesh))
-                .with_context(|| format!("scene object {} ({})", i + 1, o.mesh))?;
-            let m = crate::engine::game_object::model_matrix(
+            let what = || format!("scene object {} ({})", i + 1, o.mesh);
+            let path = res.resolve_data(Path::new(&o.mesh)).with_context(what)?;
+            let data = crate::gl::mesh::MeshData::load_obj(&path).with_context(what)?;
+            let m = crate::scene::game_object::model_matrix(
                 o.position.into(),
                 o.rotation.into(),
                 o.scale.into(),

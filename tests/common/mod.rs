@@ -3,9 +3,9 @@
 #![allow(dead_code)]
 
 use glam::{Vec3, Vec4};
-use opengl3d::context::HeadlessContext;
-use opengl3d::engine::Engine;
 use opengl3d::gl::mesh::MeshData;
+use opengl3d::platform::HeadlessContext;
+use opengl3d::render::Engine;
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, ObjectDesc, SceneDesc};
 use std::path::{Path, PathBuf};

@@ -1,0 +1,118 @@
+//! The blurs of the occlusion buffer: the lesson's 9×9 bilateral blur (`sao_blur.frag`), the engine's
+//! two-pass separable bilateral blur (`ao/blur_separable.frag`) and its packed variant that reads
+//! (occlusion, depth) from one texture per tap (`ao/blur_packed.frag`, used by the engine's `sao`).
+
+use super::targets::AoTargets;
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture, TextureDesc,
+};
+use crate::shader_interface::{binding, loc};
+use anyhow::Result;
+use glow::HasContext;
+use std::cell::RefCell;
+use std::rc::Rc;
+
+/// `sao_blur.frag`: `texSAO` → `texSAOBlur` in one pass, weights from linear depth.
+pub fn lesson_blur(gl: &Gl, program: &ProgramObject, targets: &AoTargets, meshes: &MeshBuffer) {
+    PassState::FULLSCREEN.apply(gl, None);
+    program.use_program();
+    targets.fbo_blur.bind();
+    targets.sao_texture().bind(binding::INPUT);
+    targets.tex_depth.bind(binding::SECOND_INPUT);
+    meshes.draw_plane_xy();
+}
+
+fn set_axis(gl: &Gl, program: &ProgramObject, axis: [i32; 2]) {
+    let location = glow::NativeUniformLocation(loc::BLUR_AXIS as u32);
+    // SAFETY: an ivec2 uniform at a location the interface test checks.
+    unsafe { gl.program_uniform_2_i32(program.id(), Some(&location), axis[0], axis[1]) };
+}
+
+/// The separable blur's program and its half-size intermediate target (R8).
+pub struct SeparableBlur {
+    pub program: ProgramObject,
+    /// Created on the first blur and dropped by `release_targets` (an engine with AO off owns no AO
+    /// texture).
+    tmp: RefCell<Option<FramebufferObject>>,
+}
+
+impl SeparableBlur {
+    pub fn new(program: ProgramObject) -> SeparableBlur {
+        SeparableBlur {
+            program,
+            tmp: RefCell::new(None),
+        }
+    }
+
+    pub fn release_targets(&mut self) {
+        *self.tmp.get_mut() = None;
+    }
+
+    pub fn textures(&self) -> Vec<Rc<Texture>> {
+        self.tmp
+            .borrow()
+            .iter()
+            .filter_map(|f| f.color_texture().cloned())
+            .collect()
+    }
+
+    /// `texSAO` → intermediate (horizontal) → `texSAOBlur` (vertical).
+    pub fn run(&self, gl: &Gl, targets: &AoTargets, meshes: &MeshBuffer) -> Result<()> {
+        let size = targets.size();
+        let mut tmp = self.tmp.borrow_mut();
+        if tmp.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
+            *tmp = None;
+            *tmp = Some(half_size_target(gl, "FBO(ao blur tmp)", size, glow::R8)?);
+        }
+        let fbo_tmp = tmp.as_ref().expect("created above");
+        PassState::FULLSCREEN.apply(gl, None);
+        self.program.use_program();
+        targets.tex_depth.bind(binding::SECOND_INPUT);
+        set_axis(gl, &self.program, [1, 0]);
+        fbo_tmp.bind();
+        targets.sao_texture().bind(binding::INPUT);
+        meshes.draw_plane_xy();
+        set_axis(gl, &self.program, [0, 1]);
+        targets.fbo_blur.bind();
+        fbo_tmp
+            .color_texture()
+            .expect("created with a colour texture")
+            .bind(binding::INPUT);
+        meshes.draw_plane_xy();
+        Ok(())
+    }
+}
+
+/// The packed blur: `packed` (RG32F: occlusion, depth) → `tmp` (RG32F) → the targets' blur target.
+pub fn packed_blur(
+    gl: &Gl,
+    program: &ProgramObject,
+    packed: &Texture,
+    tmp: &FramebufferObject,
+    targets: &AoTargets,
+    meshes: &MeshBuffer,
+) {
+    PassState::FULLSCREEN.apply(gl, None);
+    program.use_program();
+    set_axis(gl, program, [1, 0]);
+    tmp.bind();
+    packed.bind(binding::INPUT);
+    meshes.draw_plane_xy();
+    set_axis(gl, program, [0, 1]);
+    targets.fbo_blur.bind();
+    tmp.color_texture()
+        .expect("created with a colour texture")
+        .bind(binding::INPUT);
+    meshes.draw_plane_xy();
+}
+
+/// A one-level colour target of the half size.
+pub fn half_size_target(
+    gl: &Gl,
+    name: &str,
+    (w, h): (u32, u32),
+    format: u32,
+) -> Result<FramebufferObject> {
+    let tex = Rc::new(Texture::new(gl, TextureDesc::target(name, w, h, format))?);
+    FramebufferObject::new(gl, Some(tex), None, 0, 0)
+}

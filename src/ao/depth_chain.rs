@@ -1,0 +1,135 @@
+//! The first two passes every AO method shares: restore linear depth from the main depth buffer at
+//! half size (`sao_restore_depth.frag`, or `ao/restore_depth_reversed.frag` for reversed-Z), then the
+//! min mip chain (`sao_down_sampling.frag`).
+
+use super::targets::AoTargets;
+use crate::gl::preprocess::glsl_float;
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, PassState, ProgramError, ProgramObject, Texture,
+};
+use crate::math::{Camera, DepthMode};
+use crate::res::ResDirs;
+use crate::shader_interface::loc;
+
+/// CAMERA_NEAR / CAMERA_FAR as the restore, down-sampling and blur shaders read them (compile-time
+/// constants, as in the course).
+pub fn camera_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    vec![
+        ("CAMERA_NEAR", glsl_float(camera.near)),
+        ("CAMERA_FAR", glsl_float(camera.far)),
+    ]
+}
+
+/// The restore and down-sampling programs.
+pub struct DepthChain {
+    pub restore: ProgramObject,
+    /// Built the first time reversed-Z is used.
+    pub restore_reversed: Option<ProgramObject>,
+    pub down_sampling: ProgramObject,
+    res: ResDirs,
+}
+
+impl DepthChain {
+    pub fn new(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<DepthChain, ProgramError> {
+        let planes = camera_defines(camera);
+        Ok(DepthChain {
+            restore: ProgramObject::from_res(
+                gl,
+                res,
+                "simple.vert",
+                "sao_restore_depth.frag",
+                &planes,
+            )?,
+            restore_reversed: None,
+            down_sampling: ProgramObject::from_res(
+                gl,
+                res,
+                "simple.vert",
+                "sao_down_sampling.frag",
+                &planes,
+            )?,
+            res: res.clone(),
+        })
+    }
+
+    /// Builds what `mode` needs (the reversed-Z restore) if not built yet.
+    pub fn prepare(
+        &mut self,
+        gl: &Gl,
+        mode: DepthMode,
+        camera: &Camera,
+    ) -> Result<(), ProgramError> {
+        if mode.reversed() && self.restore_reversed.is_none() {
+            self.restore_reversed = Some(ProgramObject::from_res(
+                gl,
+                &self.res,
+                "simple.vert",
+                "ao/restore_depth_reversed.frag",
+                &camera_defines(camera),
+            )?);
+        }
+        Ok(())
+    }
+
+    pub fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
+        let mut v = vec![&mut self.restore, &mut self.down_sampling];
+        v.extend(self.restore_reversed.as_mut());
+        v
+    }
+
+    pub fn update_camera(&mut self, camera: &Camera) -> Result<(), ProgramError> {
+        let planes = camera_defines(camera);
+        for p in self.programs_mut() {
+            p.set_defines(&planes)?;
+        }
+        Ok(())
+    }
+
+    /// Main depth → linear depth level 0 with the restore that matches `mode`'s convention.
+    pub fn restore_linear_depth(
+        &self,
+        gl: &Gl,
+        targets: &AoTargets,
+        meshes: &MeshBuffer,
+        main_depth: &Texture,
+        mode: DepthMode,
+    ) {
+        let program = match (&self.restore_reversed, mode.reversed()) {
+            (Some(p), true) => p,
+            _ => &self.restore,
+        };
+        restore(gl, program, &targets.fbo_depth[0], meshes, main_depth);
+    }
+}
+
+/// main depth → `texSAODepth` level 0 (linear metres, half size, nearest of 2×2).
+pub fn restore(
+    gl: &Gl,
+    program: &ProgramObject,
+    level0: &FramebufferObject,
+    meshes: &MeshBuffer,
+    main_depth: &Texture,
+) {
+    PassState::FULLSCREEN.apply(gl, None);
+    program.use_program();
+    level0.bind();
+    main_depth.bind(0);
+    meshes.draw_plane_xy();
+}
+
+/// Levels 1.. of `texSAODepth`, each the min of 2×2 texels of the level above.
+pub fn down_sample(gl: &Gl, program: &ProgramObject, targets: &AoTargets, meshes: &MeshBuffer) {
+    PassState::FULLSCREEN.apply(gl, None);
+    program.use_program();
+    let tex = &targets.tex_depth;
+    tex.bind(0);
+    for (i, fbo) in targets.fbo_depth.iter().enumerate().skip(1) {
+        // Limit sampling to the levels already written so that the level being written is not
+        // also readable (no feedback loop), keeping the lesson's texelFetch(…, mipLevel) valid.
+        tex.set_level_range(0, i as u32 - 1);
+        fbo.bind();
+        program.set_i32(loc::SAO_MIP_LEVEL, i as i32 - 1);
+        meshes.draw_plane_xy();
+    }
+    tex.set_level_range(0, tex.levels() - 1);
+}

@@ -1,0 +1,28 @@
+//! Ground-truth-based AO (Jimenez et al. 2016): per slice, the two horizons found by marching the
+//! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
+//! `Res/ao/gtao.frag`; quality presets in `settings::GtaoQuality`.
+
+use crate::ao::method_pass::ShaderMethod;
+use crate::ao::settings::{AoMethod, AoSettings};
+use crate::gl::{Gl, ProgramError};
+use crate::math::Camera;
+use crate::res::ResDirs;
+
+pub const SHADER: &str = "ao/gtao.frag";
+
+/// Slices when no preset is set: two (the XeGTAO "medium" count), the sample budget going to steps
+/// per side (each slice marches both sides: slices × 2 × steps ≈ samples).
+pub const DEFAULT_SLICES: i32 = 2;
+
+/// `aoCounts` = (slices, steps per side): the preset's when one is set.
+pub fn counts(s: &AoSettings) -> [i32; 2] {
+    if let Some(q) = s.quality {
+        let (slices, steps) = q.slices_steps();
+        return [slices as i32, steps as i32];
+    }
+    [DEFAULT_SLICES, (s.samples.max(1) as i32 / 4).max(1)]
+}
+
+pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
+    ShaderMethod::build(AoMethod::Gtao, SHADER, counts, gl, res, camera)
+}

@@ -1,0 +1,23 @@
+//! Horizon-based AO (seed 000): marches screen-space directions, keeps the highest horizon per
+//! direction. Shader: `Res/ao/hbao.frag`.
+
+use crate::ao::method_pass::ShaderMethod;
+use crate::ao::settings::{AoMethod, AoSettings};
+use crate::gl::{Gl, ProgramError};
+use crate::math::Camera;
+use crate::res::ResDirs;
+
+pub const SHADER: &str = "ao/hbao.frag";
+
+/// Four directions (the fewest that cover both screen axes both ways); the rest of the sample
+/// budget goes to steps per direction, so directions × steps ≈ samples.
+pub const DIRECTIONS: i32 = 4;
+
+/// `aoCounts` = (directions, steps per direction).
+pub fn counts(s: &AoSettings) -> [i32; 2] {
+    [DIRECTIONS, (s.samples.max(1) as i32 / DIRECTIONS).max(1)]
+}
+
+pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
+    ShaderMethod::build(AoMethod::Hbao, SHADER, counts, gl, res, camera)
+}

@@ -1,0 +1,141 @@
+//! What every AO method provides (`AoMethodPass`), the inputs a frame hands it, and the uniforms the
+//! engine's method shaders share through `Res/ao/common.glsl`.
+
+use super::blur::SeparableBlur;
+use super::settings::{AoMethod, AoSettings};
+use super::targets::{AoTargets, SAO_DEPTH_LEVELS};
+use crate::gl::preprocess::glsl_float;
+use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject, Texture};
+use crate::math::camera::fov_scale;
+use crate::math::Camera;
+use crate::res::ResDirs;
+use crate::shader_interface::{binding, loc};
+use anyhow::Result;
+use glow::HasContext;
+use std::rc::Rc;
+
+/// What a frame hands a method.
+pub struct AoInputs<'a> {
+    pub gl: &'a Gl,
+    pub meshes: &'a MeshBuffer,
+    pub targets: &'a AoTargets,
+    pub camera: &'a Camera,
+    pub settings: &'a AoSettings,
+}
+
+/// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
+pub trait AoMethodPass {
+    fn method(&self) -> AoMethod;
+    /// Every program it owns (hot reload, define updates).
+    fn programs_mut(&mut self) -> Vec<&mut ProgramObject>;
+    /// Re-injects the compile-time constants that follow the camera and the settings.
+    fn update_defines(
+        &mut self,
+        camera: &Camera,
+        settings: &AoSettings,
+    ) -> Result<(), ProgramError>;
+    /// Levels of the linear-depth chain it reads, for a half-size buffer of `half`.
+    fn depth_levels(&self, _half: (u32, u32)) -> u32 {
+        SAO_DEPTH_LEVELS
+    }
+    /// Writes occlusion into `inputs.targets.fbo_sao` (and whatever else the method keeps).
+    fn compute(&self, inputs: &AoInputs) -> Result<()>;
+    /// Blurs the occlusion into `inputs.targets.fbo_blur`; the shared separable blur by default.
+    fn blur(&self, inputs: &AoInputs, separable: &SeparableBlur) -> Result<()> {
+        separable.run(inputs.gl, inputs.targets, inputs.meshes)
+    }
+    /// Size-dependent textures it owns now.
+    fn textures(&self) -> Vec<Rc<Texture>> {
+        Vec::new()
+    }
+    /// Drops size-dependent textures (re-created on next use).
+    fn release_targets(&mut self) {}
+}
+
+/// `ao/sao.frag` reads level floor(log2(distance in pixels)) − LOG_MAX_OFFSET (McGuire's
+/// LOG_MAX_OFFSET): 2^3 = 8 samples share a texel of the level they read.
+pub const LOG_MAX_OFFSET: u32 = 3;
+
+/// Largest screen-space radius (pixels of the half-size buffer) a method's disc may have: near the
+/// camera the disc could cover the screen (HBAO+ clamps it the same way, to a quarter of the view).
+pub fn max_radius_pixels(half_width: u32, half_height: u32) -> f32 {
+    0.25 * (half_width.max(half_height) as f32).max(8.0)
+}
+
+/// The defines every method shader of `Res/ao/` reads.
+pub fn method_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    vec![
+        ("CAMERA_FAR", glsl_float(camera.far)),
+        ("LOG_MAX_OFFSET", LOG_MAX_OFFSET.to_string()),
+    ]
+}
+
+/// Sets `common.glsl`'s uniforms for a frame.
+pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, counts: [i32; 2]) {
+    let (w, h) = inputs.targets.size();
+    let fov = fov_scale(inputs.camera.fov_y_deg);
+    // Pixels (of the half-size buffer) per metre at 1 m distance.
+    let proj_scale = 0.5 * h as f32 * fov;
+    let s = inputs.settings;
+    program.set_vec4(loc::AO_INFO, [s.radius, s.bias, s.intensity, proj_scale]);
+    program.set_vec2(loc::NDC_TO_VIEW, [w as f32 / h as f32 / fov, 1.0 / fov]);
+    if program.has_location(loc::AO_COUNTS) {
+        let location = glow::NativeUniformLocation(loc::AO_COUNTS as u32);
+        // SAFETY: an ivec2 uniform at a location the interface test checks.
+        unsafe { gl.program_uniform_2_i32(program.id(), Some(&location), counts[0], counts[1]) };
+    }
+    program.set_f32(loc::MAX_RADIUS_PIXELS, max_radius_pixels(w, h));
+}
+
+/// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion.
+pub struct ShaderMethod {
+    method: AoMethod,
+    program: ProgramObject,
+    /// (first, second) of `aoCounts` from the settings.
+    counts: fn(&AoSettings) -> [i32; 2],
+}
+
+impl ShaderMethod {
+    pub fn build(
+        method: AoMethod,
+        shader: &str,
+        counts: fn(&AoSettings) -> [i32; 2],
+        gl: &Gl,
+        res: &ResDirs,
+        camera: &Camera,
+    ) -> Result<ShaderMethod, ProgramError> {
+        let program =
+            ProgramObject::from_res(gl, res, "simple.vert", shader, &method_defines(camera))?;
+        Ok(ShaderMethod {
+            method,
+            program,
+            counts,
+        })
+    }
+}
+
+impl AoMethodPass for ShaderMethod {
+    fn method(&self) -> AoMethod {
+        self.method
+    }
+    fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
+        vec![&mut self.program]
+    }
+    fn update_defines(&mut self, camera: &Camera, _: &AoSettings) -> Result<(), ProgramError> {
+        self.program.set_defines(&method_defines(camera))
+    }
+    fn compute(&self, inputs: &AoInputs) -> Result<()> {
+        set_common_uniforms(
+            inputs.gl,
+            &self.program,
+            inputs,
+            (self.counts)(inputs.settings),
+        );
+        PassState::FULLSCREEN.apply(inputs.gl, None);
+        self.program.use_program();
+        inputs.targets.fbo_sao.bind();
+        inputs.targets.tex_depth.bind(binding::INPUT);
+        inputs.meshes.draw_plane_xy();
+        Ok(())
+    }
+}

@@ -1,0 +1,201 @@
+//! The AO passes as the engine runs them: the shared depth chain, the selected method (built on
+//! first use), its blur, and the composite programs; targets created on the first frame that needs
+//! AO. The engine decides the pass order; this type owns what the passes need.
+
+use super::blur::SeparableBlur;
+use super::depth_chain::DepthChain;
+use super::method::{angle_based, crytek, gtao, hbao, hemisphere, sao, sao_lesson};
+use super::method_pass::{method_defines, AoInputs, AoMethodPass};
+use super::settings::{AoMethod, AoSettings};
+use super::targets::{half_size, AoTargets, LazyAoTargets};
+use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
+use crate::math::{Camera, DepthMode};
+use crate::res::ResDirs;
+use anyhow::{anyhow, Result};
+use std::collections::HashMap;
+use std::rc::Rc;
+
+pub struct AoPipeline {
+    gl: Gl,
+    res: ResDirs,
+    pub targets: LazyAoTargets,
+    pub depth_chain: DepthChain,
+    methods: HashMap<AoMethod, Box<dyn AoMethodPass>>,
+    pub separable_blur: SeparableBlur,
+    /// `simple.frag` (the lesson's composite) and `ao/composite_tint.frag`.
+    pub composite_simple: ProgramObject,
+    pub composite_tint: ProgramObject,
+}
+
+/// Builds `method`'s passes.
+fn build_method(
+    method: AoMethod,
+    gl: &Gl,
+    res: &ResDirs,
+    camera: &Camera,
+    settings: &AoSettings,
+) -> Result<Box<dyn AoMethodPass>, ProgramError> {
+    Ok(match method {
+        AoMethod::SaoLesson => Box::new(sao_lesson::SaoLessonMethod::build(
+            gl, res, camera, settings,
+        )?),
+        AoMethod::Sao => Box::new(sao::SaoMethod::build(gl, res, camera)?),
+        AoMethod::Crytek => Box::new(crytek::build(gl, res, camera)?),
+        AoMethod::Hemisphere => Box::new(hemisphere::build(gl, res, camera)?),
+        AoMethod::Hbao => Box::new(hbao::build(gl, res, camera)?),
+        AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
+        AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
+    })
+}
+
+impl AoPipeline {
+    /// Compiles the depth chain, the lesson's method, the selected one, the blur and the composite
+    /// (a shader error shows at once); targets wait for the first frame with AO.
+    pub fn new(
+        gl: &Gl,
+        res: &ResDirs,
+        camera: &Camera,
+        settings: &AoSettings,
+        size: (u32, u32),
+        depth_levels: u32,
+    ) -> Result<AoPipeline> {
+        let fullscreen = |frag: &str, d: &[(&str, String)]| {
+            ProgramObject::from_res(gl, res, "simple.vert", frag, d)
+        };
+        let mut p = AoPipeline {
+            gl: gl.clone(),
+            res: res.clone(),
+            targets: LazyAoTargets::new(gl, size, depth_levels),
+            depth_chain: DepthChain::new(gl, res, camera)?,
+            methods: HashMap::new(),
+            separable_blur: SeparableBlur::new(fullscreen(
+                "ao/blur_separable.frag",
+                &method_defines(camera),
+            )?),
+            composite_simple: fullscreen("simple.frag", &[])?,
+            composite_tint: fullscreen("ao/composite_tint.frag", &[])?,
+        };
+        p.prepare(AoMethod::SaoLesson, camera, settings)?;
+        p.prepare(settings.method, camera, settings)?;
+        Ok(p)
+    }
+
+    /// Builds `method`'s programs if needed (errors name the file and line).
+    pub fn prepare(
+        &mut self,
+        method: AoMethod,
+        camera: &Camera,
+        settings: &AoSettings,
+    ) -> Result<(), ProgramError> {
+        if !self.methods.contains_key(&method) {
+            let m = build_method(method, &self.gl, &self.res, camera, settings)?;
+            self.methods.insert(method, m);
+        }
+        Ok(())
+    }
+
+    /// Builds what the depth convention needs (the reversed-Z restore).
+    pub fn prepare_depth_mode(
+        &mut self,
+        mode: DepthMode,
+        camera: &Camera,
+    ) -> Result<(), ProgramError> {
+        self.depth_chain.prepare(&self.gl, mode, camera)
+    }
+
+    /// The method's passes; an error when `prepare` was not called for it.
+    pub fn method(&self, method: AoMethod) -> Result<&dyn AoMethodPass> {
+        self.methods
+            .get(&method)
+            .map(|m| m.as_ref())
+            .ok_or_else(|| anyhow!("AO method {} was not prepared", method.name()))
+    }
+
+    /// Level count of the linear-depth chain `method` reads for a main image of `size`.
+    pub fn wanted_depth_levels(&self, method: AoMethod, (w, h): (u32, u32)) -> u32 {
+        let half = half_size(w, h);
+        match self.methods.get(&method) {
+            Some(m) => m.depth_levels(half),
+            None => super::targets::SAO_DEPTH_LEVELS,
+        }
+    }
+
+    /// The targets, created on first use.
+    pub fn targets(&self) -> Result<&AoTargets> {
+        self.targets.get_or_create()
+    }
+
+    /// Drops every size-dependent texture (re-created at the right size on next use).
+    pub fn release_targets(&mut self) {
+        self.targets.release();
+        self.separable_blur.release_targets();
+        for m in self.methods.values_mut() {
+            m.release_targets();
+        }
+    }
+
+    /// Every AO texture that exists now.
+    pub fn textures(&self) -> Vec<Rc<Texture>> {
+        let mut out = Vec::new();
+        if let Some(t) = self.targets.get() {
+            out.push(t.tex_depth.clone());
+            out.push(t.sao_texture().clone());
+            out.push(t.result_texture(true).clone());
+        }
+        out.extend(self.separable_blur.textures());
+        for m in self.methods.values() {
+            out.extend(m.textures());
+        }
+        out
+    }
+
+    fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
+        let mut v = self.depth_chain.programs_mut();
+        v.push(&mut self.separable_blur.program);
+        v.push(&mut self.composite_simple);
+        v.push(&mut self.composite_tint);
+        for m in self.methods.values_mut() {
+            v.extend(m.programs_mut());
+        }
+        v
+    }
+
+    /// Rebuilds programs whose files changed (all when `force`); the last working ones stay.
+    pub fn reload(&mut self, force: bool) -> Vec<ProgramError> {
+        let mut errors = Vec::new();
+        for p in self.programs_mut() {
+            if force || p.sources_changed() {
+                if let Err(e) = p.reload() {
+                    errors.push(e);
+                }
+            }
+        }
+        errors
+    }
+
+    /// Makes the compile-time camera planes and sample counts follow `camera` and `settings`.
+    pub fn update_defines(
+        &mut self,
+        camera: &Camera,
+        settings: &AoSettings,
+    ) -> Result<(), ProgramError> {
+        self.depth_chain.update_camera(camera)?;
+        self.separable_blur
+            .program
+            .set_defines(&method_defines(camera))?;
+        for m in self.methods.values_mut() {
+            m.update_defines(camera, settings)?;
+        }
+        Ok(())
+    }
+
+    /// Runs the method's occlusion pass.
+    pub fn compute(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
+        self.method(method)?.compute(inputs)
+    }
+
+    /// Runs the method's blur.
+    pub fn blur(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
+        self.method(method)?.blur(inputs, &self.separable_blur)
+    }
+}

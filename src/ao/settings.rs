@@ -1,0 +1,275 @@
+//! Every AO method's parameters in one place (`[ao]` in scene files, the CLI's flags, the window's
+//! panel), and the one function that brings absurd values back into range.
+
+use serde::{Deserialize, Serialize};
+
+/// The AO methods, named as on the command line (`--method`) and in scene files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AoMethod {
+    /// The lesson's SAO as taught (errata fixed, one 9×9 bilateral blur).
+    #[default]
+    SaoLesson,
+    /// The engine's SAO: round disc in view space, separable blur, small discs and sky skipped.
+    Sao,
+    /// Sphere sampling with depth comparison (Crytek).
+    Crytek,
+    /// Normal-oriented hemisphere kernel with range check.
+    Hemisphere,
+    /// Horizon-based AO (directions × steps).
+    Hbao,
+    /// UE4-style paired samples.
+    AngleBased,
+    /// Ground-truth-based AO (analytic cosine-weighted horizon integral).
+    Gtao,
+}
+
+impl AoMethod {
+    pub const ALL: [AoMethod; 7] = [
+        AoMethod::SaoLesson,
+        AoMethod::Sao,
+        AoMethod::Crytek,
+        AoMethod::Hemisphere,
+        AoMethod::Hbao,
+        AoMethod::AngleBased,
+        AoMethod::Gtao,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            AoMethod::SaoLesson => "sao-lesson",
+            AoMethod::Sao => "sao",
+            AoMethod::Crytek => "crytek",
+            AoMethod::Hemisphere => "hemisphere",
+            AoMethod::Hbao => "hbao",
+            AoMethod::AngleBased => "angle-based",
+            AoMethod::Gtao => "gtao",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<AoMethod> {
+        AoMethod::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// GTAO quality presets (`--quality`, `[ao] quality`): slices × steps per side. Every preset reads
+/// level 0 of the half-size linear-depth chain (GTAO's horizon search needs exact depths: the min
+/// mip chain would raise horizons); the sample count is what costs.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum GtaoQuality {
+    /// 1 slice × 4 steps (8 taps): the blur hides the 4×4 rotation tile.
+    Low,
+    /// 2 slices × 4 steps (16 taps): the bench's default setting.
+    Medium,
+    /// 3 slices × 6 steps (36 taps).
+    High,
+    /// 4 slices × 8 steps (64 taps).
+    Ultra,
+}
+
+impl GtaoQuality {
+    pub const ALL: [GtaoQuality; 4] = [
+        GtaoQuality::Low,
+        GtaoQuality::Medium,
+        GtaoQuality::High,
+        GtaoQuality::Ultra,
+    ];
+    pub fn slices_steps(self) -> (u32, u32) {
+        match self {
+            GtaoQuality::Low => (1, 4),
+            GtaoQuality::Medium => (2, 4),
+            GtaoQuality::High => (3, 6),
+            GtaoQuality::Ultra => (4, 8),
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            GtaoQuality::Low => "low",
+            GtaoQuality::Medium => "medium",
+            GtaoQuality::High => "high",
+            GtaoQuality::Ultra => "ultra",
+        }
+    }
+    pub fn from_name(name: &str) -> Option<GtaoQuality> {
+        GtaoQuality::ALL.into_iter().find(|q| q.name() == name)
+    }
+}
+
+/// How occlusion is applied to the image.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum CompositeMode {
+    /// The lesson's blend over the whole lit colour (SRC_ALPHA, ONE_MINUS_SRC_ALPHA).
+    #[default]
+    Blend,
+    /// Blend toward `tint` with visibility^`power` (seeds 000 and 003).
+    Tinted,
+    /// A depth pre-pass, AO, then lighting with AO applied to the ambient term only.
+    AmbientOnly,
+}
+
+impl CompositeMode {
+    pub const ALL: [CompositeMode; 3] = [
+        CompositeMode::Blend,
+        CompositeMode::Tinted,
+        CompositeMode::AmbientOnly,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            CompositeMode::Blend => "blend",
+            CompositeMode::Tinted => "tinted",
+            CompositeMode::AmbientOnly => "ambient-only",
+        }
+    }
+    pub fn from_name(name: &str) -> Option<CompositeMode> {
+        CompositeMode::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// The AO parameters every method reads (the course hard-codes radius 1 m, bias 0.012, intensity 5).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AoSettings {
+    pub enabled: bool,
+    /// Which AO method computes the occlusion (`sao-lesson` = the lesson's shaders).
+    pub method: AoMethod,
+    /// World-space sampling radius (m).
+    pub radius: f32,
+    /// Distance (m) along the normal below which a sample does not occlude (removes self-occlusion).
+    pub bias: f32,
+    pub intensity: f32,
+    pub samples: u32,
+    pub spiral_turns: u32,
+    pub blur: bool,
+    /// How occlusion reaches the picture.
+    pub composite: CompositeMode,
+    /// Colour that occluded areas blend toward (`tinted`; black = the lesson's darkening).
+    pub tint: [f32; 3],
+    /// Visibility is raised to this power before compositing (1 = as computed).
+    pub power: f32,
+    /// GTAO preset (slices × steps); when set it decides GTAO's sample counts instead of `samples`.
+    pub quality: Option<GtaoQuality>,
+}
+
+impl Default for AoSettings {
+    fn default() -> Self {
+        AoSettings {
+            enabled: true,
+            method: AoMethod::SaoLesson,
+            radius: 1.0,
+            bias: 0.012,
+            intensity: 5.0,
+            samples: 11,
+            spiral_turns: 3,
+            blur: true,
+            composite: CompositeMode::Blend,
+            tint: [0.0; 3],
+            power: 1.0,
+            quality: None,
+        }
+    }
+}
+
+/// Ranges the shaders handle. Radius: 1 mm to 100 m (beyond, every method's disc covers the screen
+/// and the clamped screen radius decides anyway); samples: 1 to 256 (the shaders' loop bound);
+/// power: 0.05 to 20 (outside, visibility rounds to all-open or all-closed in 8 bits).
+pub const RADIUS_RANGE: (f32, f32) = (1e-3, 100.0);
+pub const BIAS_RANGE: (f32, f32) = (0.0, 10.0);
+pub const INTENSITY_RANGE: (f32, f32) = (0.0, 1000.0);
+pub const POWER_RANGE: (f32, f32) = (0.05, 20.0);
+pub const SAMPLES_RANGE: (u32, u32) = (1, 256);
+pub const SPIRAL_TURNS_RANGE: (u32, u32) = (1, 64);
+
+impl AoSettings {
+    /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
+    /// `[ao]` key).
+    pub fn sanitized(mut self) -> (AoSettings, Vec<String>) {
+        let mut notes = Vec::new();
+        let mut fix = |name: &str, v: &mut f32, (lo, hi): (f32, f32)| {
+            let old = *v;
+            *v = if v.is_finite() {
+                v.clamp(lo, hi)
+            } else {
+                lo.max(hi.min(1.0))
+            };
+            if *v != old {
+                notes.push(format!("ao.{name} {old} is out of range, using {}", *v));
+            }
+        };
+        fix("radius", &mut self.radius, RADIUS_RANGE);
+        fix("bias", &mut self.bias, BIAS_RANGE);
+        fix("intensity", &mut self.intensity, INTENSITY_RANGE);
+        fix("power", &mut self.power, POWER_RANGE);
+        for c in &mut self.tint {
+            let old = *c;
+            *c = if c.is_finite() {
+                c.clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            if *c != old {
+                notes.push(format!(
+                    "ao.tint channel {old} is out of range, using {}",
+                    *c
+                ));
+            }
+        }
+        let mut fix_count = |name: &str, v: &mut u32, (lo, hi): (u32, u32)| {
+            if !(lo..=hi).contains(v) {
+                notes.push(format!(
+                    "ao.{name} {v} is out of range, using {}",
+                    (*v).clamp(lo, hi)
+                ));
+                *v = (*v).clamp(lo, hi);
+            }
+        };
+        fix_count("samples", &mut self.samples, SAMPLES_RANGE);
+        fix_count("spiral_turns", &mut self.spiral_turns, SPIRAL_TURNS_RANGE);
+        (self, notes)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn names_round_trip() {
+        for m in AoMethod::ALL {
+            assert_eq!(AoMethod::from_name(m.name()), Some(m));
+        }
+        for q in GtaoQuality::ALL {
+            assert_eq!(GtaoQuality::from_name(q.name()), Some(q));
+        }
+        for c in CompositeMode::ALL {
+            assert_eq!(CompositeMode::from_name(c.name()), Some(c));
+        }
+        assert_eq!(AoMethod::from_name("ssao"), None);
+    }
+
+    #[test]
+    fn sanitized_clamps_and_names_the_key() {
+        let s = AoSettings {
+            radius: f32::NAN,
+            samples: 0,
+            power: 1e9,
+            ..Default::default()
+        };
+        let (s, notes) = s.sanitized();
+        assert!(s.radius.is_finite() && s.radius > 0.0);
+        assert_eq!(s.samples, 1);
+        assert_eq!(s.power, 20.0);
+        assert!(
+            notes.iter().any(|n| n.starts_with("ao.radius")),
+            "{notes:?}"
+        );
+        assert!(
+            notes.iter().any(|n| n.starts_with("ao.samples")),
+            "{notes:?}"
+        );
+        let (d, none) = AoSettings::default().sanitized();
+        assert_eq!(d, AoSettings::default());
+        assert!(none.is_empty());
+    }
+}

@@ -1,0 +1,243 @@
+//! The one shader preprocessor, used by the engine and the grader: decodes the file (UTF-8, UTF-16,
+//! Shift-JIS), expands `#include "file"`, injects `#define`s after `#version` with `#line` so that
+//! compiler messages keep the file's line numbers, and maps driver logs back to `file:line:col`.
+
+use super::shader_error::ProgramError;
+use std::path::{Path, PathBuf};
+
+/// Decoded shader source with its path (for messages).
+#[derive(Clone, Debug)]
+pub struct ShaderSource {
+    pub path: PathBuf,
+    pub text: String,
+    /// The encoding the file was decoded from (the GL compiler only takes ASCII; anything but UTF-8 is
+    /// worth a warning so the student can re-save the file).
+    pub encoding: TextEncoding,
+}
+
+impl ShaderSource {
+    pub fn load(path: &Path) -> Result<ShaderSource, ProgramError> {
+        let shown = path.display().to_string();
+        let bytes = std::fs::read(path).map_err(|source| ProgramError::Io {
+            path: shown.clone(),
+            source,
+        })?;
+        let (text, encoding) =
+            decode_shader_bytes(&bytes).ok_or(ProgramError::Encoding { path: shown })?;
+        Ok(ShaderSource {
+            path: path.to_path_buf(),
+            text,
+            encoding,
+        })
+    }
+}
+
+/// The text encodings a shader file may come in (Windows editors save UTF-16 as "Unicode" and
+/// Shift-JIS as "ANSI" on Japanese systems).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TextEncoding {
+    Utf8,
+    Utf16Le,
+    Utf16Be,
+    ShiftJis,
+}
+
+impl TextEncoding {
+    pub fn name(self) -> &'static str {
+        match self {
+            TextEncoding::Utf8 => "UTF-8",
+            TextEncoding::Utf16Le => "UTF-16LE",
+            TextEncoding::Utf16Be => "UTF-16BE",
+            TextEncoding::ShiftJis => "Shift-JIS",
+        }
+    }
+}
+
+/// UTF-16 with a byte-order mark, or without one when every other byte of an ASCII-looking text is
+/// zero; then UTF-8 (with or without BOM); then Shift-JIS. `None` when none decodes cleanly.
+pub fn decode_shader_bytes(bytes: &[u8]) -> Option<(String, TextEncoding)> {
+    if let Some(enc) = utf16_encoding(bytes) {
+        let (codec, le) = match enc {
+            TextEncoding::Utf16Le => (encoding_rs::UTF_16LE, true),
+            _ => (encoding_rs::UTF_16BE, false),
+        };
+        let body = match (le, bytes) {
+            (true, [0xFF, 0xFE, rest @ ..]) | (false, [0xFE, 0xFF, rest @ ..]) => rest,
+            _ => bytes,
+        };
+        let (text, had_errors) = codec.decode_without_bom_handling(body);
+        return (!had_errors).then(|| (text.into_owned(), enc));
+    }
+    let bytes = bytes.strip_prefix(&[0xEF, 0xBB, 0xBF]).unwrap_or(bytes);
+    if let Ok(s) = std::str::from_utf8(bytes) {
+        if !s.contains('\0') {
+            return Some((s.to_string(), TextEncoding::Utf8));
+        }
+    }
+    let (text, _, had_errors) = encoding_rs::SHIFT_JIS.decode(bytes);
+    if had_errors || text.contains('\0') {
+        return None;
+    }
+    Some((text.into_owned(), TextEncoding::ShiftJis))
+}
+
+/// UTF-16 by its BOM, or by zero bytes: GLSL source is mostly ASCII, so UTF-16 text has a zero in
+/// (nearly) every high byte, which no UTF-8 or Shift-JIS text has.
+fn utf16_encoding(bytes: &[u8]) -> Option<TextEncoding> {
+    match bytes {
+        [0xFF, 0xFE, ..] => return Some(TextEncoding::Utf16Le),
+        [0xFE, 0xFF, ..] => return Some(TextEncoding::Utf16Be),
+        _ => {}
+    }
+    if bytes.len() < 8 || bytes.len() % 2 != 0 {
+        return None;
+    }
+    let zeros_at = |parity: usize| {
+        bytes
+            .iter()
+            .skip(parity)
+            .step_by(2)
+            .filter(|b| **b == 0)
+            .count()
+    };
+    let half = bytes.len() / 2;
+    // At least 90 % of the high bytes zero: ASCII in UTF-16.
+    if zeros_at(1) * 10 >= half * 9 && zeros_at(0) == 0 {
+        Some(TextEncoding::Utf16Le)
+    } else if zeros_at(0) * 10 >= half * 9 && zeros_at(1) == 0 {
+        Some(TextEncoding::Utf16Be)
+    } else {
+        None
+    }
+}
+
+/// The file named by an `#include "name"` line, if `line` is one (the one place that parses the
+/// directive: the engine's preprocessor and the grader's staging both use it).
+pub fn include_target(line: &str) -> Option<&str> {
+    let rest = line.trim_start().strip_prefix("#include")?;
+    let name = rest.trim().trim_matches('"');
+    (!name.is_empty()).then_some(name)
+}
+
+/// A float literal GLSL accepts, exact for f32 (Rust's shortest round-trip form plus a '.0' if needed).
+pub fn glsl_float(v: f32) -> String {
+    let s = format!("{v:?}");
+    if s.contains('.') || s.contains('e') || s.contains("inf") || s.contains("NaN") {
+        s
+    } else {
+        format!("{s}.0")
+    }
+}
+
+/// Prepares source for the GL compiler: inserts `#define`s after `#version` (with `#line` so that
+/// error lines still match the file) and blanks non-ASCII characters (Japanese comments), which GLSL
+/// does not allow, without moving any line.
+pub fn prepare_source(
+    src: &ShaderSource,
+    defines: &[(String, String)],
+) -> Result<String, ProgramError> {
+    prepare_source_with_includes(src, defines).map(|(text, _)| text)
+}
+
+/// As `prepare_source`, also expanding `#include "file"` lines (relative to the shader's folder,
+/// one level deep) with `#line` directives so that errors map back to the right file: source string
+/// 0 is the shader itself, k is the k-th included file (the returned list, in order).
+pub fn prepare_source_with_includes(
+    src: &ShaderSource,
+    defines: &[(String, String)],
+) -> Result<(String, Vec<PathBuf>), ProgramError> {
+    let mut out = String::with_capacity(src.text.len() + 128);
+    let mut includes = Vec::new();
+    let mut seen_version = false;
+    let ascii_only = |line: &str| -> String {
+        line.chars()
+            .map(|c| if c.is_ascii() { c } else { ' ' })
+            .collect()
+    };
+    for (i, line) in src.text.lines().enumerate() {
+        let ascii = ascii_only(line);
+        if let Some(name) = include_target(&ascii) {
+            let path = src.path.parent().unwrap_or(Path::new(".")).join(name);
+            let inc = ShaderSource::load(&path)?;
+            includes.push(path);
+            out.push_str(&format!("#line 1 {}\n", includes.len()));
+            for l in inc.text.lines() {
+                out.push_str(&ascii_only(l));
+                out.push('\n');
+            }
+            out.push_str(&format!("#line {} 0\n", i + 2));
+            continue;
+        }
+        out.push_str(&ascii);
+        out.push('\n');
+        if !seen_version && ascii.trim_start().starts_with("#version") {
+            seen_version = true;
+            for (k, v) in defines {
+                out.push_str(&format!("#define {k} {v}\n"));
+            }
+            // GLSL's #line N says the *next* line is N.
+            out.push_str(&format!("#line {}\n", i + 2));
+        }
+    }
+    if !seen_version {
+        return Err(ProgramError::NoVersion {
+            path: src.path.display().to_string(),
+        });
+    }
+    Ok((out, includes))
+}
+
+/// Turns a driver log ("0:12(5): error: ...") into "path:12:5: error: ..." lines.
+pub fn format_compile_log(path: &str, log: &str) -> Vec<String> {
+    format_compile_log_sources(path, &[], log)
+}
+
+/// As `format_compile_log`, naming included files by their source-string number (1, 2, …).
+pub fn format_compile_log_sources(path: &str, includes: &[PathBuf], log: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    for line in log.lines().map(str::trim).filter(|l| !l.is_empty()) {
+        // Mesa: "0:12(5): error: msg"; NVIDIA: "0(12) : error C0000: msg".
+        let parsed = parse_mesa(line).or_else(|| parse_nvidia(line));
+        let source: usize = line
+            .split(|c| c == ':' || c == '(')
+            .next()
+            .and_then(|s| s.trim().parse().ok())
+            .unwrap_or(0);
+        let inc_name;
+        let path = match source.checked_sub(1).and_then(|k| includes.get(k)) {
+            Some(p) => {
+                inc_name = p.display().to_string();
+                inc_name.as_str()
+            }
+            None => path,
+        };
+        match parsed {
+            Some((l, c, msg)) => out.push(match c {
+                Some(c) => format!("{path}:{l}:{c}: {msg}"),
+                None => format!("{path}:{l}: {msg}"),
+            }),
+            None => out.push(format!("{path}: {line}")),
+        }
+    }
+    if out.is_empty() {
+        out.push(format!("{path}: compile failed (driver gave no log)"));
+    }
+    out
+}
+
+fn parse_mesa(line: &str) -> Option<(u32, Option<u32>, String)> {
+    let (head, msg) = line.split_once("): ")?;
+    let (_, rest) = head.split_once(':')?;
+    let (l, c) = rest.split_once('(')?;
+    Some((
+        l.trim().parse().ok()?,
+        c.trim().parse().ok(),
+        msg.trim().to_string(),
+    ))
+}
+
+fn parse_nvidia(line: &str) -> Option<(u32, Option<u32>, String)> {
+    let (head, msg) = line.split_once(") :")?;
+    let (_, l) = head.split_once('(')?;
+    Some((l.trim().parse().ok()?, None, msg.trim().to_string()))
+}

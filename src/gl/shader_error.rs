@@ -1,0 +1,39 @@
+//! What can go wrong building a program, each error naming its file (and line when the compiler gives one).
+
+#[derive(Debug, thiserror::Error)]
+pub enum ProgramError {
+    #[error("{path}: cannot read shader file: {source}")]
+    Io {
+        path: String,
+        source: std::io::Error,
+    },
+    #[error("{path}: shader file is neither UTF-8, UTF-16 nor Shift-JIS text; save it as UTF-8")]
+    Encoding { path: String },
+    #[error("{path}: no '#version' line (the course's shaders start with '#version 450')")]
+    NoVersion { path: String },
+    #[error("{}", .messages.join("\n"))]
+    Compile { path: String, messages: Vec<String> },
+    #[error("{vert} + {frag}: link error: {log}")]
+    Link {
+        vert: String,
+        frag: String,
+        log: String,
+    },
+    #[error(transparent)]
+    NotFound(#[from] crate::res::NotFound),
+    #[error("GL error: {0}")]
+    Gl(String),
+}
+
+impl ProgramError {
+    /// The first `file:line` this error points at, if any (for an editor or the window's overlay).
+    pub fn location(&self) -> Option<String> {
+        match self {
+            ProgramError::Compile { messages, .. } => messages.first().and_then(|m| {
+                let mut parts = m.splitn(3, ':');
+                Some(format!("{}:{}", parts.next()?, parts.next()?))
+            }),
+            _ => None,
+        }
+    }
+}

@@ -1,0 +1,8 @@
+//! Camera, projections and depth conventions, frusta: plain math with no GL state.
+
+pub mod camera;
+pub mod depth;
+pub mod frustum;
+
+pub use camera::Camera;
+pub use depth::DepthMode;

@@ -1,0 +1,340 @@
+//! The window's egui parameter panel (F1) and the shader-error overlay.
+//!
+//! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
+//! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
+
+use crate::ao::{AoMethod, CompositeMode};
+use crate::render::{Engine, PassStat, View};
+use egui::{Color32, RichText};
+use std::collections::HashMap;
+
+/// Width the panel opens at (points); the user may drag its edge.
+const PANEL_WIDTH: f32 = 260.0;
+/// The panel never covers more than this share of the window, so the scene stays visible.
+const PANEL_MAX_SHARE: f32 = 0.6;
+/// Weight of the newest frame in the smoothed pass times (single frames on llvmpipe jitter a lot).
+const TIME_SMOOTHING: f64 = 0.25;
+
+/// Shader errors (`file:line: message` lines) stay on screen in this colour until fixed.
+pub const ERROR_RED: Color32 = Color32::from_rgb(255, 70, 60);
+const ERROR_BACKGROUND: Color32 = Color32::from_rgba_premultiplied(20, 0, 0, 235);
+
+/// What the window must do after the panel changed parameters.
+#[derive(Default, Debug, PartialEq, Eq)]
+pub struct PanelActions {
+    /// Sample count, spiral turns or method changed: they are `#define`s, so shaders are rebuilt.
+    pub sync_shader_constants: bool,
+    /// "Rebuild shaders" was clicked (same as R).
+    pub reload_shaders: bool,
+}
+
+pub struct Panel {
+    pub visible: bool,
+    /// "vendor / renderer / version" of the window's context, shown next to the times.
+    renderer: String,
+    smoothed_ms: HashMap<&'static str, f64>,
+    /// Sample count being dragged: applied on release, as each value costs a shader compile.
+    pending_samples: Option<u32>,
+}
+
+impl Panel {
+    pub fn new(visible: bool, renderer: String) -> Panel {
+        Panel {
+            visible,
+            renderer,
+            smoothed_ms: HashMap::new(),
+            pending_samples: None,
+        }
+    }
+
+    /// Builds the frame's UI: the error overlay (whenever `shader_errors` is non-empty), then the
+    /// panel or, when hidden, a one-line hint.
+    pub fn show(
+        &mut self,
+        ui: &mut egui::Ui,
+        engine: &mut Engine,
+        shader_errors: &[String],
+    ) -> PanelActions {
+        let mut actions = PanelActions::default();
+        // Before the side panel, so the overlay spans the whole width and stays visible when the
+        // panel is hidden.
+        if !shader_errors.is_empty() {
+            error_overlay(ui, shader_errors);
+        }
+        if self.visible {
+            let max_width = (ui.ctx().content_rect().width() * PANEL_MAX_SHARE).max(80.0);
+            egui::Panel::left("parameters")
+                .default_size(PANEL_WIDTH.min(max_width))
+                .max_size(max_width)
+                .show(ui, |ui| {
+                    egui::ScrollArea::vertical().show(ui, |ui| {
+                        self.contents(ui, engine, &mut actions);
+                    });
+                });
+        } else {
+            egui::Area::new(egui::Id::unique("panel hint"))
+                .anchor(egui::Align2::LEFT_TOP, egui::vec2(6.0, 6.0))
+                .interactable(false)
+                .show(ui.ctx(), |ui| {
+                    egui::Frame::popup(ui.style()).show(ui, |ui| {
+                        ui.small("F1: parameters");
+                    });
+                });
+        }
+        let (clean, notes) = engine.ao_settings.sanitized();
+        for n in notes {
+            log::warn!("{n}");
+        }
+        engine.ao_settings = clean;
+        actions
+    }
+
+    fn contents(&mut self, ui: &mut egui::Ui, engine: &mut Engine, actions: &mut PanelActions) {
+        ui.heading("Ambient occlusion");
+        ui.small("F1 hides this panel");
+        let p = &mut engine.ao_settings;
+        ui.checkbox(&mut p.enabled, "AO on (Space)");
+
+        let before = p.method;
+        egui::ComboBox::from_label("method (M)")
+            .selected_text(p.method.name())
+            .show_ui(ui, |ui| {
+                for m in AoMethod::ALL {
+                    ui.selectable_value(&mut p.method, m, m.name());
+                }
+            });
+        actions.sync_shader_constants |= p.method != before;
+
+        egui::ComboBox::from_label("composite")
+            .selected_text(composite_name(p.composite))
+            .show_ui(ui, |ui| {
+                for c in [
+                    CompositeMode::Blend,
+                    CompositeMode::Tinted,
+                    CompositeMode::AmbientOnly,
+                ] {
+                    ui.selectable_value(&mut p.composite, c, composite_name(c));
+                }
+            })
+            .response
+            .on_hover_text(
+                "blend: colour × visibility over the lit image (the lesson's)\n\
+                 tinted: toward the tint by 1 − visibility^power\n\
+                 ambient-only: AO darkens the ambient light only",
+            );
+        if p.composite == CompositeMode::Tinted {
+            ui.horizontal(|ui| {
+                ui.color_edit_button_rgb(&mut p.tint);
+                ui.label("tint");
+            });
+            ui.add(
+                egui::Slider::new(&mut p.power, 0.05..=20.0)
+                    .logarithmic(true)
+                    .text("power"),
+            );
+        }
+
+        ui.separator();
+        ui.add(
+            egui::Slider::new(&mut p.radius, 0.01..=10.0)
+                .logarithmic(true)
+                .suffix(" m")
+                .text("radius"),
+        );
+        ui.add(
+            egui::Slider::new(&mut p.bias, 0.0..=0.2)
+                .suffix(" m")
+                .text("bias"),
+        )
+        .on_hover_text(
+            "Samples closer than this along the normal do not occlude (no self-shadowing).",
+        );
+        ui.add(
+            egui::Slider::new(&mut p.intensity, 0.0..=50.0)
+                .logarithmic(true)
+                .text("intensity"),
+        );
+
+        // Compile-time constants: apply when the slider is released, not at every step of a drag.
+        let mut samples = self.pending_samples.unwrap_or(p.samples);
+        let r = ui
+            .add(
+                egui::Slider::new(&mut samples, 1..=256)
+                    .logarithmic(true)
+                    .text("samples"),
+            )
+            .on_hover_text(
+                "Sample budget. SAO, Crytek, hemisphere: samples; angle-based: pairs = N/2; \
+                 HBAO: 4 directions × N/4 steps; GTAO: 2 slices × N/4 steps per side.",
+            );
+        if r.dragged() {
+            self.pending_samples = Some(samples);
+        } else if samples != p.samples || self.pending_samples.is_some() {
+            self.pending_samples = None;
+            actions.sync_shader_constants |= samples != p.samples;
+            p.samples = samples;
+        }
+        let turns = p.spiral_turns;
+        ui.add_enabled(
+            matches!(p.method, AoMethod::SaoLesson | AoMethod::Sao),
+            egui::Slider::new(&mut p.spiral_turns, 1..=64).text("spiral turns"),
+        )
+        .on_hover_text("Turns of the SAO sample spiral (SAO methods only).");
+        actions.sync_shader_constants |= p.spiral_turns != turns;
+        ui.checkbox(&mut p.blur, "blur (B)");
+
+        ui.separator();
+        egui::ComboBox::from_label("view (V)")
+            .selected_text(engine.view.label())
+            .show_ui(ui, |ui| {
+                for v in View::ALL {
+                    ui.selectable_value(&mut engine.view, v, v.label());
+                }
+            });
+        if ui.button("Rebuild shaders (R)").clicked() {
+            actions.reload_shaders = true;
+        }
+
+        ui.separator();
+        ui.checkbox(&mut engine.collect_stats, "time each pass")
+            .on_hover_text(
+                "Brackets every pass with glFinish so its wall-clock time can be read: \
+                 the frame gets slower and passes no longer overlap.",
+            );
+        if engine.collect_stats {
+            self.timing_table(ui, &engine.last_stats());
+        } else {
+            self.smoothed_ms.clear();
+        }
+    }
+
+    fn timing_table(&mut self, ui: &mut egui::Ui, stats: &[PassStat]) {
+        ui.small(format!(
+            "Wall-clock ms (smoothed) on {}. On llvmpipe these are software-rendering times.",
+            self.renderer
+        ));
+        self.smoothed_ms
+            .retain(|name, _| stats.iter().any(|s| s.name == *name));
+        egui::Grid::new("pass times")
+            .num_columns(3)
+            .striped(true)
+            .show(ui, |ui| {
+                ui.strong("pass");
+                ui.strong("group");
+                ui.strong("ms");
+                ui.end_row();
+                let mut total = 0.0;
+                for s in stats {
+                    let ms = self
+                        .smoothed_ms
+                        .entry(s.name)
+                        .and_modify(|m| *m += (s.ms - *m) * TIME_SMOOTHING)
+                        .or_insert(s.ms);
+                    total += *ms;
+                    ui.label(s.name);
+                    ui.label(s.group);
+                    ui.monospace(format!("{ms:7.2}"));
+                    ui.end_row();
+                }
+                ui.strong("total");
+                ui.label("");
+                ui.monospace(format!("{total:7.2}"));
+                ui.end_row();
+            });
+    }
+}
+
+fn composite_name(c: CompositeMode) -> &'static str {
+    match c {
+        CompositeMode::Blend => "blend",
+        CompositeMode::Tinted => "tinted",
+        CompositeMode::AmbientOnly => "ambient-only",
+    }
+}
+
+/// Red, monospaced `file:line: message` lines along the bottom of the window.
+fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String]) {
+    let frame = egui::Frame::NONE
+        .fill(ERROR_BACKGROUND)
+        .inner_margin(egui::Margin::same(6));
+    egui::Panel::bottom("shader errors")
+        .frame(frame)
+        .resizable(false)
+        .show(ui, |ui| {
+            ui.add(
+                egui::Label::new(
+                    RichText::new("Shader error: the last working program keeps running (save a fix, or press R)")
+                        .color(Color32::WHITE),
+                )
+                .truncate(),
+            );
+            // Lines are not wrapped (long paths would push the message out of sight): scroll sideways.
+            egui::ScrollArea::both()
+                .max_height(ui.ctx().content_rect().height() * 0.4)
+                .show(ui, |ui| {
+                    // Paths under the working directory are shown relative to it: shorter lines.
+                    let cwd = std::env::current_dir()
+                        .map(|d| format!("{}/", d.display()))
+                        .unwrap_or_default();
+                    for line in shader_errors.iter().flat_map(|e| e.lines()) {
+                        let line = match line.strip_prefix(cwd.as_str()) {
+                            Some(rest) if !cwd.is_empty() => rest,
+                            _ => line,
+                        };
+                        ui.add(
+                            egui::Label::new(RichText::new(line).monospace().color(ERROR_RED))
+                                .extend(),
+                        );
+                    }
+                });
+        });
+}
+
+/// Fonts for the panel: egui's bundled fonts, with `OPENGL3D_FONT` (a TrueType file) tried first
+/// when set, and a system CJK font added as a fallback so Japanese file names and messages (the
+/// course's language) show. Returns a warning when `OPENGL3D_FONT` cannot be read.
+pub fn install_fonts(ctx: &egui::Context) -> Option<String> {
+    const CJK: [&str; 3] = [
+        "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
+        "/usr/share/fonts/noto-cjk/NotoSansCJK-Regular.ttc",
+        "/usr/share/fonts/truetype/fonts-japanese-gothic.ttf",
+    ];
+    let mut fonts = egui::FontDefinitions::default();
+    let mut warning = None;
+    let add = |fonts: &mut egui::FontDefinitions, name: &str, bytes: Vec<u8>, first: bool| {
+        fonts.font_data.insert(
+            name.to_string(),
+            std::sync::Arc::new(egui::FontData::from_owned(bytes)),
+        );
+        for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
+            let list = fonts.families.entry(family).or_default();
+            if first {
+                list.insert(0, name.to_string());
+            } else {
+                list.push(name.to_string());
+            }
+        }
+    };
+    if let Some(path) = std::env::var_os("OPENGL3D_FONT") {
+        match std::fs::read(&path) {
+            // Only the proportional family: a user font is rarely monospaced.
+            Ok(bytes) => {
+                add(&mut fonts, "user", bytes, true);
+                if let Some(mono) = fonts.families.get_mut(&egui::FontFamily::Monospace) {
+                    mono.retain(|n| n != "user");
+                }
+            }
+            Err(e) => {
+                warning = Some(format!(
+                    "OPENGL3D_FONT={}: {e}; using the bundled font",
+                    std::path::Path::new(&path).display()
+                ))
+            }
+        }
+    }
+    if let Some(bytes) = CJK.iter().find_map(|p| std::fs::read(p).ok()) {
+        add(&mut fonts, "cjk", bytes, false);
+    }
+    ctx.set_fonts(fonts);
+    warning
+}

@@ -1,0 +1,8 @@
+//! The engine's passes, each owning its programs and stating its render state.
+
+pub mod bloom;
+pub mod opaque;
+pub mod post;
+pub mod shadow;
+pub mod sky;
+pub mod transparent;

@@ -1,0 +1,227 @@
+//! The Rust ↔ GLSL interface, written once: every uniform location and texture binding the engine
+//! sets, and for each program the uniforms and samplers it declares. A GL test
+//! (`tests/gl/shader_interface.rs`) builds every program and checks its active uniforms against
+//! `PROGRAMS`, so a location typo on either side fails instead of being silently skipped.
+
+/// Uniform locations, mirroring the course's `layout(location=N)` table.
+pub mod loc {
+    /// standard.vert / shadow.vert: `matModel`.
+    pub const MODEL: i32 = 0;
+    /// standard.vert / shadow.vert: `matViewProjection`.
+    pub const VIEW_PROJECTION: i32 = 1;
+    /// standard.vert: `matShadow`, the light's view-projection.
+    pub const SHADOW_MATRIX: i32 = 2;
+    /// standard.frag: `objectColor` (rgba).
+    pub const OBJECT_COLOR: i32 = 100;
+    /// standard.frag, sky.frag: `lightDirection` (towards the light), world space.
+    pub const LIGHT_DIRECTION: i32 = 101;
+    pub const LIGHT_COLOR: i32 = 102;
+    pub const AMBIENT_COLOR: i32 = 103;
+    /// standard.frag: 1 = sample the shadow map, 0 = fully lit.
+    pub const SHADOW_ENABLED: i32 = 104;
+    /// standard.frag: AO on the ambient term only (1/0), 1/screen size, visibility power.
+    pub const AO_AMBIENT_ONLY: i32 = 105;
+    pub const INV_SCREEN_SIZE: i32 = 106;
+    pub const AO_POWER: i32 = 107;
+    /// sky.frag: inverse view-projection (a view ray per pixel).
+    pub const INVERSE_VIEW_PROJECTION: i32 = 110;
+    /// image_processing.frag: colour matrix; bloom strength.
+    pub const COLOR_MATRIX: i32 = 120;
+    pub const BLOOM_STRENGTH: i32 = 121;
+    /// bloom_bright.frag: brightness threshold.
+    pub const BLOOM_THRESHOLD: i32 = 130;
+    /// sao_down_sampling.frag: the level read (the course's `mipLevel`, location 200).
+    pub const SAO_MIP_LEVEL: i32 = 200;
+    /// sao.frag: (radius², radius in texcoords at 1 m, bias, intensity / r⁶) (the course's `saoInfo`).
+    pub const SAO_INFO: i32 = 200;
+    /// sao.frag and ao/common.glsl: NDC → view-space factors at 1 m (the course's `ndcToView`).
+    pub const NDC_TO_VIEW: i32 = 201;
+    /// ao/common.glsl: (radius m, bias m, intensity, pixels per metre at 1 m).
+    pub const AO_INFO: i32 = 200;
+    /// ao/common.glsl: (samples or directions or slices, steps).
+    pub const AO_COUNTS: i32 = 202;
+    /// ao/common.glsl: the clamp on the screen-space radius (half-size pixels).
+    pub const MAX_RADIUS_PIXELS: i32 = 203;
+    /// debug_view.frag: which buffer to show, and a value scale.
+    pub const DEBUG_VIEW_MODE: i32 = 210;
+    pub const DEBUG_VIEW_SCALE: i32 = 211;
+    /// ao/blur_separable.frag, ao/blur_packed.frag: (1,0) then (0,1).
+    pub const BLUR_AXIS: i32 = 210;
+    /// ao/composite_tint.frag: tint colour and power.
+    pub const AO_TINT: i32 = 220;
+    pub const AO_TINT_POWER: i32 = 221;
+}
+
+/// Texture units (`layout(binding=N)`).
+pub mod binding {
+    /// Every full-screen pass reads its main input here.
+    pub const INPUT: u32 = 0;
+    /// sao_blur.frag and ao/blur_separable.frag: linear depth beside the occlusion; image processing: bloom.
+    pub const SECOND_INPUT: u32 = 1;
+    /// standard.frag: `texShadow`.
+    pub const SHADOW_MAP: u32 = 2;
+    /// standard.frag: occlusion for AO on the ambient term only.
+    pub const AO_AMBIENT: u32 = 3;
+}
+
+/// One uniform a program declares.
+#[derive(Clone, Copy, Debug)]
+pub struct Uniform {
+    pub name: &'static str,
+    pub location: i32,
+}
+
+/// One sampler a program declares.
+#[derive(Clone, Copy, Debug)]
+pub struct Sampler {
+    pub name: &'static str,
+    pub binding: u32,
+}
+
+/// A program's files and declared interface.
+#[derive(Clone, Copy, Debug)]
+pub struct ProgramInterface {
+    pub vert: &'static str,
+    pub frag: &'static str,
+    pub uniforms: &'static [Uniform],
+    pub samplers: &'static [Sampler],
+}
+
+const fn u(name: &'static str, location: i32) -> Uniform {
+    Uniform { name, location }
+}
+const fn s(name: &'static str, binding: u32) -> Sampler {
+    Sampler { name, binding }
+}
+const fn fullscreen(
+    frag: &'static str,
+    uniforms: &'static [Uniform],
+    samplers: &'static [Sampler],
+) -> ProgramInterface {
+    ProgramInterface {
+        vert: "simple.vert",
+        frag,
+        uniforms,
+        samplers,
+    }
+}
+
+use binding::*;
+use loc::*;
+
+const AO_METHOD_UNIFORMS: &[Uniform] = &[
+    u("aoInfo", AO_INFO),
+    u("ndcToView", NDC_TO_VIEW),
+    u("aoCounts", AO_COUNTS),
+    u("maxRadiusPixels", MAX_RADIUS_PIXELS),
+];
+const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT)];
+
+/// Every program the engine builds, with what it declares.
+pub const PROGRAMS: &[ProgramInterface] = &[
+    ProgramInterface {
+        vert: "standard.vert",
+        frag: "standard.frag",
+        uniforms: &[
+            u("matModel", MODEL),
+            u("matViewProjection", VIEW_PROJECTION),
+            u("matShadow", SHADOW_MATRIX),
+            u("objectColor", OBJECT_COLOR),
+            u("lightDirection", LIGHT_DIRECTION),
+            u("lightColor", LIGHT_COLOR),
+            u("ambientColor", AMBIENT_COLOR),
+            u("shadowEnabled", SHADOW_ENABLED),
+            u("aoAmbientOnly", AO_AMBIENT_ONLY),
+            u("invScreenSize", INV_SCREEN_SIZE),
+            u("aoPower", AO_POWER),
+        ],
+        samplers: &[s("texShadow", SHADOW_MAP), s("texAO", AO_AMBIENT)],
+    },
+    ProgramInterface {
+        vert: "shadow.vert",
+        frag: "shadow.frag",
+        uniforms: &[
+            u("matModel", MODEL),
+            u("matViewProjection", VIEW_PROJECTION),
+        ],
+        samplers: &[],
+    },
+    ProgramInterface {
+        vert: "sky.vert",
+        frag: "sky.frag",
+        uniforms: &[
+            u("matInverseViewProjection", INVERSE_VIEW_PROJECTION),
+            u("lightDirection", LIGHT_DIRECTION),
+        ],
+        samplers: &[],
+    },
+    fullscreen(
+        "bloom_bright.frag",
+        &[u("threshold", BLOOM_THRESHOLD)],
+        &[s("texColor", INPUT)],
+    ),
+    fullscreen("bloom_down.frag", &[], &[s("texColor", INPUT)]),
+    fullscreen("bloom_up.frag", &[], &[s("texColor", INPUT)]),
+    fullscreen(
+        "image_processing.frag",
+        &[
+            u("colorMatrix", COLOR_MATRIX),
+            u("bloomStrength", BLOOM_STRENGTH),
+        ],
+        &[s("texColor", INPUT), s("texBloom", SECOND_INPUT)],
+    ),
+    fullscreen(
+        "debug_view.frag",
+        &[u("mode", DEBUG_VIEW_MODE), u("scale", DEBUG_VIEW_SCALE)],
+        &[s("texValue", INPUT)],
+    ),
+    // The lesson's five.
+    fullscreen("sao_restore_depth.frag", &[], &[s("texDepth", INPUT)]),
+    fullscreen(
+        "sao_down_sampling.frag",
+        &[u("mipLevel", SAO_MIP_LEVEL)],
+        &[s("texDepth", INPUT)],
+    ),
+    fullscreen(
+        "sao.frag",
+        &[u("saoInfo", SAO_INFO), u("ndcToView", NDC_TO_VIEW)],
+        &[s("texDepth", INPUT)],
+    ),
+    fullscreen(
+        "sao_blur.frag",
+        &[],
+        &[s("texColor", INPUT), s("texDepth", SECOND_INPUT)],
+    ),
+    fullscreen("simple.frag", &[], &[s("texColor", INPUT)]),
+    // The engine's AO programs.
+    fullscreen(
+        "ao/restore_depth_reversed.frag",
+        &[],
+        &[s("texDepth", INPUT)],
+    ),
+    fullscreen(
+        "ao/blur_separable.frag",
+        &[u("axis", BLUR_AXIS)],
+        &[s("texColor", INPUT), s("texDepth", SECOND_INPUT)],
+    ),
+    fullscreen(
+        "ao/blur_packed.frag",
+        &[u("axis", BLUR_AXIS)],
+        &[s("texPacked", INPUT)],
+    ),
+    fullscreen(
+        "ao/composite_tint.frag",
+        &[u("tint", AO_TINT), u("power", AO_TINT_POWER)],
+        &[s("texOcclusion", INPUT)],
+    ),
+    fullscreen("ao/sao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen("ao/crytek.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen("ao/hemisphere.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen("ao/hbao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen(
+        "ao/angle_based.frag",
+        AO_METHOD_UNIFORMS,
+        AO_METHOD_SAMPLERS,
+    ),
+    fullscreen("ao/gtao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+];

@@ -1,0 +1,78 @@
+//! The student's loop: `opengl3d lesson N` runs the engine at step N of the AO lesson, and
+//! `opengl3d lesson start DIR` writes a working copy of `Res/` with the lesson's shaders as stubs.
+
+use crate::render::View;
+use crate::res::project_res_dir;
+use anyhow::{bail, Context as _, Result};
+use std::path::{Path, PathBuf};
+
+/// Number of steps (lessons/01-… to 12-…).
+pub const STEPS: u32 = 12;
+
+/// The four shaders the lesson has students write.
+pub const LESSON_SHADERS: [&str; 4] = [
+    "sao_restore_depth.frag",
+    "sao_down_sampling.frag",
+    "sao.frag",
+    "sao_blur.frag",
+];
+
+/// What step `n` shows: steps 1–5 the linear depth (restore + down-sampling only), 6–10 the raw SAO
+/// buffer, 11 the blurred buffer, 12 the composite.
+pub fn view_for_step(n: u32) -> Result<View> {
+    Ok(match n {
+        1..=5 => View::LinearDepth,
+        6..=10 => View::AoRaw,
+        11 => View::Ao,
+        12 => View::Composite,
+        _ => bail!("there is no lesson step {n}: steps are 1 to {STEPS}"),
+    })
+}
+
+/// The shader files step `n` needs the student to have written.
+pub fn shaders_for_step(n: u32) -> &'static [&'static str] {
+    match n {
+        1..=3 => &LESSON_SHADERS[..1],
+        4..=5 => &LESSON_SHADERS[..2],
+        6..=10 => &LESSON_SHADERS[..3],
+        _ => &LESSON_SHADERS[..],
+    }
+}
+
+/// Writes the starting folder: every shader and scene of `Res/`, with the lesson's four shaders
+/// replaced by stubs that compile. Existing files are never overwritten. Returns the files written.
+pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
+    let res = project_res_dir();
+    std::fs::create_dir_all(dir.join("scenes"))
+        .with_context(|| format!("cannot create {}", dir.display()))?;
+    let mut written = Vec::new();
+    let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
+        if to.exists() {
+            eprintln!("kept existing {}", to.display());
+            return Ok(());
+        }
+        std::fs::copy(&from, &to)
+            .with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))?;
+        written.push(to);
+        Ok(())
+    };
+    for entry in std::fs::read_dir(&res)? {
+        let p = entry?.path();
+        let name = p.file_name().unwrap().to_string_lossy().to_string();
+        let is_shader = name.ends_with(".frag") || name.ends_with(".vert");
+        if !is_shader {
+            continue;
+        }
+        if LESSON_SHADERS.contains(&name.as_str()) {
+            copy(res.join("lesson-stubs").join(&name), dir.join(&name))?;
+        } else {
+            copy(p, dir.join(&name))?;
+        }
+    }
+    for entry in std::fs::read_dir(res.join("scenes"))? {
+        let p = entry?.path();
+        copy(p.clone(), dir.join("scenes").join(p.file_name().unwrap()))?;
+    }
+    written.sort();
+    Ok(written)
+}
