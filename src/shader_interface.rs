@@ -116,6 +116,12 @@ const AO_METHOD_UNIFORMS: &[Uniform] = &[
     u("maxRadiusPixels", MAX_RADIUS_PIXELS),
 ];
 const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT)];
+/// Crytek's and the hemisphere kernel's samples stay within the world radius: no screen clamp.
+const AO_UNCLAMPED_UNIFORMS: &[Uniform] = &[
+    u("aoInfo", AO_INFO),
+    u("ndcToView", NDC_TO_VIEW),
+    u("aoCounts", AO_COUNTS),
+];
 
 /// Every program the engine builds, with what it declares.
 pub const PROGRAMS: &[ProgramInterface] = &[
@@ -215,8 +221,12 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[s("texOcclusion", INPUT)],
     ),
     fullscreen("ao/sao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen("ao/crytek.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen("ao/hemisphere.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen("ao/crytek.frag", AO_UNCLAMPED_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen(
+        "ao/hemisphere.frag",
+        AO_UNCLAMPED_UNIFORMS,
+        AO_METHOD_SAMPLERS,
+    ),
     fullscreen("ao/hbao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
     fullscreen(
         "ao/angle_based.frag",
@@ -225,3 +235,90 @@ pub const PROGRAMS: &[ProgramInterface] = &[
     ),
     fullscreen("ao/gtao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
 ];
+
+/// Every defines any program of `PROGRAMS` needs to compile (camera planes, the lesson's sample
+/// counts, the methods' mip offset), with the course's values.
+pub fn build_defines() -> Vec<(&'static str, String)> {
+    vec![
+        ("CAMERA_NEAR", "0.35".into()),
+        ("CAMERA_FAR", "1000.0".into()),
+        ("SAO_SAMPLE_COUNT", "11".into()),
+        ("SAO_SPIRAL_TURNS", "3".into()),
+        ("LOG_MAX_OFFSET", "3".into()),
+    ]
+}
+
+/// Differences between `program`'s active uniforms and `interface`: an active uniform the table
+/// lacks or places elsewhere, a sampler on another unit, and a declared uniform the program does
+/// not have (a typo in the table). Empty when they agree.
+pub fn check_program(
+    gl: &glow::Context,
+    program: glow::Program,
+    interface: &ProgramInterface,
+) -> Vec<String> {
+    use glow::HasContext;
+    let mut problems = Vec::new();
+    let mut seen = Vec::new();
+    let file = interface.frag;
+    // SAFETY: queries on a linked program of the current context.
+    unsafe {
+        for i in 0..gl.get_active_uniforms(program) {
+            let Some(active) = gl.get_active_uniform(program, i) else {
+                continue;
+            };
+            let name = active.name.trim_end_matches("[0]").to_string();
+            let Some(location) = gl.get_uniform_location(program, &active.name) else {
+                continue;
+            };
+            let location = location.0 as i32;
+            let is_sampler = matches!(
+                active.utype,
+                glow::SAMPLER_2D | glow::SAMPLER_2D_SHADOW | glow::SAMPLER_CUBE | glow::SAMPLER_3D
+            );
+            if is_sampler {
+                let mut unit = [0i32];
+                gl.get_uniform_i32(
+                    program,
+                    &glow::NativeUniformLocation(location as u32),
+                    &mut unit,
+                );
+                match interface.samplers.iter().find(|s| s.name == name) {
+                    Some(s) if s.binding as i32 == unit[0] => {}
+                    Some(s) => problems.push(format!(
+                        "{file}: sampler {name} is on unit {}, the interface says {}",
+                        unit[0], s.binding
+                    )),
+                    None => problems.push(format!(
+                        "{file}: sampler {name} (unit {}) is not in the interface",
+                        unit[0]
+                    )),
+                }
+            } else {
+                match interface.uniforms.iter().find(|u| u.name == name) {
+                    Some(u) if u.location == location => {}
+                    Some(u) => problems.push(format!(
+                        "{file}: uniform {name} is at location {location}, the interface says {}",
+                        u.location
+                    )),
+                    None => problems.push(format!(
+                        "{file}: uniform {name} (location {location}) is not in the interface"
+                    )),
+                }
+            }
+            seen.push(name);
+        }
+    }
+    let declared = interface
+        .uniforms
+        .iter()
+        .map(|u| u.name)
+        .chain(interface.samplers.iter().map(|s| s.name));
+    for name in declared {
+        if !seen.iter().any(|s| s == name) {
+            problems.push(format!(
+                "{file}: the interface lists {name}, which the program does not use"
+            ));
+        }
+    }
+    problems
+}

@@ -148,7 +148,7 @@ fails! {
     restore_without_times_two_fails: "restore-no-x2" => ["gl_FragCoord.xy) * 2"],
     restore_with_the_debug_scale_left_fails: "restore-debug-scale" => ["0.01", "got 0.100"],
     restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "2D − 1"],
-    restore_not_text_is_rejected_by_name: "restore-not-text" => ["restore-not-text/sao_restore_depth.frag", "neither UTF-8 nor Shift-JIS"],
+    restore_not_text_is_rejected_by_name: "restore-not-text" => ["restore-not-text/sao_restore_depth.frag", "neither UTF-8, UTF-16 nor Shift-JIS"],
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
     down_sampling_reading_level_0_fails: "down-sampling-level-0" => ["pass mipLevel"],
