@@ -15,7 +15,10 @@ fn mutant(name: &str) -> PathBuf {
 
 fn temp_dir(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
+    match std::fs::remove_dir_all(&d) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => panic!("{}: {e}", d.display()),
+        _ => {}
+    }
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -152,6 +155,7 @@ fails! {
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
     down_sampling_reading_level_0_fails: "down-sampling-level-0" => ["pass mipLevel"],
+    down_sampling_with_a_float_mip_level_names_the_gl_error: "down-sampling-float-mip-level" => ["pass mipLevel", "OpenGL reported GL_INVALID_OPERATION"],
     sao_writing_inside_the_loop_fails: "sao-output-in-loop" => ["not normalised", "expected about 0."],
     sao_with_a_flipped_normal_fails: "sao-flipped-normal" => ["normal flipped"],
     sao_without_the_clamp_fails: "sao-no-clamp" => ["max(…, 0)"],
@@ -268,4 +272,30 @@ fn bad_arguments_are_errors() {
     let run = grade(Some(&missing), &[]);
     assert_ne!(run.code, Some(0));
     assert!(run.stderr.contains("not a folder"), "{}", run.stderr);
+}
+
+#[test]
+fn pictures_that_cannot_be_written_are_said_with_the_verdict() {
+    // A folder where the restore step's first picture should go: the PNG cannot be written.
+    let out = temp_dir("grade-blocked-pictures");
+    std::fs::create_dir_all(out.join("restore-expected.png")).unwrap();
+    let run = grade(
+        Some(&mutant("listing-restore")),
+        &[
+            "--json",
+            "--step",
+            "restore",
+            "--out",
+            out.to_str().unwrap(),
+        ],
+    );
+    let v = run.json();
+    check_shape(&v);
+    let s = &v["steps"][0];
+    assert_eq!(s["passed"], true, "{v}");
+    let message = s["message"].as_str().unwrap();
+    assert!(
+        message.contains("pictures not written") && message.contains("restore-expected.png"),
+        "{message}"
+    );
 }

@@ -1,0 +1,98 @@
+//! The grader's command line: which steps to grade (`opengl3d grade`), and the hidden child command
+//! that grades one of them (`opengl3d grade-step`).
+
+use anyhow::{bail, Result};
+use clap::{Args, ValueEnum};
+use std::path::PathBuf;
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, ValueEnum)]
+pub enum Step {
+    Restore,
+    DownSampling,
+    Sao,
+    Blur,
+}
+
+impl Step {
+    pub const ALL: [Step; 4] = [Step::Restore, Step::DownSampling, Step::Sao, Step::Blur];
+
+    /// The shader file the step grades.
+    pub fn file(self) -> &'static str {
+        match self {
+            Step::Restore => "sao_restore_depth.frag",
+            Step::DownSampling => "sao_down_sampling.frag",
+            Step::Sao => "sao.frag",
+            Step::Blur => "sao_blur.frag",
+        }
+    }
+    pub fn name(self) -> &'static str {
+        match self {
+            Step::Restore => "restore",
+            Step::DownSampling => "down-sampling",
+            Step::Sao => "sao",
+            Step::Blur => "blur",
+        }
+    }
+    fn from_file(file: &str) -> Option<Step> {
+        Step::ALL.into_iter().find(|s| s.file() == file)
+    }
+}
+
+#[derive(Args, Debug, Clone)]
+pub struct GradeArgs {
+    /// Grade the shaders lesson step N needs (1-3: restore; 4-5: + down-sampling; 6-10: + SAO;
+    /// 11-12: all four).
+    #[arg(long, value_name = "N")]
+    pub lesson: Option<u32>,
+    /// Grade only these steps (comma-separated or repeated); overrides --lesson.
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub step: Vec<Step>,
+    /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "message"}]}.
+    #[arg(long)]
+    pub json: bool,
+    /// Folder for expected/actual/difference PNGs of each step.
+    #[arg(long, value_name = "DIR")]
+    pub out: Option<PathBuf>,
+    /// Seconds each step may take before it counts as hung (an endless loop in a shader).
+    #[arg(long, default_value_t = 20.0, value_name = "SECONDS")]
+    pub timeout: f64,
+    /// Also print each step's measurements on stderr.
+    #[arg(long)]
+    pub verbose: bool,
+}
+
+/// The hidden child command: grades one step and prints its report as JSON.
+#[derive(Args, Debug, Clone)]
+pub struct GradeStepArgs {
+    #[arg(value_enum)]
+    pub step: Step,
+    /// Private working folder (the graded file is copied there).
+    #[arg(long)]
+    pub work: PathBuf,
+    /// Folder for the step's PNGs.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+}
+
+/// The steps `args` select, in pipeline order.
+pub fn selected_steps(args: &GradeArgs) -> Result<Vec<Step>> {
+    let mut steps: Vec<Step> = if !args.step.is_empty() {
+        args.step.clone()
+    } else if let Some(n) = args.lesson {
+        if !(1..=crate::tools::lesson::STEPS).contains(&n) {
+            bail!(
+                "there is no lesson step {n}: steps are 1 to {}",
+                crate::tools::lesson::STEPS
+            );
+        }
+        crate::tools::lesson::shaders_for_step(n)
+            .iter()
+            .filter_map(|f| Step::from_file(f))
+            .collect()
+    } else {
+        Step::ALL.to_vec()
+    };
+    steps.sort();
+    steps.dedup();
+    Ok(steps)
+}

@@ -1,0 +1,188 @@
+//! One step's child process, seen from the grader: started, given a deadline and killed past it, and
+//! what it printed turned into the step's report.
+
+use super::args::Step;
+use super::report::StepReport;
+use std::io::Read;
+use std::process::{Command, ExitStatus, Stdio};
+use std::thread::JoinHandle;
+use std::time::{Duration, Instant};
+
+/// A thread reading one of the child's pipes to its end.
+type Drain = JoinHandle<std::io::Result<String>>;
+
+/// A running child: one step.
+pub struct Child {
+    step: Step,
+    child: std::process::Child,
+    started: Instant,
+    stdout: Option<Drain>,
+    stderr: Option<Drain>,
+}
+
+fn drain<R: Read + Send + 'static>(r: Option<R>) -> Option<Drain> {
+    r.map(|mut r| {
+        std::thread::spawn(move || {
+            let mut buf = Vec::new();
+            r.read_to_end(&mut buf)?;
+            Ok(String::from_utf8_lossy(&buf).into_owned())
+        })
+    })
+}
+
+/// The text a drained pipe gave, or why it could not be read.
+fn collect(drain: Option<Drain>, which: &str) -> Result<String, String> {
+    match drain.map(JoinHandle::join) {
+        None => Ok(String::new()),
+        Some(Ok(Ok(text))) => Ok(text),
+        Some(Ok(Err(e))) => Err(format!("cannot read the step's {which}: {e}")),
+        Some(Err(_)) => Err(format!("the thread reading the step's {which} panicked")),
+    }
+}
+
+/// The last non-empty line of `s`, trimmed ("" when none).
+fn last_line(s: &str) -> &str {
+    s.lines()
+        .rev()
+        .map(str::trim)
+        .find(|l| !l.is_empty())
+        .unwrap_or("")
+}
+
+/// `": line"` for the last line of the child's stderr, or "" when it printed nothing.
+fn stderr_tail(err: &str) -> String {
+    match last_line(err) {
+        "" => String::new(),
+        l => format!(": {l}"),
+    }
+}
+
+/// The verdict the child printed: its last line that starts with `{`. `None` when it printed none;
+/// an error when that line is not a verdict.
+fn printed_verdict(out: &str) -> Option<Result<StepReport, String>> {
+    let line = out
+        .lines()
+        .rev()
+        .find(|l| l.trim_start().starts_with('{'))?;
+    Some(
+        serde_json::from_str::<StepReport>(line)
+            .map_err(|e| format!("the step printed an unreadable verdict ({e}): {line}")),
+    )
+}
+
+impl Child {
+    /// Starts `cmd` (the hidden `grade-step` command for `step`) with its output piped.
+    pub fn spawn(mut cmd: Command, step: Step) -> std::io::Result<Child> {
+        cmd.stdin(Stdio::null())
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped());
+        let mut child = cmd.spawn()?;
+        let stdout = drain(child.stdout.take());
+        let stderr = drain(child.stderr.take());
+        Ok(Child {
+            step,
+            child,
+            started: Instant::now(),
+            stdout,
+            stderr,
+        })
+    }
+
+    /// Waits for the child until `timeout` after its start, killing it then; turns what it printed
+    /// into a report.
+    pub fn finish(mut self, timeout: Duration) -> StepReport {
+        let step = self.step;
+        let fail = |message: String| StepReport::failed(step, message);
+        let status = match self.wait(timeout) {
+            Ok(Some(status)) => status,
+            Ok(None) => {
+                return fail(format!(
+                    "timed out after {} s: the shader never finishes (an endless loop?); grading \
+                     went on",
+                    timeout.as_secs_f64()
+                ))
+            }
+            Err(e) => return fail(format!("grader error: {e}")),
+        };
+        let out = match collect(self.stdout.take(), "output") {
+            Ok(out) => out,
+            Err(e) => return fail(format!("grader error: {e}")),
+        };
+        // Only shown when there is no verdict: a reading error then takes the place of the text.
+        let err = collect(self.stderr.take(), "error output").unwrap_or_else(|e| e);
+        match printed_verdict(&out) {
+            Some(Ok(report)) => return report,
+            Some(Err(e)) => return fail(format!("grader error: {e}")),
+            None => {}
+        }
+        fail(no_verdict_message(status, &err))
+    }
+
+    /// The child's exit status, or `None` when it ran past `timeout` and was killed.
+    fn wait(&mut self, timeout: Duration) -> Result<Option<ExitStatus>, String> {
+        loop {
+            match self.child.try_wait() {
+                Ok(Some(status)) => return Ok(Some(status)),
+                Ok(None) if self.started.elapsed() >= timeout => {
+                    self.child
+                        .kill()
+                        .map_err(|e| format!("cannot stop the step after its time limit: {e}"))?;
+                    self.child
+                        .wait()
+                        .map_err(|e| format!("cannot wait for the stopped step: {e}"))?;
+                    return Ok(None);
+                }
+                Ok(None) => std::thread::sleep(Duration::from_millis(10)),
+                Err(e) => return Err(format!("cannot wait for the step: {e}")),
+            }
+        }
+    }
+}
+
+/// Why a child that ended without printing a verdict failed: a crash (a signal) or another exit.
+fn no_verdict_message(status: ExitStatus, err: &str) -> String {
+    #[cfg(unix)]
+    {
+        use std::os::unix::process::ExitStatusExt;
+        if let Some(sig) = status.signal() {
+            return format!(
+                "the renderer crashed (signal {sig}) while running this shader{}",
+                stderr_tail(err)
+            );
+        }
+    }
+    format!(
+        "grader error: the step's process ended ({status}) without a verdict{}",
+        stderr_tail(err)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_last_json_line_is_the_verdict() {
+        let out = "noise\n{\"step\":\"sao\",\"file\":\"sao.frag\",\"passed\":true,\"message\":\"ok\"}\n\n";
+        let r = printed_verdict(out)
+            .expect("a verdict line")
+            .expect("a verdict");
+        assert!(r.passed);
+        assert_eq!(r.message, "ok");
+        assert!(printed_verdict("no verdict here\n").is_none());
+    }
+
+    #[test]
+    fn an_unreadable_verdict_is_an_error_not_a_missing_one() {
+        let e = printed_verdict("{\"step\": \"sao\", truncated\n").expect("a verdict line");
+        let e = e.expect_err("not a verdict");
+        assert!(e.contains("unreadable verdict"), "{e}");
+        assert!(e.contains("truncated"), "{e}");
+    }
+
+    #[test]
+    fn the_stderr_tail_is_its_last_non_empty_line() {
+        assert_eq!(stderr_tail("first\n  last one \n\n"), ": last one");
+        assert_eq!(stderr_tail(" \n"), "");
+    }
+}

@@ -1,0 +1,144 @@
+//! The grading rig: one headless GL context holding the project's passes and the student's side by
+//! side, the student's built from a private copy of the graded file, and what a step hands back.
+
+use super::picture::Panel;
+use crate::ao::{SaoLesson, AoSettings};
+use crate::platform::headless::{DevicePreference, HeadlessContext};
+use crate::math::Camera;
+use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, Texture, TextureDesc};
+use crate::res::ResDirs;
+use anyhow::Result;
+use std::collections::BTreeMap;
+use std::path::Path;
+use std::rc::Rc;
+
+/// The outcome of one step.
+pub struct Verdict {
+    pub passed: bool,
+    pub message: String,
+    pub metrics: BTreeMap<String, f64>,
+    pub panels: Vec<Panel>,
+}
+
+impl Verdict {
+    pub fn fail(message: impl Into<String>) -> Verdict {
+        Verdict {
+            passed: false,
+            message: message.into(),
+            metrics: BTreeMap::new(),
+            panels: Vec::new(),
+        }
+    }
+    /// A failure of the grader itself (not of the student's shader).
+    pub fn grader_error(e: &anyhow::Error) -> Verdict {
+        Verdict::fail(format!("grader error: {e:#}"))
+    }
+}
+
+/// The project's passes and the student's, sharing one GL context.
+pub struct Rig {
+    pub gl: Gl,
+    pub meshes: MeshBuffer,
+    pub reference: SaoLesson,
+    pub student: SaoLesson,
+    /// Declared last so that it is dropped last: the GL objects above are deleted while it is current.
+    _context: HeadlessContext,
+}
+
+/// Where the graded file comes from, for messages.
+pub struct Subject<'a> {
+    /// Folder the student's file was copied into (searched first).
+    pub work_dir: &'a Path,
+    /// Folder the file really lives in (shown in messages instead of `work_dir`).
+    pub shown_dir: &'a Path,
+}
+
+impl Subject<'_> {
+    /// Replaces the private copy's path by the student's in an error message.
+    fn rewrite(&self, msg: &str) -> String {
+        msg.replace(
+            &self.work_dir.display().to_string(),
+            &self.shown_dir.display().to_string(),
+        )
+    }
+}
+
+fn context() -> Result<HeadlessContext> {
+    // Mesa's software device first: grading must not depend on the GPU, and a shader that never
+    // ends must not hang a real one.
+    HeadlessContext::with_preference(DevicePreference::Software).or_else(|_| HeadlessContext::new())
+}
+
+/// Replaces the R8 SAO and blur targets by R32F ones of the same size, so that an output that is
+/// not normalised shows its real size instead of being clamped to 1.
+fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
+    let (w, h) = lesson.targets.tex_depth.size_at(0);
+    let make = |name: &str| -> Result<FramebufferObject> {
+        let t = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target(name, w, h, glow::R32F),
+        )?);
+        FramebufferObject::new(gl, Some(t), None, 0, 0)
+    };
+    lesson.targets.fbo_sao = make("grade sao")?;
+    lesson.targets.fbo_blur = make("grade blur")?;
+    Ok(())
+}
+
+/// A one-line message for a shader that does not build, naming the student's file (not the copy).
+fn build_error_message(e: &anyhow::Error, subject: &Subject) -> String {
+    let text = match e.downcast_ref::<ProgramError>() {
+        Some(ProgramError::Compile { messages, .. }) => {
+            let mut m = format!("does not compile: {}", messages.join(" | "));
+            if messages.len() > 3 {
+                m = format!(
+                    "does not compile: {} | … ({} more)",
+                    messages[..3].join(" | "),
+                    messages.len() - 3
+                );
+            }
+            m
+        }
+        Some(ProgramError::Link { log, .. }) => {
+            format!("does not link: {}", log.replace('\n', " | "))
+        }
+        Some(other) => other.to_string(),
+        None => format!("cannot be built: {e:#}"),
+    };
+    subject.rewrite(&text)
+}
+
+/// Builds the project's passes from `project_res` and the student's from `subject.work_dir` (falling
+/// back to the project's for the other files), for a main image of `main_w`×`main_h`. A student's
+/// shader that does not build is the step's failing verdict; anything else is a grader error.
+pub fn build_rig(
+    subject: &Subject,
+    project_res: &Path,
+    (main_w, main_h): (u32, u32),
+    camera: &Camera,
+    params: &AoSettings,
+) -> std::result::Result<Rig, Verdict> {
+    let internal =
+        |what: &str, e: anyhow::Error| Verdict::fail(format!("grader error ({what}): {e:#}"));
+    let context = context().map_err(|e| internal("no OpenGL 4.5 context", e))?;
+    let gl = context.gl.clone();
+    let reference_res = ResDirs::only(vec![project_res.to_path_buf()]);
+    let mut reference = SaoLesson::new(&gl, &reference_res, main_w, main_h, camera, params)
+        .map_err(|e| internal("the project's own shaders do not build", e))?;
+    let student_res = ResDirs::only(vec![
+        subject.work_dir.to_path_buf(),
+        project_res.to_path_buf(),
+    ]);
+    let mut student = SaoLesson::new(&gl, &student_res, main_w, main_h, camera, params)
+        .map_err(|e| Verdict::fail(build_error_message(&e, subject)))?;
+    float_targets(&gl, &mut reference).map_err(|e| internal("targets", e))?;
+    float_targets(&gl, &mut student).map_err(|e| internal("targets", e))?;
+    let meshes = MeshBuffer::new(&gl).map_err(|e| internal("meshes", e))?;
+    Ok(Rig {
+        gl,
+        meshes,
+        reference,
+        student,
+        _context: context,
+    })
+}

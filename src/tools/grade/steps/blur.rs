@@ -1,0 +1,252 @@
+//! The blur step (`sao_blur.frag`): the project's SAO output of the first scene, plus a panel with a
+//! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
+//! smoothed with its mean kept, nothing may leak into the sky, and the RMSE against the project's
+//! `sao_blur.frag` is bounded (loosely: the lesson's listing has wider weights).
+
+use crate::ao::AoSettings;
+use crate::tools::grade::measure::{as_r8, mean_and_std};
+use crate::tools::grade::passes::{run_blur, run_sao, Mips};
+use crate::tools::grade::picture::{Panel, Shade};
+use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::scene::sao_scenes;
+use crate::tools::grade::tol;
+use anyhow::Result;
+use std::collections::BTreeMap;
+
+/// Size of the buffers in the blur step (square).
+pub const BLUR_SIZE: u32 = 128;
+
+/// A hash in [0, 1) for reproducible noise.
+fn noise(x: usize, y: usize) -> f32 {
+    let mut v = (x as u32).wrapping_mul(0x8da6_b343) ^ (y as u32).wrapping_mul(0xd816_3841);
+    v ^= v >> 13;
+    v = v.wrapping_mul(0x5bd1_e995);
+    v ^= v >> 15;
+    (v >> 8) as f32 / (1u32 << 24) as f32
+}
+
+/// The blur's synthetic panel (rows bottom-up): lower half a noisy flat surface at 5 m with sky on
+/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one (10 m) right.
+fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
+    let mut depth = vec![0f32; w * h];
+    let mut occ = vec![0f32; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            if y < h / 2 {
+                if x < w * 3 / 4 {
+                    depth[i] = 5.0;
+                    occ[i] = noise(x, y);
+                } else {
+                    depth[i] = far;
+                    occ[i] = 0.0;
+                }
+            } else if x < w / 2 {
+                depth[i] = 2.0;
+                occ[i] = 1.0;
+            } else {
+                depth[i] = 10.0;
+                occ[i] = 0.0;
+            }
+        }
+    }
+    (depth, occ)
+}
+
+/// Both sides' blur of a real SAO buffer (`a`: the project's occlusion of the first SAO scene) and
+/// of the synthetic panel (`b`, whose input occlusion is `occ_b`).
+struct Runs {
+    depth_a: Vec<f32>,
+    reference_a: Vec<f32>,
+    raw_a: Vec<f32>,
+    occ_b: Vec<f32>,
+    reference_b: Vec<f32>,
+    raw_b: Vec<f32>,
+}
+
+fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
+    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let scene = &sao_scenes(BLUR_SIZE)[0];
+    let depth_a = scene.depth();
+    let occ_a = run_sao(
+        &rig.reference,
+        &rig.meshes,
+        &scene.camera,
+        &depth_a,
+        params,
+        Mips::Filled,
+    )?;
+    let reference_a = run_blur(&rig.reference, &rig.meshes, &depth_a, &occ_a)?;
+    let raw_a = run_blur(&rig.student, &rig.meshes, &depth_a, &occ_a)?;
+    let (depth_b, occ_b) = blur_panel(w, h, far);
+    let reference_b = run_blur(&rig.reference, &rig.meshes, &depth_b, &occ_b)?;
+    let raw_b = run_blur(&rig.student, &rig.meshes, &depth_b, &occ_b)?;
+    Ok(Runs {
+        depth_a,
+        reference_a,
+        raw_a,
+        occ_b,
+        reference_b,
+        raw_b,
+    })
+}
+
+/// Grades the student's blur pass of `rig`.
+pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
+    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let far = sao_scenes(BLUR_SIZE)[0].camera.far;
+    let Runs {
+        depth_a,
+        reference_a: r_a,
+        raw_a,
+        occ_b,
+        reference_b: r_b,
+        raw_b,
+    } = match render(rig, params, far) {
+        Ok(runs) => runs,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+
+    let nan = raw_a
+        .iter()
+        .chain(&raw_b)
+        .filter(|v| !v.is_finite())
+        .count();
+    let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
+    let s_b: Vec<f32> = raw_b.iter().map(|v| as_r8(*v)).collect();
+    // Flat noisy surface, away from its borders by more than the blur's reach (8 texels).
+    let flat = |v: &[f32]| {
+        mean_and_std(
+            (12..h / 2 - 12)
+                .flat_map(|y| (12..w * 3 / 4 - 12).map(move |x| (x, y)))
+                .map(|(x, y)| v[y * w + x] as f64),
+        )
+    };
+    let (in_mean, in_std) = flat(&occ_b);
+    let (raw_mean, _) = flat(&raw_b);
+    let (out_mean, out_std) = flat(&s_b);
+    let (_, ref_std) = flat(&r_b);
+    // The depth edge: the two columns on each side, over the middle rows of the upper half.
+    let rows = h / 2 + 10..h - 10;
+    let near_min = rows
+        .clone()
+        .flat_map(|y| [w / 2 - 2, w / 2 - 1].map(|x| s_b[y * w + x]))
+        .fold(1.0f32, f32::min) as f64;
+    let far_max = rows
+        .flat_map(|y| [w / 2, w / 2 + 1].map(|x| s_b[y * w + x]))
+        .fold(0.0f32, f32::max) as f64;
+    let sky_max = (0..h / 2)
+        .flat_map(|y| (w * 3 / 4..w).map(move |x| (x, y)))
+        .map(|(x, y)| s_b[y * w + x])
+        .fold(0.0f32, f32::max) as f64;
+    // Against the reference on the real buffer (non-sky pixels).
+    let mask: Vec<bool> = depth_a.iter().map(|d| *d < far).collect();
+    let (mut sq, mut cnt, mut worst) = (0.0f64, 0usize, (0.0f64, 0usize));
+    for i in 0..w * h {
+        if mask[i] {
+            let d = (s_a[i] - r_a[i]) as f64;
+            sq += d * d;
+            cnt += 1;
+            if d.abs() > worst.0.abs() {
+                worst = (d, i);
+            }
+        }
+    }
+    let rmse = (sq / cnt.max(1) as f64).sqrt();
+    let mut metrics = BTreeMap::new();
+    metrics.insert("flat_mean_in".into(), in_mean);
+    metrics.insert("flat_mean_out".into(), out_mean);
+    metrics.insert("flat_mean_raw".into(), raw_mean);
+    metrics.insert("flat_std_in".into(), in_std);
+    metrics.insert("flat_std_out".into(), out_std);
+    metrics.insert("flat_std_reference".into(), ref_std);
+    metrics.insert("edge_near_min".into(), near_min);
+    metrics.insert("edge_far_max".into(), far_max);
+    metrics.insert("sky_max".into(), sky_max);
+    metrics.insert("rmse".into(), rmse);
+    metrics.insert("nan".into(), nan as f64);
+    let panels = vec![
+        Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
+        Panel::absolute(w, h, r_b, s_b, Shade::Occlusion, 0.25),
+    ];
+    let verdict = |passed: bool, message: String| Verdict {
+        passed,
+        message,
+        metrics: metrics.clone(),
+        panels: panels.clone(),
+    };
+    if nan > 0 {
+        return verdict(false, format!("writes NaN or Inf at {nan} pixels"));
+    }
+    if (raw_mean - in_mean).abs() > tol::BLUR_MEAN_ABS {
+        let hint = if raw_mean > in_mean {
+            "the output is not normalised: divide the weighted sum by totalWeight (the sum of the weights used)"
+        } else {
+            "the weighted sum must be divided by the sum of the weights actually used (totalWeight)"
+        };
+        return verdict(
+            false,
+            format!(
+                "a blurred flat surface must keep its mean occlusion: got {raw_mean:.2}, expected \
+                 {in_mean:.2}; {hint}"
+            ),
+        );
+    }
+    if far_max > tol::BLUR_EDGE_ABS {
+        return verdict(
+            false,
+            format!(
+                "blurs across a depth edge: next to the edge the far, open side is {far_max:.2} \
+                 (expected 0.00) and the near, occluded side {near_min:.2} (expected 1.00); weight \
+                 each sample by max(0, 1 − edgeSharpness·|sampleDepth − depth|)"
+            ),
+        );
+    }
+    if near_min < 1.0 - tol::BLUR_EDGE_ABS {
+        return verdict(
+            false,
+            format!(
+                "next to a depth edge a fully occluded surface drops to {near_min:.2} (expected \
+                 1.00): divide the weighted sum by totalWeight, the sum of the weights actually \
+                 used (samples across the edge get weight 0)"
+            ),
+        );
+    }
+    if out_std > tol::BLUR_SMOOTHING * in_std {
+        return verdict(
+            false,
+            format!(
+                "does not smooth a flat surface: noise std {in_std:.3} → {out_std:.3} (the reference \
+                 leaves {ref_std:.3}; at most {:.3} allowed)",
+                tol::BLUR_SMOOTHING * in_std
+            ),
+        );
+    }
+    if sky_max > tol::BLUR_SKY_ABS {
+        return verdict(
+            false,
+            format!(
+                "occlusion leaks into the sky ({sky_max:.2}): sky pixels must be kept as they are"
+            ),
+        );
+    }
+    if rmse > tol::BLUR_RMSE {
+        let (x, y) = (worst.1 % w, worst.1 / w);
+        return verdict(
+            false,
+            format!(
+                "differs from the reference blur: RMSE {rmse:.3} (tolerance {}); largest difference \
+                 {:+.2} at texel ({x}, {y})",
+                tol::BLUR_RMSE,
+                worst.0
+            ),
+        );
+    }
+    verdict(
+        true,
+        format!(
+            "keeps depth edges ({near_min:.2} | {far_max:.2}), smooths flat surfaces (noise std \
+             {in_std:.3} → {out_std:.3}, mean kept), RMSE {rmse:.3} against the reference"
+        ),
+    )
+}

@@ -1,0 +1,525 @@
+//! The SAO step (`sao.frag`): three ray-cast box scenes (a wall on a floor with a crate; a wall
+//! seen head-on with a step; a wall seen head-on with a raised panel), 160×160, the same mip chain
+//! for both shaders. Checked: NaN; values above 1 (not normalised, when clamping does not hide it);
+//! creases occluded (≥ half the reference's); open flat surfaces ≈ 0; the occlusion of a band beside
+//! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
+//! camera and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
+//! mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth edges
+//! they legitimately differ); and that far samples come from mip levels 1–3 (the output must move
+//! when those levels are emptied, about as much as the project's does).
+
+use crate::ao::AoSettings;
+use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
+use crate::tools::grade::passes::{run_sao, Mips};
+use crate::tools::grade::picture::{Panel, Shade};
+use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::scene::{sao_scenes, ProbeKind, SynthScene};
+use crate::tools::grade::tol;
+use anyhow::Result;
+use std::collections::BTreeMap;
+
+/// Size of `texSAODepth` level 0 in the SAO step (square).
+pub const SAO_SIZE: u32 = 160;
+/// Relative depth change per texel below which a surface counts as facing the camera.
+const FLAT_SLOPE: f32 = 0.01;
+
+/// One probe's mean occlusion, the student's (`got`, `raw`) and the reference's (`expected`).
+struct ProbeResult {
+    scene: &'static str,
+    name: &'static str,
+    kind: ProbeKind,
+    got: f64,
+    /// Before clamping to [0, 1] (what the shader wrote).
+    raw: f64,
+    expected: f64,
+}
+
+/// Mean |a − b| over non-sky pixels (after the R8 clamp).
+fn mean_abs_change(a: &[f32], b: &[f32], depth: &[f32], far: f32) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for i in 0..depth.len() {
+        if depth[i] < far {
+            sum += (as_r8(a[i]) - as_r8(b[i])).abs() as f64;
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+/// Pixels away from depth edges: every depth within 2 texels is within 5% of this one (the
+/// lesson's normal from dFdx/dFdy is meaningless at an edge; the reference leaves edges open).
+fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
+    let mut m = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let d0 = depth[y * w + x];
+            if d0 >= far {
+                continue;
+            }
+            let mut ok = true;
+            for yy in y.saturating_sub(2)..=(y + 2).min(h - 1) {
+                for xx in x.saturating_sub(2)..=(x + 2).min(w - 1) {
+                    ok &= (depth[yy * w + xx] - d0).abs() <= 0.05 * d0;
+                }
+            }
+            m[y * w + x] = ok;
+        }
+    }
+    m
+}
+
+/// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
+/// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
+/// those also facing the camera (`flat`).
+struct Measured {
+    panels: Vec<Panel>,
+    /// Non-sky pixels.
+    count: usize,
+    /// Non-sky pixels that are NaN or Inf, above `tol::SAO_RAW_MAX`, below −0.01.
+    nan: usize,
+    over: usize,
+    negative: usize,
+    sum_s: f64,
+    sum_r: f64,
+    sum_raw: f64,
+    clean_s: f64,
+    clean_r: f64,
+    clean_n: usize,
+    flat_s: f64,
+    flat_r: f64,
+    flat_n: usize,
+    max_raw: f64,
+    /// Sum of squared differences of 8×8 block means, and the number of blocks.
+    blocks_sq: (f64, usize),
+    /// The largest block difference: (difference, scene, x, y).
+    worst_block: (f64, &'static str, usize, usize),
+    probes: Vec<ProbeResult>,
+    sky_max: f64,
+}
+
+fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
+    let mut panels = vec![];
+    let (mut sum_s, mut sum_r, mut sum_raw, mut count) = (0.0f64, 0.0f64, 0.0f64, 0usize);
+    let (mut clean_s, mut clean_r, mut clean_n) = (0.0f64, 0.0f64, 0usize);
+    let (mut flat_s, mut flat_r, mut flat_n) = (0.0f64, 0.0f64, 0usize);
+    let (mut nan, mut over, mut negative) = (0usize, 0usize, 0usize);
+    let mut max_raw = 0.0f64;
+    let mut blocks_sq = (0.0f64, 0usize);
+    let mut worst_block = (0.0f64, "", 0usize, 0usize);
+    let mut probes = vec![];
+    let mut sky_max = 0.0f64;
+    for scene in scenes {
+        let (w, h) = (scene.width as usize, scene.height as usize);
+        let depth = scene.depth();
+        let far = scene.camera.far;
+        let run = |lesson| {
+            run_sao(
+                lesson,
+                &rig.meshes,
+                &scene.camera,
+                &depth,
+                params,
+                Mips::Filled,
+            )
+        };
+        let r = run(&rig.reference)?;
+        let raw = run(&rig.student)?;
+        let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
+        let clean = clean_mask(&depth, w, h, far);
+        let flat: Vec<bool> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if !clean[i] || x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+                    return false;
+                }
+                let sx = (depth[i + 1] - depth[i - 1]).abs() * 0.5;
+                let sy = (depth[i + w] - depth[i - w]).abs() * 0.5;
+                (sx + sy) / depth[i] < FLAT_SLOPE
+            })
+            .collect();
+        for i in 0..w * h {
+            if depth[i] >= far {
+                // Sky: what SAO writes there is never seen (the sky is drawn over it and the
+                // blur skips it), so it is not graded.
+                sky_max = sky_max.max(s[i] as f64);
+                continue;
+            }
+            count += 1;
+            if !raw[i].is_finite() {
+                nan += 1;
+                continue;
+            }
+            sum_raw += raw[i] as f64;
+            max_raw = max_raw.max(raw[i] as f64);
+            if raw[i] as f64 > tol::SAO_RAW_MAX {
+                over += 1;
+            }
+            if raw[i] < -0.01 {
+                negative += 1;
+            }
+            sum_s += s[i] as f64;
+            sum_r += r[i] as f64;
+            if flat[i] {
+                flat_s += s[i] as f64;
+                flat_r += r[i] as f64;
+                flat_n += 1;
+            }
+            if clean[i] {
+                clean_s += s[i] as f64;
+                clean_r += r[i] as f64;
+                clean_n += 1;
+            }
+        }
+        let bs = block_means(&s, &flat, w, h, 8);
+        let br = block_means(&r, &flat, w, h, 8);
+        for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
+            if let (Some(a), Some(b)) = (a, b) {
+                let d = a - b;
+                blocks_sq.0 += d * d;
+                blocks_sq.1 += 1;
+                if d.abs() > worst_block.0.abs() {
+                    worst_block = (d, scene.name, (k % (w / 8)) * 8 + 4, (k / (w / 8)) * 8 + 4);
+                }
+            }
+        }
+        for p in &scene.probes {
+            let a = scene.project(p.at);
+            let b = match p.to {
+                Some(to) => scene.project(to),
+                None => a,
+            };
+            let grow = |(x, y): (usize, usize), d: isize| {
+                (
+                    (x as isize + d).clamp(0, w as isize - 1) as usize,
+                    (y as isize + d).clamp(0, h as isize - 1) as usize,
+                )
+            };
+            let (a, b) = if p.to.is_some() {
+                (a, b)
+            } else {
+                (grow(a, -2), grow(b, 2))
+            };
+            probes.push(ProbeResult {
+                scene: scene.name,
+                name: p.name,
+                kind: p.kind,
+                got: rect_mean(&s, w, a, b, |v| v),
+                raw: rect_mean(&raw, w, a, b, |v| if v.is_finite() { v } else { 0.0 }),
+                expected: rect_mean(&r, w, a, b, |v| v),
+            });
+        }
+        panels.push(Panel::absolute(w, h, r, s, Shade::Occlusion, 0.5));
+    }
+    Ok(Measured {
+        panels,
+        count,
+        nan,
+        over,
+        negative,
+        sum_s,
+        sum_r,
+        sum_raw,
+        clean_s,
+        clean_r,
+        clean_n,
+        flat_s,
+        flat_r,
+        flat_n,
+        max_raw,
+        blocks_sq,
+        worst_block,
+        probes,
+        sky_max,
+    })
+}
+
+/// How much emptying mip levels 1–3 moves the output, summed over `scenes`: (student, reference).
+fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(f64, f64)> {
+    let (mut mip_s, mut mip_r) = (0.0f64, 0.0f64);
+    for scene in scenes {
+        let depth = scene.depth();
+        let far = scene.camera.far;
+        let run = |lesson, mips| run_sao(lesson, &rig.meshes, &scene.camera, &depth, params, mips);
+        let change = |lesson| -> Result<f64> {
+            let with = run(lesson, Mips::Filled)?;
+            let without = run(lesson, Mips::Emptied)?;
+            Ok(mean_abs_change(&with, &without, &depth, far))
+        };
+        mip_r += change(&rig.reference)?;
+        mip_s += change(&rig.student)?;
+    }
+    Ok((mip_s, mip_r))
+}
+
+/// Grades the student's SAO pass of `rig`.
+pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
+    let scenes = sao_scenes(SAO_SIZE);
+    let Measured {
+        panels,
+        count,
+        nan,
+        over,
+        negative,
+        sum_s,
+        sum_r,
+        sum_raw,
+        clean_s,
+        clean_r,
+        clean_n,
+        flat_s,
+        flat_r,
+        flat_n,
+        max_raw,
+        blocks_sq,
+        worst_block,
+        probes,
+        sky_max,
+    } = match measure(rig, params, &scenes) {
+        Ok(m) => m,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+    let n = count.max(1) as f64;
+    let valid = (count - nan).max(1) as f64;
+    let (mean_s, mean_r, mean_raw) = (sum_s / valid, sum_r / valid, sum_raw / valid);
+    let (cmean_s, cmean_r) = (
+        clean_s / clean_n.max(1) as f64,
+        clean_r / clean_n.max(1) as f64,
+    );
+    let (fmean_s, fmean_r) = (flat_s / flat_n.max(1) as f64, flat_r / flat_n.max(1) as f64);
+    let rmse = (blocks_sq.0 / blocks_sq.1.max(1) as f64).sqrt();
+    let mut metrics = BTreeMap::new();
+    metrics.insert("mean".into(), mean_s);
+    metrics.insert("mean_reference".into(), mean_r);
+    metrics.insert("mean_clean".into(), cmean_s);
+    metrics.insert("mean_clean_reference".into(), cmean_r);
+    metrics.insert("mean_raw".into(), mean_raw);
+    metrics.insert("mean_flat".into(), fmean_s);
+    metrics.insert("mean_flat_reference".into(), fmean_r);
+    metrics.insert("flat_fraction".into(), flat_n as f64 / count.max(1) as f64);
+    metrics.insert("max_raw".into(), max_raw);
+    metrics.insert("block_rmse".into(), rmse);
+    metrics.insert("nan_fraction".into(), nan as f64 / n);
+    metrics.insert("over_one_fraction".into(), over as f64 / n);
+    metrics.insert("negative_fraction".into(), negative as f64 / n);
+    metrics.insert("sky_max".into(), sky_max);
+    let mean_err = (fmean_s - fmean_r) / fmean_r.max(1e-6);
+    let falloff_err = probes
+        .iter()
+        .filter(|p| p.kind == ProbeKind::Falloff)
+        .map(|p| p.got / p.expected.max(1e-6) - 1.0)
+        .fold(0.0f64, |a, b| if b.abs() > a.abs() { b } else { a });
+    metrics.insert("mean_flat_error".into(), mean_err);
+    metrics.insert("falloff_error".into(), falloff_err);
+    for p in &probes {
+        metrics.insert(format!("probe {} / {}", p.scene, p.name), p.got);
+        metrics.insert(
+            format!("probe {} / {} (reference)", p.scene, p.name),
+            p.expected,
+        );
+    }
+    let verdict = |passed: bool, message: String| Verdict {
+        passed,
+        message,
+        metrics: metrics.clone(),
+        panels: panels.clone(),
+    };
+    // The reference must itself meet the probes, or every verdict below is meaningless.
+    if let Some(p) = probes.iter().find(|p| match p.kind {
+        ProbeKind::Crease => p.expected < 0.3,
+        ProbeKind::Open => p.expected > tol::SAO_OPEN_ABS,
+        ProbeKind::Falloff => p.expected < 0.05,
+    }) {
+        return verdict(
+            false,
+            format!(
+                "grader error: the project's own sao.frag gives {:.2} on the {} ({}), outside what \
+                 the grader expects of it",
+                p.expected, p.name, p.scene
+            ),
+        );
+    }
+    if nan as f64 > tol::SAO_BAD_PIXEL_FRACTION * n {
+        return verdict(
+            false,
+            format!(
+                "writes NaN at {:.1}% of the pixels: guard normalize() where the cross product is zero",
+                100.0 * nan as f64 / n
+            ),
+        );
+    }
+    let creases: Vec<&ProbeResult> = probes
+        .iter()
+        .filter(|p| p.kind == ProbeKind::Crease)
+        .collect();
+    if max_raw.abs() < 1e-3 && negative == 0 {
+        return verdict(
+            false,
+            "writes 0 at every pixel: the occlusion is never summed, or never written to outColor"
+                .to_string(),
+        );
+    }
+    // Values above 1 are clamped by the engine's R8 target: they are a mistake when what is left
+    // after clamping still differs (a sum that was never averaged), a detail when it does not.
+    let overflow = over as f64 > tol::SAO_BAD_PIXEL_FRACTION * n;
+    let distorted = mean_err.abs() > tol::SAO_MEAN_REL || falloff_err.abs() > tol::SAO_FALLOFF_REL;
+    // The scenes always hold creases, so one is found to quote.
+    let worst_crease = creases.iter().max_by(|a, b| a.raw.total_cmp(&b.raw));
+    if let (true, Some(worst)) = (overflow && distorted, worst_crease) {
+        return verdict(
+            false,
+            format!(
+                "output is not normalised: mean occlusion {:.1} in the {} ({}), expected about {:.2} \
+                 (values up to {max_raw:.1}, and occlusion must stay within 0–1); after the loop \
+                 divide the sum by samplingCount, multiply by INTENSITY, clamp with min(1.0, …), \
+                 then write outColor once",
+                worst.raw, worst.name, worst.scene, worst.expected
+            ),
+        );
+    }
+    if let Some(p) = creases
+        .iter()
+        .find(|p| p.got < (tol::SAO_CREASE_FRACTION * p.expected).max(tol::SAO_CREASE_MIN))
+    {
+        let all_dark = creases.iter().all(|p| p.got < 0.25 * p.expected);
+        let hint = if negative as f64 > 0.05 * n {
+            "the output is negative in many places: clamp each sample's term with max(…, 0) \
+             before adding it (negative terms must not cancel positive ones)"
+        } else if all_dark {
+            "no crease is occluded: is the normal flipped? cross(dFdx(p), dFdy(p)) must point \
+             towards the camera (+z in view space), and vn = dot(v, normal) with v = sample − pixel"
+        } else {
+            "occlusion is too weak where surfaces meet: check the sign of vn and the bias, that \
+             the average is multiplied by INTENSITY, and that each sample's term is clamped with \
+             max(…, 0) (negative terms must not cancel positive ones)"
+        };
+        return verdict(
+            false,
+            format!(
+                "{} ({}): occlusion {:.2}, expected about {:.2}; {hint}",
+                p.name, p.scene, p.got, p.expected
+            ),
+        );
+    }
+    if let Some(p) = probes.iter().find(|p| {
+        p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
+    }) {
+        return verdict(
+            false,
+            format!(
+                "the {} ({}) is flat and open but occluded: {:.2}, expected about {:.2}; \
+                 check the bias (vn − BIAS) and the normal",
+                p.name, p.scene, p.got, p.expected
+            ),
+        );
+    }
+    for p in probes.iter().filter(|p| p.kind == ProbeKind::Falloff) {
+        let ratio = p.got / p.expected.max(1e-6);
+        if (ratio - 1.0).abs() > tol::SAO_FALLOFF_REL {
+            let hint = if ratio > 1.0 {
+                "it fades too slowly: the falloff is f·f·f with f = max(RADIUS2 − vv, 0)"
+            } else {
+                "it fades too fast: the falloff is f·f·f with f = max(RADIUS2 − vv, 0), divided by (vv + 0.001)"
+            };
+            return verdict(
+                false,
+                format!(
+                    "occlusion of the {} ({}) is {:.3}, expected about {:.3} (±{:.0}%): {hint}",
+                    p.name,
+                    p.scene,
+                    p.got,
+                    p.expected,
+                    tol::SAO_FALLOFF_REL * 100.0
+                ),
+            );
+        }
+    }
+    if mean_err.abs() > tol::SAO_MEAN_REL {
+        let hint = if mean_err > 0.0 {
+            "too strong: the falloff is f·f·f with f = max(RADIUS2 − vv, 0), divided by \
+             (vv + 0.001), averaged over samplingCount and scaled by INTENSITY once"
+        } else {
+            "too weak: clamp each sample's term with max(…, 0) before adding it (negative terms \
+             must not cancel positive ones); the falloff is f·f·f"
+        };
+        return verdict(
+            false,
+            format!(
+                "mean occlusion {fmean_s:.3}, expected about {fmean_r:.3} (±{:.0}%; surfaces facing \
+                 the camera, away from depth edges): {hint}",
+                tol::SAO_MEAN_REL * 100.0
+            ),
+        );
+    }
+    if rmse > tol::SAO_BLOCK_RMSE {
+        return verdict(
+            false,
+            format!(
+                "occlusion differs from the reference: RMSE of 8×8 block means {rmse:.3} (tolerance {}); \
+                 largest difference {:+.2} in the {} scene around texel ({}, {})",
+                tol::SAO_BLOCK_RMSE,
+                worst_block.0,
+                worst_block.1,
+                worst_block.2,
+                worst_block.3
+            ),
+        );
+    }
+    // Far samples must come from the min mip chain (levels 1–3), as the lesson teaches: a shader that
+    // reads level 0 for every sample passes the comparisons above on these small scenes, but thrashes
+    // the texture cache on a real screen. Measured by how much the output moves when levels 1–3 are
+    // emptied, relative to how much the project's own shader moves.
+    let (mip_s, mip_r) = match mip_change(rig, params, &scenes) {
+        Ok(change) => change,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+    let mip_use = mip_s / mip_r.max(1e-9);
+    let mut metrics = metrics.clone();
+    metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
+    metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
+    metrics.insert("mip_use".into(), mip_use);
+    let verdict = |passed: bool, message: String| Verdict {
+        passed,
+        message,
+        metrics: metrics.clone(),
+        panels: panels.clone(),
+    };
+    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use < tol::SAO_MIP_USE {
+        return verdict(
+            false,
+            format!(
+                "never reads the mip levels 1–3: emptying them changes the output by {:.4} on \
+                 average, the project's sao.frag by {:.4}; read each sample with \
+                 textureLod(texDepth, uv, mipLevel) where mipLevel = clamp(findMSB(int(ssR)) − \
+                 logMipOffset, 0, maxMipLevel) grows with the sample's distance in pixels",
+                mip_s / scenes.len() as f64,
+                mip_r / scenes.len() as f64
+            ),
+        );
+    }
+    let falloff = probes
+        .iter()
+        .filter(|p| p.kind == ProbeKind::Falloff)
+        .map(|p| format!("{:.3} (reference {:.3})", p.got, p.expected))
+        .collect::<Vec<_>>()
+        .join(", ");
+    let crease_txt = creases
+        .iter()
+        .map(|p| format!("{:.2}", p.got))
+        .collect::<Vec<_>>()
+        .join("/");
+    let note = if overflow {
+        format!(
+            " (note: the output goes up to {max_raw:.1}; the engine's 8-bit target clamps it, but \
+             the lesson clamps with min(1.0, …))"
+        )
+    } else {
+        String::new()
+    };
+    verdict(
+        true,
+        format!(
+            "mean occlusion {fmean_s:.3} (reference {fmean_r:.3}), block RMSE {rmse:.3}, creases \
+             {crease_txt}, falloff beside a step {falloff}, open surfaces ≈ 0{note}"
+        ),
+    )
+}

@@ -1,0 +1,64 @@
+//! The grader's tolerances, in one place. Each was set by running the lesson's listings (errata
+//! fixed), correct rewrites and typical mistakes (tests/mutants/) through the grader on Mesa
+//! llvmpipe; the comments give what those measured ("listing" is the lesson's code as printed), so
+//! that a value can be judged against the margin it leaves on both sides.
+
+/// Restore: allowed error in units of the float-precision bound ε·(1 + B / |D' − B|) (the
+/// conditioning of A / (D' − B) in f32). Worst seen: project 0.14×, listing 0.14×, rewrite
+/// n·f / (f − D(f − n)) 0.24× of this; mistakes ≥ 10⁵×.
+pub const RESTORE_ULPS: f64 = 8.0;
+/// Down-sampling: relative error allowed (a min is exact; this only forgives a conversion).
+pub const DOWN_REL: f64 = 1e-6;
+/// Naming a mistake: a texel matches a mistake's predicted output within this relative error (plus
+/// 1e-6 absolute). Loose on purpose: the prediction is computed in f64, the shader works in f32, and
+/// the mistakes it tells apart differ by far more (a factor of 2, a sign, a power of ten).
+pub const MISTAKE_MATCH_REL: f64 = 1e-3;
+/// Naming a mistake: at least this fraction of the texels must match its prediction. Below 1 so that
+/// a few texels where two mistakes coincide, or float rounding flips a min, do not hide the match.
+pub const MISTAKE_MATCH_FRACTION: f64 = 0.9;
+/// SAO: an open, flat surface may show at most the reference's occlusion (itself at most this)
+/// plus this. Listing: 0.008 on the open floor (reference 0); a zero bias gives 0.28.
+pub const SAO_OPEN_ABS: f64 = 0.05;
+/// SAO: a crease must reach at least this fraction of the reference's occlusion (reference
+/// 0.76–0.84; listing ≥ 0.73, rewrite ≥ 0.66; flipped normal ≤ 0.08, no max(…, 0) 0.04–0.42)...
+pub const SAO_CREASE_FRACTION: f64 = 0.5;
+/// ...and at least this much.
+pub const SAO_CREASE_MIN: f64 = 0.08;
+/// SAO: mean occlusion over pixels facing the camera, away from depth edges, relative to the
+/// reference (listing +10%, rewrite +8%, f·f falloff +36%, no max(…, 0) −94%).
+pub const SAO_MEAN_REL: f64 = 0.25;
+/// SAO: mean occlusion of the band beside a step, relative to the reference (listing +8%,
+/// rewrite +3%, f·f falloff +42%, output written in the loop +91%).
+pub const SAO_FALLOFF_REL: f64 = 0.2;
+/// SAO: RMSE of 8×8 block means against the reference, same pixels as the mean (listing 0.021,
+/// rewrite 0.018, f·f 0.034, no max(…, 0) 0.115, flipped normal 0.21).
+pub const SAO_BLOCK_RMSE: f64 = 0.035;
+/// SAO: a raw output above this (on more than `SAO_BAD_PIXEL_FRACTION` of the pixels) is not
+/// normalised (output written in the loop: 5.9% of the pixels, up to 13.1).
+pub const SAO_RAW_MAX: f64 = 1.05;
+/// SAO: the fraction of the non-sky pixels that may be NaN, or above `SAO_RAW_MAX`, before the
+/// output counts as broken: a few pixels where a degenerate normal slips through are forgiven, a
+/// systematic mistake (5.9% above 1 for the output written in the loop) is not.
+pub const SAO_BAD_PIXEL_FRACTION: f64 = 0.01;
+/// SAO: emptying mip levels 1–3 must move the student's output by at least this fraction of
+/// what it moves the project's (listing 1.24, rewrite 1.25; every sample from level 0: 0)...
+pub const SAO_MIP_USE: f64 = 0.25;
+/// ...when the project's own output moves by more than this (mean |Δ| per non-sky pixel; it
+/// moves by 0.0034 on the three scenes); otherwise the scenes do not exercise the mips and the
+/// check is skipped.
+pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
+/// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
+/// division by totalWeight 0.49 → 5.70).
+pub const BLUR_MEAN_ABS: f64 = 0.03;
+/// Blur: at a depth edge the near side must stay above 1 − this and the far side below this
+/// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48).
+pub const BLUR_EDGE_ABS: f64 = 0.05;
+/// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
+/// (input 0.290; reference 0.038, listing 0.036).
+pub const BLUR_SMOOTHING: f64 = 0.6;
+/// Blur: the most occlusion allowed in the sky. The sky's input is 0 and sky pixels must be kept as
+/// they are, so anything above about five steps of the engine's 8-bit target is leaked occlusion.
+pub const BLUR_SKY_ABS: f64 = 0.02;
+/// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
+/// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
+pub const BLUR_RMSE: f64 = 0.07;
