@@ -7,10 +7,10 @@ mod common;
 
 use common::*;
 use glam::{Mat4, Vec3, Vec4};
-use opengl3d::engine::Engine;
+use opengl3d::engine::{Camera, Engine};
 use opengl3d::reference::{
-    load_or_render_cached, load_or_render_screen_cached, render_screen_space, screen_cache_key,
-    AoVariant, DepthBuffer, RefCamera, RefImage, RefParams, Scene,
+    load_or_render_cached, load_or_render_screen_cached, pixel_dir, render_screen_space,
+    screen_cache_key, view_direction, AoVariant, DepthBuffer, RefImage, RefParams, Scene,
 };
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
@@ -26,28 +26,23 @@ fn params(radius: f32, rays: u32) -> RefParams {
     }
 }
 
-fn ref_camera(e: &Engine) -> RefCamera {
-    let c = e.camera;
-    RefCamera {
-        eye: c.eye,
-        target: c.target,
+fn ref_camera(e: &Engine) -> Camera {
+    Camera {
         up: Vec3::Y,
-        fov_y_deg: c.fov_y_deg,
-        near: c.near,
-        far: c.far,
+        ..e.camera
     }
 }
 
 /// World-space surface point of every non-sky pixel: (pixel index, point).
-fn surface_points(img: &RefImage, cam: &RefCamera) -> Vec<(usize, Vec3)> {
-    let fwd = cam.forward();
+fn surface_points(img: &RefImage, cam: &Camera) -> Vec<(usize, Vec3)> {
+    let fwd = view_direction(cam);
     let mut out = Vec::new();
     for y in 0..img.height {
         for x in 0..img.width {
             let i = img.index(x, y);
             let depth = img.linear_depth[i];
             if depth.is_finite() {
-                let dir = cam.pixel_dir(x, y, img.width, img.height).unwrap();
+                let dir = pixel_dir(cam, x, y, img.width, img.height).unwrap();
                 out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
             }
         }
@@ -72,7 +67,7 @@ fn neighbourhood_on_screen(vp: &Mat4, near: f32, w: u32, h: u32, p: Vec3, r: f32
 
 /// Size of pixel `p`'s footprint on the crease scene's surfaces (floor y = 0 or wall x = 0): the
 /// depth buffer resolves nothing finer, so the heightfield cuts the crease by about this much.
-fn crease_footprint(cam: &RefCamera, h: u32, p: Vec3) -> f32 {
+fn crease_footprint(cam: &Camera, h: u32, p: Vec3) -> f32 {
     let normal = if p.y.abs() < p.x.abs() {
         Vec3::Y
     } else {
@@ -85,7 +80,7 @@ fn crease_footprint(cam: &RefCamera, h: u32, p: Vec3) -> f32 {
 
 /// Pixels whose surface the depth buffer resolves at the scale of `radius` and that lie at least
 /// two footprints away from the crease line.
-fn resolved(cam: &RefCamera, h: u32, p: Vec3, radius: f32) -> bool {
+fn resolved(cam: &Camera, h: u32, p: Vec3, radius: f32) -> bool {
     let f = crease_footprint(cam, h, p);
     f < radius / 4.0 && p.x.max(p.y) > 2.0 * f
 }
@@ -254,7 +249,7 @@ fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
     let radius = 1.0;
     let cache = temp_dir("screen-vs-rt-cache");
-    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 256)).unwrap();
+    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 256));
     let ss = load_or_render_screen_cached(&cache, &depth, &params(radius, 256)).unwrap();
     assert_valid(&ss);
     // Same pixels are surface, at the same depth (GL rasterisation vs ray casting).
@@ -341,7 +336,7 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
     let p = params(1.0, 256);
     let cache = temp_dir("screen-hidden-cache");
-    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &p).unwrap();
+    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &p);
     let ss = render_screen_space(&depth, &p).unwrap();
     let vp = e.camera.view_projection(w as f32 / h as f32);
     // Floor pixels by their distance from the slab's outline (in the floor plane).

@@ -5,6 +5,7 @@
 //! shader) makes it available here as `--methods NAME`; its settings come from [`settings_for`].
 
 use crate::ao::AoMethod;
+use crate::engine::Camera;
 use crate::scene::CameraDesc;
 use anyhow::{bail, Result};
 use glam::{Quat, Vec3};
@@ -45,8 +46,8 @@ impl Setting {
 }
 
 /// The sample counts and radii the lesson's SAO is run with (the grid of both).
-pub const LESSON_SAMPLES: [u32; 5] = [4, 8, 11, 16, 24];
-pub const LESSON_RADII: [f32; 3] = [0.5, 1.0, 2.0];
+const LESSON_SAMPLES: [u32; 5] = [4, 8, 11, 16, 24];
+const LESSON_RADII: [f32; 3] = [0.5, 1.0, 2.0];
 
 /// The methods the benchmark knows, by command-line name.
 pub fn method_by_name(name: &str) -> Result<AoMethod> {
@@ -117,6 +118,21 @@ pub struct BenchCamera {
     pub fov_y: f32,
     /// Used to fit the method's intensity/contrast; the other cameras report the fitted error.
     pub train: bool,
+}
+
+impl BenchCamera {
+    /// The engine's camera for this view, with the scene's clip planes and +Y up; the ray-traced
+    /// reference uses the very same camera, so both see the same pixel centres.
+    pub fn camera(&self, scene: &CameraDesc) -> Camera {
+        Camera {
+            eye: self.eye.into(),
+            target: self.target.into(),
+            up: Vec3::Y,
+            fov_y_deg: self.fov_y,
+            near: scene.near,
+            far: scene.far,
+        }
+    }
 }
 
 /// The scene's own camera and three variants around its target: orbited left and right (one lower),

@@ -35,7 +35,12 @@ use std::path::Path;
 use anyhow::{bail, Result};
 use glam::DVec3;
 
-use super::{cache, sampling, scene::Fnv64, AoVariant, RefCamera, RefImage, RefParams};
+use super::cache;
+use super::hash::Fnv64;
+use super::image::{shade_image, RefImage};
+use super::params::{AoVariant, RefParams};
+use super::sampling;
+use crate::engine::Camera;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
 pub const SCREEN_ALGORITHM_VERSION: u32 = 1;
@@ -79,7 +84,7 @@ impl DepthBuffer {
     }
 
     /// The depth buffer of a ray-traced reference image (its `linear_depth`, same pixel centres).
-    pub fn from_reference(img: &RefImage, cam: &RefCamera) -> DepthBuffer {
+    pub fn from_reference(img: &RefImage, cam: &Camera) -> DepthBuffer {
         DepthBuffer {
             width: img.width,
             height: img.height,
@@ -324,7 +329,7 @@ impl Heightfield {
         if d.z > 0.0 {
             t1 = t1.min((near_z - o.z) / d.z);
         }
-        if !(t1 > 0.0) || o.z > near_z {
+        if t1.is_nan() || t1 <= 0.0 || o.z > near_z {
             return false;
         }
         let (ax, ay, aw) = self.project(o);
@@ -343,7 +348,7 @@ impl Heightfield {
             s0 = s0.max(ta.min(tb));
             s1 = s1.min(ta.max(tb));
         }
-        if !(s0 <= s1) {
+        if s0.is_nan() || s1.is_nan() || s0 > s1 {
             return false;
         }
         let behind = |s: f64| -> bool {
@@ -368,7 +373,7 @@ impl Heightfield {
                 .map(|(k, f)| (k, f.next_s))
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap();
-            if !(s < s1) {
+            if s.is_nan() || s1.is_nan() || s >= s1 {
                 break;
             }
             if behind(s) {
@@ -427,7 +432,7 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
         bail!("the screen-space reference computes visibility only, not obscurance");
     }
     let field = Heightfield::new(depth);
-    Ok(super::shade_image(
+    Ok(shade_image(
         depth.width,
         depth.height,
         "screen-space reference",
@@ -486,7 +491,8 @@ pub fn screen_cache_key(depth: &DepthBuffer, params: &RefParams) -> String {
 }
 
 /// The cached screen-space reference for these inputs, or a fresh render that is then stored
-/// (same file format as the ray-traced cache, in the same folder).
+/// (same file format as the ray-traced cache, in the same folder; an unwritable cache is a
+/// warning, not an error).
 pub fn load_or_render_screen_cached(
     cache_dir: &Path,
     depth: &DepthBuffer,
@@ -500,7 +506,7 @@ pub fn load_or_render_screen_cached(
         }
     }
     let img = render_screen_space(depth, params)?;
-    cache::write_cached(cache_dir, &key, &img)?;
+    cache::store_or_warn(cache_dir, &key, &img);
     Ok(img)
 }
 
