@@ -614,6 +614,25 @@ fn cache_round_trip() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+#[test]
+fn unwritable_cache_still_returns_the_render() {
+    let scene = Scene::new(horizontal(0.0).to_vec()).unwrap();
+    let cam = camera(Vec3::new(0.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y, 60.0);
+    let p = params(0.5, 8, AoVariant::Visibility);
+    // The cache "folder" is a file: nothing can be written under it.
+    let dir = temp_dir("cache-is-a-file");
+    let cache = dir.join("cache");
+    std::fs::write(&cache, b"not a folder").unwrap();
+    let img = load_or_render_cached(&cache, &scene, &cam, 8, 6, &p);
+    assert_eq!(img, render_reference(&scene, &cam, 8, 6, &p));
+    assert_eq!(std::fs::read(&cache).unwrap(), b"not a folder");
+    // Writing it directly is the error the warning reports, naming the folder.
+    let key = cache_key(scene.content_hash(), &cam, 8, 6, &p);
+    let e = format!("{:#}", write_cached(&cache, &key, &img).unwrap_err());
+    assert!(e.contains(&cache.display().to_string()), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 /// Recorded value of the fixed key above; changes only when `ALGORITHM_VERSION` or the key
 /// layout changes (update it deliberately then).
 const GOLDEN_KEY: &str = "f4c8e7691480b0e6";

@@ -430,3 +430,36 @@ fn cli_writes_the_screen_space_reference() {
         .unwrap();
     assert!(!run.status.success());
 }
+
+#[test]
+fn cli_writes_the_reference_when_its_cache_cannot_be_written() {
+    let dir = temp_dir("ref-cli-cache-file");
+    // A cache "folder" that is a file: no cache file can be created under it.
+    let cache = dir.join("cache-is-a-file");
+    std::fs::write(&cache, b"not a folder").unwrap();
+    for mode in [&[][..], &["--screen-space"][..]] {
+        let out = dir.join(format!("ref{}.pfm", mode.len()));
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+            .arg("reference")
+            .args(mode)
+            .args(["--width", "16", "--height", "9", "--rays", "4", "--out"])
+            .arg(&out)
+            .arg("--cache")
+            .arg(&cache)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{mode:?}: {stderr}");
+        assert!(out.is_file(), "{mode:?}: --out not written");
+        // The warning names the cache file it could not write.
+        let warning = stderr
+            .lines()
+            .find(|l| l.contains("warning: reference cache"))
+            .unwrap_or_else(|| panic!("{mode:?}: no cache warning in {stderr}"));
+        assert!(
+            warning.contains(&format!("{}/", cache.display())) && warning.contains(".bin"),
+            "{warning}"
+        );
+    }
+    assert_eq!(std::fs::read(&cache).unwrap(), b"not a folder");
+}
