@@ -611,7 +611,7 @@ fn cache_round_trip() {
     );
     assert_eq!(fixed, GOLDEN_KEY);
 
-    std::fs::remove_dir_all(&dir).ok();
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]

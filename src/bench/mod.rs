@@ -11,13 +11,13 @@
 
 pub mod catalog;
 pub mod depth_formats;
-pub mod limits;
+mod limits;
 pub mod metrics;
 pub mod perf;
 mod progress;
 pub mod skips;
 pub mod stress;
-pub mod timing;
+mod timing;
 
 use crate::ao::AoMethod;
 use crate::res::ResDirs;

@@ -33,11 +33,11 @@ use crate::engine::Camera;
 const MAGIC: &[u8; 8] = b"OGLAOREF";
 
 /// Bump when the file layout changes.
-pub const CACHE_FORMAT_VERSION: u32 = 1;
+const CACHE_FORMAT_VERSION: u32 = 1;
 
 /// Bump when the renderer's output for the same inputs changes (sampling, offsets, ...), so
 /// stale cached images are not reused.
-pub const ALGORITHM_VERSION: u32 = 1;
+const ALGORITHM_VERSION: u32 = 1;
 
 /// Stable 16-hex-digit key for a render: FNV-1a 64 over the algorithm version, the triangle
 /// hash, every camera field, the image size and every parameter that affects the pixels
@@ -203,8 +203,8 @@ pub(crate) fn store_or_warn(cache_dir: &Path, key: &str, img: &RefImage) {
 }
 
 /// Returns the cached image for these inputs if `cache_dir/<key>.bin` holds a valid one,
-/// otherwise renders with [`render_reference`] and stores the result (see [`store_or_warn`]:
-/// an unwritable cache is a warning, not an error). The key uses [`Scene::content_hash`].
+/// otherwise renders with [`render_reference`] and stores the result (an unwritable
+/// cache is a warning, not an error). The key uses [`Scene::content_hash`].
 pub fn load_or_render_cached(
     cache_dir: &Path,
     scene: &Scene,

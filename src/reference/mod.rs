@@ -16,16 +16,12 @@ mod scene;
 mod screen;
 mod trace;
 
-pub use cache::{
-    cache_key, cache_path, load_or_render_cached, read_cached, write_cached, ALGORITHM_VERSION,
-    CACHE_FORMAT_VERSION,
-};
+pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
 pub use camera::{pixel_dir, view_direction};
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
-pub use scene::{hash_triangles, Hit, Scene};
+pub use scene::{Hit, Scene};
 pub use screen::{
     load_or_render_screen_cached, render_screen_space, screen_cache_key, DepthBuffer,
-    SCREEN_ALGORITHM_VERSION,
 };
 pub use trace::render_reference;

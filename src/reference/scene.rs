@@ -87,7 +87,7 @@ fn intersect_tri(tri: &Tri, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Optio
 }
 
 /// Stable hash of a triangle list (vertex bit patterns, in order), for [`super::cache::cache_key`].
-pub fn hash_triangles(triangles: &[[Vec3; 3]]) -> u64 {
+fn hash_triangles(triangles: &[[Vec3; 3]]) -> u64 {
     let mut h = Fnv64::new();
     h.u64(triangles.len() as u64);
     for t in triangles {
@@ -166,7 +166,7 @@ impl Scene {
         self.input_count - self.tris.len()
     }
 
-    /// Stable hash of the input triangle list (see [`hash_triangles`]), for cache keys.
+    /// Stable hash of the input triangle list (vertex bit patterns in order, FNV-1a 64), for cache keys.
     pub fn content_hash(&self) -> u64 {
         self.content_hash
     }

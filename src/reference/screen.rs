@@ -43,7 +43,7 @@ use super::sampling;
 use crate::engine::Camera;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-pub const SCREEN_ALGORITHM_VERSION: u32 = 1;
+const SCREEN_ALGORITHM_VERSION: u32 = 1;
 
 /// A depth buffer and the projection it was rendered with.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,7 +61,7 @@ pub struct DepthBuffer {
 
 impl DepthBuffer {
     /// Checks the buffer's size and projection (clear errors instead of NaN later).
-    pub fn validate(&self) -> Result<()> {
+    fn validate(&self) -> Result<()> {
         let n = self.width as usize * self.height as usize;
         if self.linear_depth.len() != n {
             bail!(
@@ -96,7 +96,7 @@ impl DepthBuffer {
 
     /// Converts raw window-space depth values D in [0, 1] (rows top-down) of a standard OpenGL
     /// projection with these planes; D = 1 (the cleared value) is sky.
-    pub fn from_window_depth(
+    fn from_window_depth(
         width: u32,
         height: u32,
         window_depth: &[f32],
