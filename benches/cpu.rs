@@ -8,27 +8,28 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
+use opengl3d::tools::bench::metrics::{self, Gray};
+use opengl3d::math::Camera;
+use opengl3d::tools::reference::{
+    render_reference, render_screen_space, AoVariant, DepthBuffer, RefParams, Scene,
+};
 use opengl3d::res::ResDirs;
 use opengl3d::scene::SceneDesc;
-use opengl3d::tools::bench::metrics::{self, Gray};
-use opengl3d::tools::reference::{
-    render_reference, render_screen_space, AoVariant, DepthBuffer, RefCamera, RefParams, Scene,
-};
 
 fn main() {
     divan::main();
 }
 
 /// The demo scene's triangles and camera, loaded once.
-fn demo() -> &'static (Vec<[Vec3; 3]>, RefCamera) {
-    static DEMO: OnceLock<(Vec<[Vec3; 3]>, RefCamera)> = OnceLock::new();
+fn demo() -> &'static (Vec<[Vec3; 3]>, Camera) {
+    static DEMO: OnceLock<(Vec<[Vec3; 3]>, Camera)> = OnceLock::new();
     DEMO.get_or_init(|| {
         let res = ResDirs::default();
         let path = res.find("scenes/demo.toml").expect("Res/scenes/demo.toml");
         let desc = SceneDesc::load(&path).expect("demo scene");
         let tris = desc.world_triangles(&res).expect("demo meshes");
         let c = &desc.camera;
-        let cam = RefCamera {
+        let cam = Camera {
             eye: c.eye.into(),
             target: c.target.into(),
             up: Vec3::Y,

@@ -504,17 +504,17 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
 }
 
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
-    use crate::tools::reference::{load_or_render_cached, AoVariant, RefCamera, RefParams, Scene};
+    use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
     let scene = load_scene(&args.scene, res)?;
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
-    if !(radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
+    if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
         bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
     }
     let tris = scene.world_triangles(res)?;
     let bvh = Scene::new(tris)?;
     let c = &scene.camera;
-    let cam = RefCamera {
+    let cam = crate::math::Camera {
         eye: c.eye.into(),
         target: c.target.into(),
         up: Vec3::Y,
@@ -540,10 +540,10 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
-        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)?
+        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
     };
     if let Some(dir) = args.out.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir)?;
+        std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     }
     match args.out.extension().and_then(|e| e.to_str()) {
         Some("pfm") => crate::io::write_pfm_gray(&args.out, w, h, &img.ao)?,

@@ -1,5 +1,5 @@
-//! The benchmark's metrics on known inputs, and tiny runs of `bench` and `bench --stress` that must
-//! produce complete, finite reports. Speed is never asserted.
+//! The benchmark's metrics on known inputs, tiny runs of `bench` and `bench --stress` that must
+//! produce complete, finite reports, and the inputs `bench` refuses. Speed is never asserted.
 
 use opengl3d::ao::AoMethod;
 use opengl3d::res::ResDirs;
@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 
 fn temp_dir(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
+    if d.exists() {
+        std::fs::remove_dir_all(&d).unwrap();
+    }
     std::fs::create_dir_all(&d).unwrap();
     d
 }
@@ -281,4 +283,94 @@ fn tiny_stress_run_has_no_nan_or_inf() {
         serde_json::from_str(&std::fs::read_to_string(out.join("stress.json")).unwrap()).unwrap();
     assert_eq!(json["total_non_finite"], 0);
     assert!(out.join("stress.md").is_file());
+}
+
+/// `opengl3d bench` with extra arguments; it must stop at the argument check, before any rendering.
+fn bench_cli(args: &[&str]) -> std::process::Output {
+    std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .arg("bench")
+        .args(args)
+        .output()
+        .expect("run opengl3d")
+}
+
+#[test]
+fn reference_rays_and_scale_out_of_range_are_refused() {
+    for (flag, value, range) in [
+        ("--ref-rays", "0", "1..=65536"),
+        ("--ref-rays", "65537", "1..=65536"),
+        ("--screen-rays", "0", "1..=65536"),
+        ("--ref-scale", "0", "1..=16"),
+        ("--ref-scale", "1000", "1..=16"),
+    ] {
+        let out = temp_dir("bench-cli-range");
+        let o = bench_cli(&[flag, value, "--out", out.to_str().unwrap()]);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        // clap's usage errors exit with 2, before anything runs or is written.
+        assert_eq!(o.status.code(), Some(2), "{flag} {value}: {stderr}");
+        assert!(
+            stderr.contains(flag) && stderr.contains(value) && stderr.contains(range),
+            "{flag} {value}: {stderr}"
+        );
+        assert!(!out.join("report.json").exists());
+    }
+}
+
+#[test]
+fn library_runs_refuse_the_same_ranges() {
+    let out = temp_dir("bench-lib-range");
+    let base = perf::PerfConfig {
+        scenes: Vec::new(),
+        width: 32,
+        height: 18,
+        out: out.clone(),
+        methods: vec![AoMethod::SaoLesson],
+        samples: vec![4],
+        radii: vec![1.0],
+        ref_rays: 8,
+        screen_rays: 8,
+        ref_scale: 1,
+        cache: out.join("cache"),
+        warmup: 0,
+        frames: 1,
+        flip: false,
+        charts: false,
+        progress: false,
+    };
+    for (cfg, flag) in [
+        (
+            perf::PerfConfig {
+                ref_rays: 0,
+                ..base.clone()
+            },
+            "--ref-rays 0",
+        ),
+        (
+            perf::PerfConfig {
+                screen_rays: 0,
+                ..base.clone()
+            },
+            "--screen-rays 0",
+        ),
+        (
+            perf::PerfConfig {
+                ref_scale: 0,
+                ..base.clone()
+            },
+            "--ref-scale 0",
+        ),
+        (
+            perf::PerfConfig {
+                ref_scale: 17,
+                ..base.clone()
+            },
+            "--ref-scale 17",
+        ),
+    ] {
+        let e = perf::run(&ResDirs::default(), &cfg)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(flag), "{flag}: {e}");
+    }
+    assert!(!out.join("report.json").exists());
 }

@@ -9,9 +9,10 @@
 use std::f64::consts::PI;
 
 use glam::Vec3;
+use opengl3d::math::Camera;
 use opengl3d::tools::reference::{
-    cache_key, cache_path, load_or_render_cached, read_cached, render_reference, write_cached,
-    AoVariant, RefCamera, RefImage, RefParams, Scene,
+    cache_key, cache_path, load_or_render_cached, pixel_dir, read_cached, render_reference,
+    view_direction, write_cached, AoVariant, RefImage, RefParams, Scene,
 };
 
 /// Two triangles covering the parallelogram a, b, c, a + c - b.
@@ -31,8 +32,8 @@ fn horizontal(y: f32) -> [[Vec3; 3]; 2] {
     )
 }
 
-fn camera(eye: Vec3, target: Vec3, up: Vec3, fov_y_deg: f32) -> RefCamera {
-    RefCamera {
+fn camera(eye: Vec3, target: Vec3, up: Vec3, fov_y_deg: f32) -> Camera {
+    Camera {
         eye,
         target,
         up,
@@ -53,15 +54,15 @@ fn params(radius: f32, rays: u32, variant: AoVariant) -> RefParams {
 }
 
 /// World-space surface point of every non-sky pixel: (pixel index, point).
-fn surface_points(img: &RefImage, cam: &RefCamera) -> Vec<(usize, Vec3)> {
-    let fwd = cam.forward();
+fn surface_points(img: &RefImage, cam: &Camera) -> Vec<(usize, Vec3)> {
+    let fwd = view_direction(cam);
     let mut out = Vec::new();
     for y in 0..img.height {
         for x in 0..img.width {
             let i = img.index(x, y);
             let depth = img.linear_depth[i];
             if depth.is_finite() {
-                let dir = cam.pixel_dir(x, y, img.width, img.height).unwrap();
+                let dir = pixel_dir(cam, x, y, img.width, img.height).unwrap();
                 out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
             }
         }
@@ -73,7 +74,7 @@ fn surface_points(img: &RefImage, cam: &RefCamera) -> Vec<(usize, Vec3)> {
 /// (tiny) effect of the quads not being infinite. Returns the number of pixels checked.
 fn check_against(
     img: &RefImage,
-    cam: &RefCamera,
+    cam: &Camera,
     slack: f64,
     what: &str,
     exact: impl Fn(Vec3) -> f64,
@@ -380,41 +381,41 @@ fn degenerate_inputs_stay_finite() {
     );
     let odd_cams = [
         inside,
-        RefCamera {
+        Camera {
             target: inside.eye,
             ..inside
         }, // eye == target
-        RefCamera {
+        Camera {
             up: inside.target - inside.eye,
             ..inside
         }, // up parallel to view
-        RefCamera {
+        Camera {
             up: Vec3::ZERO,
             ..inside
         },
-        RefCamera {
+        Camera {
             eye: Vec3::NAN,
             ..inside
         },
-        RefCamera {
+        Camera {
             fov_y_deg: 0.0,
             ..inside
         },
-        RefCamera {
+        Camera {
             fov_y_deg: 180.0,
             ..inside
         },
-        RefCamera {
+        Camera {
             near: 5.0,
             far: 1.0,
             ..inside
         },
-        RefCamera {
+        Camera {
             near: -1.0,
             far: f32::INFINITY,
             ..inside
         },
-        RefCamera {
+        Camera {
             near: f32::NAN,
             far: f32::NAN,
             ..inside
@@ -506,14 +507,14 @@ fn cache_round_trip() {
     let path = cache_path(&dir, &key);
     assert!(!path.exists());
 
-    let first = load_or_render_cached(&dir, &scene, &cam, 12, 9, &p).unwrap();
+    let first = load_or_render_cached(&dir, &scene, &cam, 12, 9, &p);
     assert!(path.exists(), "cache file not written");
     assert_eq!(first, render_reference(&scene, &cam, 12, 9, &p));
     assert!(
         first.sky_mask().iter().any(|&s| s),
         "test wants sky (+inf depth) in the file"
     );
-    let second = load_or_render_cached(&dir, &scene, &cam, 12, 9, &p).unwrap();
+    let second = load_or_render_cached(&dir, &scene, &cam, 12, 9, &p);
     assert_eq!(first, second);
     assert_eq!(read_cached(&dir, &key).as_ref(), Some(&first));
 
@@ -523,7 +524,7 @@ fn cache_round_trip() {
     planted.ao.iter_mut().for_each(|a| *a = 0.125);
     write_cached(&dir, &key, &planted).unwrap();
     assert_eq!(
-        load_or_render_cached(&dir, &scene, &cam, 12, 9, &p).unwrap(),
+        load_or_render_cached(&dir, &scene, &cam, 12, 9, &p),
         planted
     );
 
@@ -531,18 +532,12 @@ fn cache_round_trip() {
     let bytes = std::fs::read(&path).unwrap();
     std::fs::write(&path, &bytes[..bytes.len() - 3]).unwrap();
     assert_eq!(read_cached(&dir, &key), None);
-    assert_eq!(
-        load_or_render_cached(&dir, &scene, &cam, 12, 9, &p).unwrap(),
-        first
-    );
+    assert_eq!(load_or_render_cached(&dir, &scene, &cam, 12, 9, &p), first);
     let mut flipped = std::fs::read(&path).unwrap();
     flipped[60] ^= 0x40;
     std::fs::write(&path, &flipped).unwrap();
     assert_eq!(read_cached(&dir, &key), None);
-    assert_eq!(
-        load_or_render_cached(&dir, &scene, &cam, 12, 9, &p).unwrap(),
-        first
-    );
+    assert_eq!(load_or_render_cached(&dir, &scene, &cam, 12, 9, &p), first);
 
     // The key depends on everything that changes the pixels, and on nothing else.
     let h = scene.content_hash();
@@ -565,7 +560,7 @@ fn cache_round_trip() {
         cache_key(h ^ 1, &cam, 12, 9, &p),
         cache_key(
             h,
-            &RefCamera {
+            &Camera {
                 fov_y_deg: 61.0,
                 ..cam
             },
@@ -575,7 +570,7 @@ fn cache_round_trip() {
         ),
         cache_key(
             h,
-            &RefCamera {
+            &Camera {
                 eye: cam.eye + Vec3::X * 1e-3,
                 ..cam
             },
@@ -616,7 +611,26 @@ fn cache_round_trip() {
     );
     assert_eq!(fixed, GOLDEN_KEY);
 
-    std::fs::remove_dir_all(&dir).ok();
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn unwritable_cache_still_returns_the_render() {
+    let scene = Scene::new(horizontal(0.0).to_vec()).unwrap();
+    let cam = camera(Vec3::new(0.0, 2.0, 3.0), Vec3::ZERO, Vec3::Y, 60.0);
+    let p = params(0.5, 8, AoVariant::Visibility);
+    // The cache "folder" is a file: nothing can be written under it.
+    let dir = temp_dir("cache-is-a-file");
+    let cache = dir.join("cache");
+    std::fs::write(&cache, b"not a folder").unwrap();
+    let img = load_or_render_cached(&cache, &scene, &cam, 8, 6, &p);
+    assert_eq!(img, render_reference(&scene, &cam, 8, 6, &p));
+    assert_eq!(std::fs::read(&cache).unwrap(), b"not a folder");
+    // Writing it directly is the error the warning reports, naming the folder.
+    let key = cache_key(scene.content_hash(), &cam, 8, 6, &p);
+    let e = format!("{:#}", write_cached(&cache, &key, &img).unwrap_err());
+    assert!(e.contains(&cache.display().to_string()), "{e}");
+    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// Recorded value of the fixed key above; changes only when `ALGORITHM_VERSION` or the key

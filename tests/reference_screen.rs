@@ -7,13 +7,14 @@ mod common;
 
 use common::*;
 use glam::{Mat4, Vec3, Vec4};
+use opengl3d::math::Camera;
 use opengl3d::render::Engine;
+use opengl3d::tools::reference::{
+    load_or_render_cached, load_or_render_screen_cached, pixel_dir, render_screen_space,
+    screen_cache_key, view_direction, AoVariant, DepthBuffer, RefImage, RefParams, Scene,
+};
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
-use opengl3d::tools::reference::{
-    load_or_render_cached, load_or_render_screen_cached, render_screen_space, screen_cache_key,
-    AoVariant, DepthBuffer, RefCamera, RefImage, RefParams, Scene,
-};
 use std::f64::consts::PI;
 
 fn params(radius: f32, rays: u32) -> RefParams {
@@ -26,28 +27,23 @@ fn params(radius: f32, rays: u32) -> RefParams {
     }
 }
 
-fn ref_camera(e: &Engine) -> RefCamera {
-    let c = e.camera;
-    RefCamera {
-        eye: c.eye,
-        target: c.target,
+fn ref_camera(e: &Engine) -> Camera {
+    Camera {
         up: Vec3::Y,
-        fov_y_deg: c.fov_y_deg,
-        near: c.near,
-        far: c.far,
+        ..e.camera
     }
 }
 
 /// World-space surface point of every non-sky pixel: (pixel index, point).
-fn surface_points(img: &RefImage, cam: &RefCamera) -> Vec<(usize, Vec3)> {
-    let fwd = cam.forward();
+fn surface_points(img: &RefImage, cam: &Camera) -> Vec<(usize, Vec3)> {
+    let fwd = view_direction(cam);
     let mut out = Vec::new();
     for y in 0..img.height {
         for x in 0..img.width {
             let i = img.index(x, y);
             let depth = img.linear_depth[i];
             if depth.is_finite() {
-                let dir = cam.pixel_dir(x, y, img.width, img.height).unwrap();
+                let dir = pixel_dir(cam, x, y, img.width, img.height).unwrap();
                 out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
             }
         }
@@ -72,7 +68,7 @@ fn neighbourhood_on_screen(vp: &Mat4, near: f32, w: u32, h: u32, p: Vec3, r: f32
 
 /// Size of pixel `p`'s footprint on the crease scene's surfaces (floor y = 0 or wall x = 0): the
 /// depth buffer resolves nothing finer, so the heightfield cuts the crease by about this much.
-fn crease_footprint(cam: &RefCamera, h: u32, p: Vec3) -> f32 {
+fn crease_footprint(cam: &Camera, h: u32, p: Vec3) -> f32 {
     let normal = if p.y.abs() < p.x.abs() {
         Vec3::Y
     } else {
@@ -85,7 +81,7 @@ fn crease_footprint(cam: &RefCamera, h: u32, p: Vec3) -> f32 {
 
 /// Pixels whose surface the depth buffer resolves at the scale of `radius` and that lie at least
 /// two footprints away from the crease line.
-fn resolved(cam: &RefCamera, h: u32, p: Vec3, radius: f32) -> bool {
+fn resolved(cam: &Camera, h: u32, p: Vec3, radius: f32) -> bool {
     let f = crease_footprint(cam, h, p);
     f < radius / 4.0 && p.x.max(p.y) > 2.0 * f
 }
@@ -254,7 +250,7 @@ fn agrees_with_the_ray_traced_reference_without_hidden_geometry() {
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
     let radius = 1.0;
     let cache = temp_dir("screen-vs-rt-cache");
-    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 256)).unwrap();
+    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &params(radius, 256));
     let ss = load_or_render_screen_cached(&cache, &depth, &params(radius, 256)).unwrap();
     assert_valid(&ss);
     // Same pixels are surface, at the same depth (GL rasterisation vs ray casting).
@@ -341,7 +337,7 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
     let p = params(1.0, 256);
     let cache = temp_dir("screen-hidden-cache");
-    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &p).unwrap();
+    let rt = load_or_render_cached(&cache, &scene, &cam, w, h, &p);
     let ss = render_screen_space(&depth, &p).unwrap();
     let vp = e.camera.view_projection(w as f32 / h as f32);
     // Floor pixels by their distance from the slab's outline (in the floor plane).
@@ -434,4 +430,37 @@ fn cli_writes_the_screen_space_reference() {
         .output()
         .unwrap();
     assert!(!run.status.success());
+}
+
+#[test]
+fn cli_writes_the_reference_when_its_cache_cannot_be_written() {
+    let dir = temp_dir("ref-cli-cache-file");
+    // A cache "folder" that is a file: no cache file can be created under it.
+    let cache = dir.join("cache-is-a-file");
+    std::fs::write(&cache, b"not a folder").unwrap();
+    for mode in [&[][..], &["--screen-space"][..]] {
+        let out = dir.join(format!("ref{}.pfm", mode.len()));
+        let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+            .arg("reference")
+            .args(mode)
+            .args(["--width", "16", "--height", "9", "--rays", "4", "--out"])
+            .arg(&out)
+            .arg("--cache")
+            .arg(&cache)
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&run.stderr);
+        assert!(run.status.success(), "{mode:?}: {stderr}");
+        assert!(out.is_file(), "{mode:?}: --out not written");
+        // The warning names the cache file it could not write.
+        let warning = stderr
+            .lines()
+            .find(|l| l.contains("warning: reference cache"))
+            .unwrap_or_else(|| panic!("{mode:?}: no cache warning in {stderr}"));
+        assert!(
+            warning.contains(&format!("{}/", cache.display())) && warning.contains(".bin"),
+            "{warning}"
+        );
+    }
+    assert_eq!(std::fs::read(&cache).unwrap(), b"not a folder");
 }

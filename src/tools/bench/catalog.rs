@@ -2,9 +2,10 @@
 //! cameras of each scene (some train the fit of a method's intensity/contrast, the others test it).
 //!
 //! A method is any `AoMethod` the engine knows: adding one to `AoMethod::ALL` (with its name and
-//! shader) makes it available here as `--methods NAME`; its settings come from [`settings_for`].
+//! shader) makes it available here as `--methods NAME`; its settings come from `settings_for`.
 
 use crate::ao::AoMethod;
+use crate::math::Camera;
 use crate::scene::CameraDesc;
 use anyhow::{bail, Result};
 use glam::{Quat, Vec3};
@@ -45,8 +46,8 @@ impl Setting {
 }
 
 /// The sample counts and radii the lesson's SAO is run with (the grid of both).
-pub const LESSON_SAMPLES: [u32; 5] = [4, 8, 11, 16, 24];
-pub const LESSON_RADII: [f32; 3] = [0.5, 1.0, 2.0];
+const LESSON_SAMPLES: [u32; 5] = [4, 8, 11, 16, 24];
+const LESSON_RADII: [f32; 3] = [0.5, 1.0, 2.0];
 
 /// The methods the benchmark knows, by command-line name.
 pub fn method_by_name(name: &str) -> Result<AoMethod> {
@@ -64,7 +65,7 @@ pub fn method_by_name(name: &str) -> Result<AoMethod> {
 /// other methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost
 /// grows with samples the same way, and the radius mostly moves their error); GTAO also runs its
 /// high and ultra presets at 1 m and 0.5 m.
-pub fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> Vec<Setting> {
+pub(crate) fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> Vec<Setting> {
     let grid = |s: &[u32], r: &[f32]| {
         let mut v = Vec::new();
         for &radius in r {
@@ -119,9 +120,24 @@ pub struct BenchCamera {
     pub train: bool,
 }
 
+impl BenchCamera {
+    /// The engine's camera for this view, with the scene's clip planes and +Y up; the ray-traced
+    /// reference uses the very same camera, so both see the same pixel centres.
+    pub fn camera(&self, scene: &CameraDesc) -> Camera {
+        Camera {
+            eye: self.eye.into(),
+            target: self.target.into(),
+            up: Vec3::Y,
+            fov_y_deg: self.fov_y,
+            near: scene.near,
+            far: scene.far,
+        }
+    }
+}
+
 /// The scene's own camera and three variants around its target: orbited left and right (one lower),
 /// and a closer, higher view. Cameras 0 and 2 train the fit, 1 and 3 test it.
-pub fn camera_variants(c: &CameraDesc) -> Vec<BenchCamera> {
+pub(crate) fn camera_variants(c: &CameraDesc) -> Vec<BenchCamera> {
     let eye = Vec3::from(c.eye);
     let target = Vec3::from(c.target);
     let offset = eye - target;

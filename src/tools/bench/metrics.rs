@@ -68,7 +68,7 @@ pub fn mse_mae(a: &[f32], b: &[f32], mask: Option<&[bool]>) -> (f64, f64, usize)
 }
 
 /// PSNR in dB for a peak of 1, capped at [`PSNR_CAP_DB`].
-pub fn psnr_from_mse(mse: f64) -> f64 {
+fn psnr_from_mse(mse: f64) -> f64 {
     if mse <= 0.0 {
         return PSNR_CAP_DB;
     }
@@ -115,7 +115,7 @@ fn gaussian_kernel(sigma: f64, radius: usize) -> Vec<f64> {
 }
 
 /// Per-pixel SSIM map (Wang et al. 2004: Gaussian window σ = 1.5 truncated to 11×11, dynamic range 1).
-pub fn ssim_map(a: Gray, b: Gray) -> Vec<f64> {
+fn ssim_map(a: Gray, b: Gray) -> Vec<f64> {
     assert_eq!((a.width, a.height), (b.width, b.height));
     let (w, h) = (a.width, a.height);
     if w == 0 || h == 0 {
@@ -148,7 +148,7 @@ pub fn ssim_map(a: Gray, b: Gray) -> Vec<f64> {
 }
 
 /// Mean of `map` over the masked pixels (`None` = all); 1 if the mask selects nothing.
-pub fn masked_mean(map: &[f64], mask: Option<&[bool]>) -> f64 {
+fn masked_mean(map: &[f64], mask: Option<&[bool]>) -> f64 {
     let (s, n) = map
         .iter()
         .enumerate()
@@ -176,7 +176,7 @@ fn to_srgb8_rgb(v: &[f32]) -> Vec<u8> {
 }
 
 /// Per-pixel LDR-FLIP error map (NVIDIA ꟻLIP through the `nv-flip` crate), 67 pixels per degree.
-pub fn flip_map(reference: Gray, test: Gray) -> Vec<f32> {
+fn flip_map(reference: Gray, test: Gray) -> Vec<f32> {
     assert_eq!(
         (reference.width, reference.height),
         (test.width, test.height)

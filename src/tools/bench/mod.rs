@@ -10,12 +10,14 @@
 //!   `skips.md`.
 
 pub mod catalog;
-pub mod chart;
 pub mod depth_formats;
+mod limits;
 pub mod metrics;
 pub mod perf;
+mod progress;
 pub mod skips;
 pub mod stress;
+mod timing;
 
 use crate::ao::AoMethod;
 use crate::res::ResDirs;
@@ -51,14 +53,19 @@ pub struct BenchArgs {
     /// Radii in metres to run (replaces each method's default settings; combined with --samples).
     #[arg(long, value_delimiter = ',')]
     pub radii: Vec<f32>,
-    /// Rays per pixel of the ray-traced reference.
-    #[arg(long, default_value_t = 256)]
+    /// Rays per pixel of the ray-traced reference (1 to 65536).
+    #[arg(long, default_value_t = 256,
+          value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
     pub ref_rays: u32,
-    /// Rays per pixel of the screen-space references (the error split; test cameras only).
-    #[arg(long, default_value_t = 64)]
+    /// Rays per pixel of the screen-space references (the error split; test cameras only; 1 to
+    /// 65536).
+    #[arg(long, default_value_t = 64,
+          value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
     pub screen_rays: u32,
-    /// Render the reference at 1/N of the size and box-average the engine's output by N to compare.
-    #[arg(long, default_value_t = 1)]
+    /// Render the reference at 1/N of the size and box-average the engine's output by N to compare
+    /// (1 to 16).
+    #[arg(long, default_value_t = 1,
+          value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_SCALE as i64))]
     pub ref_scale: u32,
     /// Folder of cached references.
     #[arg(long, default_value = "out/reference-cache")]
@@ -95,9 +102,9 @@ impl BenchArgs {
             methods,
             samples: self.samples.clone(),
             radii: self.radii.clone(),
-            ref_rays: self.ref_rays.max(1),
-            screen_rays: self.screen_rays.max(1),
-            ref_scale: self.ref_scale.max(1),
+            ref_rays: self.ref_rays,
+            screen_rays: self.screen_rays,
+            ref_scale: self.ref_scale,
             cache: self.cache.clone(),
             warmup: self.warmup,
             frames: self.frames,

@@ -7,13 +7,14 @@
 //! gives the medians, the saving, the ratio skipped / needed, the passes that did not run and the draw
 //! calls, plus the GPU memory the AO targets take when AO is on (none are allocated while it is off).
 
+use super::timing::median;
+use super::{limits, progress};
 use crate::platform::HeadlessContext;
 use crate::render::{Engine, PassStat, View};
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
-use anyhow::{bail, Context as _, Result};
+use anyhow::{Context as _, Result};
 use glam::Vec3;
-use indicatif::{ProgressBar, ProgressStyle};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 
@@ -114,10 +115,6 @@ fn cases() -> Vec<CaseDef> {
     ]
 }
 
-fn median(mut v: Vec<f64>) -> f64 {
-    super::perf::median(&mut v)
-}
-
 fn frame(engine: &mut Engine) -> Result<Vec<PassStat>> {
     // Values of the debug views, the image otherwise: both run every pass of the view.
     if engine.view == View::Composite {
@@ -131,8 +128,13 @@ fn frame(engine: &mut Engine) -> Result<Vec<PassStat>> {
 fn side(frames: &[Vec<PassStat>]) -> Side {
     let sum = |f: &Vec<PassStat>, g: fn(&PassStat) -> f64| f.iter().map(g).sum::<f64>();
     Side {
-        frame_ms: median(frames.iter().map(|f| sum(f, |p| p.ms)).collect()),
-        frame_cpu_ms: median(frames.iter().map(|f| sum(f, |p| p.cpu_ms)).collect()),
+        frame_ms: median(&mut frames.iter().map(|f| sum(f, |p| p.ms)).collect::<Vec<_>>()),
+        frame_cpu_ms: median(
+            &mut frames
+                .iter()
+                .map(|f| sum(f, |p| p.cpu_ms))
+                .collect::<Vec<_>>(),
+        ),
         draw_calls: frames
             .last()
             .map(|f| f.iter().map(|p| p.draw_calls).sum())
@@ -146,16 +148,8 @@ fn side(frames: &[Vec<PassStat>]) -> Side {
 
 /// Runs every case and writes skips.json and skips.md into `cfg.out`.
 pub fn run(res: &ResDirs, cfg: &SkipsConfig) -> Result<SkipsReport> {
-    if cfg.width == 0 || cfg.height == 0 || cfg.width > 16384 || cfg.height > 16384 {
-        bail!(
-            "--width/--height {}x{}: use 1 to 16384",
-            cfg.width,
-            cfg.height
-        );
-    }
-    if cfg.frames == 0 {
-        bail!("--frames must be at least 1");
-    }
+    limits::check_size(cfg.width, cfg.height)?;
+    limits::check_frames(cfg.frames)?;
     let path = match &cfg.scene {
         Some(p) => p.clone(),
         None => res
@@ -184,15 +178,11 @@ pub fn run(res: &ResDirs, cfg: &SkipsConfig) -> Result<SkipsReport> {
 
     let defs = cases();
     let per_case = (cfg.warmup + cfg.frames) as u64 * 2;
-    let bar = if cfg.progress {
-        let b = ProgressBar::new(defs.len() as u64 * per_case);
-        if let Ok(s) = ProgressStyle::with_template("skips {bar:30} {pos}/{len} frames {msg}") {
-            b.set_style(s.progress_chars("=> "));
-        }
-        b
-    } else {
-        ProgressBar::hidden()
-    };
+    let bar = progress::bar(
+        defs.len() as u64 * per_case,
+        "skips {bar:30} {pos}/{len} frames {msg}",
+        cfg.progress,
+    );
     let mut out = Vec::new();
     for def in &defs {
         bar.set_message(def.name);
@@ -251,11 +241,12 @@ pub fn run(res: &ResDirs, cfg: &SkipsConfig) -> Result<SkipsReport> {
 
 fn write(report: &SkipsReport, dir: &Path) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
-    std::fs::write(
-        dir.join("skips.json"),
-        serde_json::to_string_pretty(report)?,
-    )?;
-    std::fs::write(dir.join("skips.md"), markdown(report))?;
+    let json_path = dir.join("skips.json");
+    std::fs::write(&json_path, serde_json::to_string_pretty(report)?)
+        .with_context(|| format!("cannot write {}", json_path.display()))?;
+    let md_path = dir.join("skips.md");
+    std::fs::write(&md_path, markdown(report))
+        .with_context(|| format!("cannot write {}", md_path.display()))?;
     Ok(())
 }
 

@@ -17,29 +17,34 @@
 
 use std::{
     fs,
-    io::Write,
+    io::{ErrorKind, Write},
     path::{Path, PathBuf},
 };
 
 use anyhow::{bail, Context, Result};
 
-use super::{render_reference, scene::Fnv64, AoVariant, RefCamera, RefImage, RefParams, Scene};
+use super::hash::Fnv64;
+use super::image::RefImage;
+use super::params::{AoVariant, RefParams};
+use super::scene::Scene;
+use super::trace::render_reference;
+use crate::math::Camera;
 
 const MAGIC: &[u8; 8] = b"OGLAOREF";
 
 /// Bump when the file layout changes.
-pub const CACHE_FORMAT_VERSION: u32 = 1;
+const CACHE_FORMAT_VERSION: u32 = 1;
 
 /// Bump when the renderer's output for the same inputs changes (sampling, offsets, ...), so
 /// stale cached images are not reused.
-pub const ALGORITHM_VERSION: u32 = 1;
+const ALGORITHM_VERSION: u32 = 1;
 
 /// Stable 16-hex-digit key for a render: FNV-1a 64 over the algorithm version, the triangle
 /// hash, every camera field, the image size and every parameter that affects the pixels
 /// (`progress` does not). Float fields are hashed by bit pattern.
 pub fn cache_key(
     triangles_hash: u64,
-    cam: &RefCamera,
+    cam: &Camera,
     width: u32,
     height: u32,
     params: &RefParams,
@@ -145,41 +150,76 @@ pub fn write_cached(cache_dir: &Path, key: &str, img: &RefImage) -> Result<PathB
     let bytes = encode(key, img)?;
     let path = cache_path(cache_dir, key);
     let tmp = cache_dir.join(format!("{key}.bin.tmp{}", std::process::id()));
-    {
-        let mut f =
-            fs::File::create(&tmp).with_context(|| format!("creating {}", tmp.display()))?;
-        f.write_all(&bytes)
-            .with_context(|| format!("writing {}", tmp.display()))?;
-        f.sync_all().ok();
+    let written = write_synced(&tmp, &bytes).and_then(|()| {
+        fs::rename(&tmp, &path)
+            .with_context(|| format!("renaming {} to {}", tmp.display(), path.display()))
+    });
+    if let Err(e) = written {
+        // Do not leave the partial temp file behind; say so when even that fails.
+        if tmp.exists() {
+            if let Err(rm) = fs::remove_file(&tmp) {
+                return Err(e.context(format!("and {} could not be removed: {rm}", tmp.display())));
+            }
+        }
+        return Err(e);
     }
-    fs::rename(&tmp, &path).with_context(|| format!("renaming to {}", path.display()))?;
     Ok(path)
 }
 
+fn write_synced(path: &Path, bytes: &[u8]) -> Result<()> {
+    let mut f = fs::File::create(path).with_context(|| format!("creating {}", path.display()))?;
+    f.write_all(bytes)
+        .with_context(|| format!("writing {}", path.display()))?;
+    f.sync_all()
+        .with_context(|| format!("syncing {}", path.display()))
+}
+
 /// Reads the cache file for `key`; `None` if it is missing or not a valid file for that key.
+/// A file that exists but cannot be read is reported on stderr (and then rendered again).
 pub fn read_cached(cache_dir: &Path, key: &str) -> Option<RefImage> {
-    let bytes = fs::read(cache_path(cache_dir, key)).ok()?;
-    decode(key, &bytes)
+    let path = cache_path(cache_dir, key);
+    match fs::read(&path) {
+        Ok(bytes) => decode(key, &bytes),
+        Err(e) if matches!(e.kind(), ErrorKind::NotFound | ErrorKind::NotADirectory) => None,
+        Err(e) => {
+            eprintln!(
+                "warning: cannot read reference cache {}: {e}; rendering it again",
+                path.display()
+            );
+            None
+        }
+    }
+}
+
+/// Stores a fresh render in the cache. A cache that cannot be written only costs a render next
+/// time, so the failure is a warning naming the file, and the caller keeps its result.
+pub(crate) fn store_or_warn(cache_dir: &Path, key: &str, img: &RefImage) {
+    if let Err(e) = write_cached(cache_dir, key, img) {
+        eprintln!(
+            "warning: reference cache {} not written: {e:#}",
+            cache_path(cache_dir, key).display()
+        );
+    }
 }
 
 /// Returns the cached image for these inputs if `cache_dir/<key>.bin` holds a valid one,
-/// otherwise renders with [`render_reference`] and stores the result. The key uses
-/// [`Scene::content_hash`]. Errors only if the cache file cannot be written.
+/// otherwise renders with [`render_reference`] and stores the result (an unwritable
+/// cache is a warning, not an error). The key uses [`Scene::content_hash`].
 pub fn load_or_render_cached(
     cache_dir: &Path,
     scene: &Scene,
-    cam: &RefCamera,
+    cam: &Camera,
     width: u32,
     height: u32,
     params: &RefParams,
-) -> Result<RefImage> {
+) -> RefImage {
     let key = cache_key(scene.content_hash(), cam, width, height, params);
     if let Some(img) = read_cached(cache_dir, &key) {
         if img.width == width && img.height == height {
-            return Ok(img);
+            return img;
         }
     }
     let img = render_reference(scene, cam, width, height, params);
-    write_cached(cache_dir, &key, &img)?;
-    Ok(img)
+    store_or_warn(cache_dir, &key, &img);
+    img
 }

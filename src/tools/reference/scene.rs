@@ -10,6 +10,8 @@ use std::time::Duration;
 
 use anyhow::{bail, Result};
 use glam::{DVec3, Vec3};
+
+use super::hash::Fnv64;
 use obvhs::{
     cwbvh::{builder::build_cwbvh_from_tris, CwBvh},
     ray::{Ray, RayHit},
@@ -84,39 +86,8 @@ fn intersect_tri(tri: &Tri, o: DVec3, d: DVec3, t_min: f64, t_max: f64) -> Optio
     (t >= t_min && t <= t_max && t.is_finite()).then_some(t)
 }
 
-/// FNV-1a 64, written out so the value never changes between Rust versions (unlike
-/// `DefaultHasher`); used for cache keys.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct Fnv64(pub u64);
-
-impl Fnv64 {
-    pub(crate) fn new() -> Self {
-        Fnv64(0xcbf2_9ce4_8422_2325)
-    }
-    pub(crate) fn bytes(&mut self, bytes: &[u8]) {
-        for &b in bytes {
-            self.0 ^= b as u64;
-            self.0 = self.0.wrapping_mul(0x0000_0100_0000_01b3);
-        }
-    }
-    pub(crate) fn u32(&mut self, x: u32) {
-        self.bytes(&x.to_le_bytes());
-    }
-    pub(crate) fn u64(&mut self, x: u64) {
-        self.bytes(&x.to_le_bytes());
-    }
-    pub(crate) fn f32(&mut self, x: f32) {
-        self.u32(x.to_bits());
-    }
-    pub(crate) fn vec3(&mut self, v: Vec3) {
-        self.f32(v.x);
-        self.f32(v.y);
-        self.f32(v.z);
-    }
-}
-
-/// Stable hash of a triangle list (vertex bit patterns, in order), for [`super::cache_key`].
-pub fn hash_triangles(triangles: &[[Vec3; 3]]) -> u64 {
+/// Stable hash of a triangle list (vertex bit patterns, in order), for [`super::cache::cache_key`].
+fn hash_triangles(triangles: &[[Vec3; 3]]) -> u64 {
     let mut h = Fnv64::new();
     h.u64(triangles.len() as u64);
     for t in triangles {
@@ -195,7 +166,7 @@ impl Scene {
         self.input_count - self.tris.len()
     }
 
-    /// Stable hash of the input triangle list (see [`hash_triangles`]), for cache keys.
+    /// Stable hash of the input triangle list (vertex bit patterns in order, FNV-1a 64), for cache keys.
     pub fn content_hash(&self) -> u64 {
         self.content_hash
     }

@@ -35,10 +35,15 @@ use std::path::Path;
 use anyhow::{bail, Result};
 use glam::DVec3;
 
-use super::{cache, sampling, scene::Fnv64, AoVariant, RefCamera, RefImage, RefParams};
+use super::cache;
+use super::hash::Fnv64;
+use super::image::{shade_image, RefImage};
+use super::params::{AoVariant, RefParams};
+use super::sampling;
+use crate::math::Camera;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-pub const SCREEN_ALGORITHM_VERSION: u32 = 1;
+const SCREEN_ALGORITHM_VERSION: u32 = 1;
 
 /// A depth buffer and the projection it was rendered with.
 #[derive(Clone, Debug, PartialEq)]
@@ -56,7 +61,7 @@ pub struct DepthBuffer {
 
 impl DepthBuffer {
     /// Checks the buffer's size and projection (clear errors instead of NaN later).
-    pub fn validate(&self) -> Result<()> {
+    fn validate(&self) -> Result<()> {
         let n = self.width as usize * self.height as usize;
         if self.linear_depth.len() != n {
             bail!(
@@ -79,7 +84,7 @@ impl DepthBuffer {
     }
 
     /// The depth buffer of a ray-traced reference image (its `linear_depth`, same pixel centres).
-    pub fn from_reference(img: &RefImage, cam: &RefCamera) -> DepthBuffer {
+    pub fn from_reference(img: &RefImage, cam: &Camera) -> DepthBuffer {
         DepthBuffer {
             width: img.width,
             height: img.height,
@@ -91,7 +96,7 @@ impl DepthBuffer {
 
     /// Converts raw window-space depth values D in [0, 1] (rows top-down) written with `mode`'s
     /// projection and these planes; the mode's cleared value (1 for D32, 0 for reversed-Z) is sky.
-    pub fn from_window_depth(
+    fn from_window_depth(
         width: u32,
         height: u32,
         window_depth: &[f32],
@@ -107,7 +112,8 @@ impl DepthBuffer {
             .iter()
             .map(|&d| {
                 if d.is_finite() && (0.0..=1.0).contains(&d) && d != mode.clear_value() {
-                    let z = crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
+                    let z =
+                        crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
                     if z.is_finite() && z > 0.0 {
                         return z as f32;
                     }
@@ -322,7 +328,7 @@ impl Heightfield {
         if d.z > 0.0 {
             t1 = t1.min((near_z - o.z) / d.z);
         }
-        if !(t1 > 0.0) || o.z > near_z {
+        if t1.is_nan() || t1 <= 0.0 || o.z > near_z {
             return false;
         }
         let (ax, ay, aw) = self.project(o);
@@ -341,7 +347,7 @@ impl Heightfield {
             s0 = s0.max(ta.min(tb));
             s1 = s1.min(ta.max(tb));
         }
-        if !(s0 <= s1) {
+        if s0.is_nan() || s1.is_nan() || s0 > s1 {
             return false;
         }
         let behind = |s: f64| -> bool {
@@ -366,7 +372,7 @@ impl Heightfield {
                 .map(|(k, f)| (k, f.next_s))
                 .min_by(|a, b| a.1.total_cmp(&b.1))
                 .unwrap();
-            if !(s < s1) {
+            if s.is_nan() || s1.is_nan() || s >= s1 {
                 break;
             }
             if behind(s) {
@@ -425,7 +431,7 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
         bail!("the screen-space reference computes visibility only, not obscurance");
     }
     let field = Heightfield::new(depth);
-    Ok(super::shade_image(
+    Ok(shade_image(
         depth.width,
         depth.height,
         "screen-space reference",
@@ -484,7 +490,8 @@ pub fn screen_cache_key(depth: &DepthBuffer, params: &RefParams) -> String {
 }
 
 /// The cached screen-space reference for these inputs, or a fresh render that is then stored
-/// (same file format as the ray-traced cache, in the same folder).
+/// (same file format as the ray-traced cache, in the same folder; an unwritable cache is a
+/// warning, not an error).
 pub fn load_or_render_screen_cached(
     cache_dir: &Path,
     depth: &DepthBuffer,
@@ -498,7 +505,7 @@ pub fn load_or_render_screen_cached(
         }
     }
     let img = render_screen_space(depth, params)?;
-    cache::write_cached(cache_dir, &key, &img)?;
+    cache::store_or_warn(cache_dir, &key, &img);
     Ok(img)
 }
 

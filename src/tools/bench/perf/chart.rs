@@ -2,8 +2,8 @@
 //! font: one is looked up in the usual system folders (Debian's fonts-dejavu-core is enough) or in
 //! `OPENGL3D_FONT`; without one, no chart is written and the caller says so.
 
-use super::perf::{Report, Row};
-use anyhow::{anyhow, bail, Result};
+use super::report::{Report, Row};
+use anyhow::{anyhow, bail, Context as _, Result};
 use plotters::prelude::*;
 use std::path::{Path, PathBuf};
 use std::sync::OnceLock;
@@ -182,7 +182,8 @@ pub fn write_charts(report: &Report, out: &Path) -> Result<Vec<PathBuf>> {
     }
     let (w, h) = (2000u32, 760u32);
     let svg = out.join("report.svg");
-    draw(SVGBackend::new(&svg, (w, h)).into_drawing_area(), report)?;
+    draw(SVGBackend::new(&svg, (w, h)).into_drawing_area(), report)
+        .with_context(|| format!("cannot write {}", svg.display()))?;
     let png = out.join("report.png");
     let mut buf = vec![0u8; (w * h * 3) as usize];
     {
@@ -191,6 +192,7 @@ pub fn write_charts(report: &Report, out: &Path) -> Result<Vec<PathBuf>> {
     }
     image::RgbImage::from_raw(w, h, buf)
         .ok_or_else(|| anyhow!("chart buffer size"))?
-        .save(&png)?;
+        .save(&png)
+        .with_context(|| format!("cannot write {}", png.display()))?;
     Ok(vec![svg, png])
 }

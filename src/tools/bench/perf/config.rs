@@ -1,0 +1,54 @@
+//! What a bench run measures (the CLI fills it from `BenchArgs`; tests build it directly).
+
+use crate::ao::AoMethod;
+use crate::tools::bench::limits::{self, MAX_REF_RAYS, MAX_REF_SCALE};
+use anyhow::{bail, Result};
+use std::path::PathBuf;
+
+/// Everything a bench run needs.
+#[derive(Clone, Debug)]
+pub struct PerfConfig {
+    pub scenes: Vec<PathBuf>,
+    pub width: u32,
+    pub height: u32,
+    pub out: PathBuf,
+    pub methods: Vec<AoMethod>,
+    /// Overrides of the settings grid (empty = each method's defaults).
+    pub samples: Vec<u32>,
+    pub radii: Vec<f32>,
+    pub ref_rays: u32,
+    /// Rays per pixel of the screen-space references (a dense march per ray is far slower than a
+    /// BVH ray; they are rendered for the test cameras only, where the split is reported).
+    pub screen_rays: u32,
+    /// The reference is rendered at width/ref_scale × height/ref_scale and the engine's output is
+    /// box-averaged by the same factor before comparing.
+    pub ref_scale: u32,
+    pub cache: PathBuf,
+    pub warmup: u32,
+    pub frames: u32,
+    pub flip: bool,
+    pub charts: bool,
+    pub progress: bool,
+}
+
+impl PerfConfig {
+    /// `Err` naming the first input out of its range (see `bench::limits` for the bounds).
+    pub fn check(&self) -> Result<()> {
+        limits::check_size(self.width, self.height)?;
+        if self.methods.is_empty() {
+            bail!("no AO method to run");
+        }
+        limits::check_frames(self.frames)?;
+        limits::check_range("--ref-rays", self.ref_rays, MAX_REF_RAYS)?;
+        limits::check_range("--screen-rays", self.screen_rays, MAX_REF_RAYS)?;
+        limits::check_range("--ref-scale", self.ref_scale, MAX_REF_SCALE)
+    }
+
+    /// Size of the references: the output size divided by `ref_scale`, rounded up.
+    pub fn reference_size(&self) -> (u32, u32) {
+        (
+            self.width.div_ceil(self.ref_scale),
+            self.height.div_ceil(self.ref_scale),
+        )
+    }
+}

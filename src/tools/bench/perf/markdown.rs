@@ -1,0 +1,278 @@
+//! `report.md`: how the bench measured, the results table, the error split and the per-camera
+//! figures.
+
+use super::config::PerfConfig;
+use super::report::{Report, Row};
+use crate::tools::bench::metrics;
+use std::collections::BTreeMap;
+use std::fmt::{self, Write as _};
+
+/// Role of a pass in the AO chain (the table's columns), from its name.
+fn pass_role(name: &str) -> &'static str {
+    if name.contains("restore") {
+        "restore"
+    } else if name.contains("down sampling") {
+        "down"
+    } else if name.contains("composite") {
+        "composite"
+    } else if name.contains("blur") {
+        "blur"
+    } else {
+        "ao"
+    }
+}
+
+const AO_PASS_ROLES: [&str; 5] = ["restore", "down", "ao", "blur", "composite"];
+const NON_AO_PASSES: [&str; 7] = [
+    "shadow map",
+    "opaque",
+    "sky",
+    "transparent",
+    "bloom",
+    "image processing",
+    "debug view",
+];
+
+fn role_ms(row: &Row, role: &str) -> Option<f64> {
+    role_sum(&row.passes, role)
+}
+
+fn role_sum(passes: &BTreeMap<String, f64>, role: &str) -> Option<f64> {
+    let v: Vec<f64> = passes
+        .iter()
+        .filter(|(k, _)| !NON_AO_PASSES.contains(&k.as_str()) && pass_role(k) == role)
+        .map(|(_, v)| *v)
+        .collect();
+    (!v.is_empty()).then(|| v.iter().sum())
+}
+
+fn f(v: f64, digits: usize) -> String {
+    format!("{v:.digits$}")
+}
+
+pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
+    let mut s = String::new();
+    writeln!(s, "# AO benchmark: run time against error\n")?;
+    writeln!(
+        s,
+        "`opengl3d bench` at {}×{} on **{}** ({} CPU threads visible).\n",
+        r.width, r.height, r.renderer, r.cpus
+    )?;
+    writeln!(s, "## How it was measured\n")?;
+    writeln!(
+        s,
+        "- **Timing**: {}. The whole frame (composite view: shadow, opaque, AO chain, sky, bloom, \
+         image processing) is rendered {} times to warm up, then {} times timed, at the scene's own \
+         camera. Each pass's column is its median wall ms (and, in brackets, its median CPU ms); **AO ms** is the median of the per-frame sum of \
+         the AO passes (restore + down-sampling + the method + blur + composite); the range is the \
+         fastest and slowest frame. **AO CPU ms** is the median CPU time the process (llvmpipe's \
+         rasteriser threads included) spent in the same passes (`clock_gettime(CLOCK_PROCESS_CPUTIME_ID)`): \
+         it barely moves when other programs load the machine, so it is the fairer cost to compare \
+         settings by; on an idle machine wall ≈ CPU / threads for well-parallelised passes. Frame ms is \
+         the median whole frame. Timing brackets every pass with \
+         glFinish, so passes do not overlap: the sum is slower than an untimed frame.",
+        r.timing, r.warmup_frames, r.timed_frames
+    )?;
+    writeln!(
+        s,
+        "- **Ground truth**: CPU ray tracing of the same triangles ({}), {} rays per pixel, ray length = the \
+         setting's radius, at {}×{}{}. Cached under `{}` ({} rendered in {:.0} s this run, {} read from \
+         the cache).",
+        r.reference.variant,
+        r.reference.rays,
+        r.reference.width,
+        r.reference.height,
+        if r.reference.width != r.width {
+            format!(
+                " (the engine's {}×{} output is box-averaged {}× before comparing)",
+                r.width, r.height, cfg.ref_scale
+            )
+        } else {
+            " (the engine's output size)".to_string()
+        },
+        cfg.cache.display(),
+        r.reference.rendered,
+        r.reference.render_s,
+        r.reference.cached
+    )?;
+    writeln!(
+        s,
+        "- **Error**: the blurred AO view (`render_values(View::Ao)`, ambient visibility, 1 = open) \
+         against the reference on non-sky pixels: RMSE, MAE, PSNR (peak 1, capped at {} dB), SSIM \
+         (Gaussian σ = 1.5, 11×11), FLIP (LDR ꟻLIP, 67 px/°, images shown as grey sRGB). \
+         **Raw** is the method as configured (scene intensity and bias). **Fitted** maps visibility \
+         through min(1, a·v^b), with a and b least-squares fitted on the training cameras and reported \
+         on the test cameras only.",
+        metrics::PSNR_CAP_DB
+    )?;
+    writeln!(
+        s,
+        "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
+         buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
+         reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
+         scene replaced by the depth buffer seen as a heightfield of infinite thickness (inverse \
+         depth interpolated between pixel centres, normals from the depth buffer) and every ray \
+         marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
+         count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
+         error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
+         off-screen occluders: the same for every method at a camera and radius); **sampling \
+         error** = the method (raw) against the screen-space reference (what its samples, mips, \
+         blur and intensity lose). Both on the ray-traced reference's non-sky pixels, means over \
+         the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
+         Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
+        r.reference.width,
+        r.reference.height,
+        r.reference.screen_rays,
+        r.reference.screen_rendered,
+        r.reference.screen_render_s,
+        r.reference.screen_cached
+    )?;
+    writeln!(s, "- **Cameras** (train / test):")?;
+    for (scene, c) in &r.cameras {
+        writeln!(
+            s,
+            "  - {scene}/{}: eye {:?}, target {:?}, fov {}° — {}",
+            c.name,
+            c.eye,
+            c.target,
+            c.fov_y,
+            if c.train { "train" } else { "test" }
+        )?;
+    }
+    let load = |l: &Option<[f64; 3]>| {
+        l.map_or("unknown".to_string(), |l| {
+            format!("{:.2} {:.2} {:.2}", l[0], l[1], l[2])
+        })
+    };
+    writeln!(
+        s,
+        "- Error figures are the mean over the test cameras. Load average (1/5/15 min) when timing \
+         started: {}, when it ended: {}, on {} CPU threads: other processes on the machine slow frames \
+         down, so compare settings through the fastest frame (range) as well as the median, and treat \
+         differences under ~10–20% as noise.\n",
+        load(&r.load_before),
+        load(&r.load_after),
+        r.cpus
+    )?;
+    writeln!(s, "## Results\n")?;
+    writeln!(
+        s,
+        "| method | setting | restore | down | AO pass | blur | composite | **AO ms** (range) | AO CPU ms | frame ms | RMSE | MAE | PSNR dB | SSIM | FLIP | fit a, b | fitted RMSE | fitted PSNR | fitted SSIM | fitted FLIP |"
+    )?;
+    writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|")?;
+    for row in &r.rows {
+        let roles: Vec<String> = AO_PASS_ROLES
+            .iter()
+            .map(
+                |role| match (role_ms(row, role), role_sum(&row.passes_cpu, role)) {
+                    (Some(w), Some(c)) => format!("{} ({})", f(w, 1), f(c, 0)),
+                    _ => "–".into(),
+                },
+            )
+            .collect();
+        writeln!(
+            s,
+            "| {} | {} | {} | **{}** ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {}, {} | {} | {} | {} | {} |",
+            row.method,
+            row.setting,
+            roles.join(" | "),
+            f(row.total_ms, 1),
+            f(row.total_ms_min, 1),
+            f(row.total_ms_max, 1),
+            f(row.total_cpu_ms, 1),
+            f(row.frame_ms, 0),
+            f(row.rmse, 4),
+            f(row.mae, 4),
+            f(row.psnr, 2),
+            f(row.ssim, 4),
+            f(row.flip, 4),
+            f(row.fit.a, 3),
+            f(row.fit.b, 3),
+            f(row.fitted.rmse, 4),
+            f(row.fitted.psnr, 2),
+            f(row.fitted.ssim, 4),
+            f(row.fitted.flip, 4),
+        )?;
+    }
+    // Best settings.
+    let best = |key: &dyn Fn(&Row) -> f64| {
+        r.rows
+            .iter()
+            .max_by(|a, b| key(a).total_cmp(&key(b)))
+            .map(|row| format!("{} {}", row.method, row.setting))
+            .unwrap_or_default()
+    };
+    writeln!(s)?;
+    writeln!(
+        s,
+        "Best raw PSNR: {}. Best fitted PSNR: {}.\n",
+        best(&|r| r.psnr),
+        best(&|r| r.fitted.psnr)
+    )?;
+    writeln!(s, "## Error split: depth buffer against sampling\n")?;
+    writeln!(
+        s,
+        "| method | setting | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM |"
+    )?;
+    writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|")?;
+    for row in &r.rows {
+        writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
+            row.method,
+            row.setting,
+            f(row.rmse, 4),
+            f(row.psnr, 2),
+            f(row.depth_buffer_error.rmse, 4),
+            f(row.depth_buffer_error.psnr, 2),
+            f(row.sampling_error.rmse, 4),
+            f(row.sampling_error.psnr, 2),
+            f(row.sampling_error.ssim, 4),
+        )?;
+    }
+    writeln!(
+        s,
+        "\nThe depth-buffer columns depend only on the camera and radius. In squared error the \
+         method's error against the ray-traced reference is the sum of the two parts plus a cross \
+         term (the two can partly cancel, e.g. a method that under-darkens where the depth buffer \
+         over-darkens).\n"
+    )?;
+    writeln!(s, "## Per camera (PSNR dB, raw / fitted)\n")?;
+    if let Some(first) = r.rows.first() {
+        let header: Vec<String> = first
+            .cameras
+            .iter()
+            .map(|c| format!("{}{}", c.camera, if c.train { " (train)" } else { "" }))
+            .collect();
+        writeln!(s, "| method | setting | {} |", header.join(" | "))?;
+        writeln!(s, "|---|---|{}", "---:|".repeat(header.len()))?;
+        for row in &r.rows {
+            let cells: Vec<String> = row
+                .cameras
+                .iter()
+                .map(|c| {
+                    if c.train {
+                        f(c.raw.psnr, 2)
+                    } else {
+                        format!("{} / {}", f(c.raw.psnr, 2), f(c.fitted.psnr, 2))
+                    }
+                })
+                .collect();
+            writeln!(
+                s,
+                "| {} | {} | {} |",
+                row.method,
+                row.setting,
+                cells.join(" | ")
+            )?;
+        }
+    }
+    writeln!(
+        s,
+        "\nCharts: `report.svg` (and `report.png` when a TrueType font was found): RMSE against the AO \
+         chain's median wall ms (left) and CPU ms (right), raw (filled) and fitted (hollow), one colour \
+         per method, each raw point labelled with its setting.\n\nRun time of the whole bench: {:.0} s.",
+        r.run_s
+    )?;
+    Ok(s)
+}

@@ -1,0 +1,100 @@
+//! The bench's report: one row per method and setting, with its timings and errors, and what
+//! the run measured against. Serialised as `report.json`; `markdown.rs` and `chart.rs` render it.
+
+use crate::tools::bench::catalog::BenchCamera;
+use crate::tools::bench::metrics::{Fit, Metrics};
+use serde::Serialize;
+use std::collections::BTreeMap;
+
+/// Error of one camera.
+#[derive(Clone, Debug, Serialize)]
+pub struct CameraError {
+    pub scene: String,
+    pub camera: String,
+    pub train: bool,
+    pub raw: Metrics,
+    /// After the fit (test cameras only; the training cameras repeat the raw figures' pixels).
+    pub fitted: Metrics,
+    /// The screen-space reference (exact AO of the depth buffer) against the ray-traced one: what
+    /// the depth buffer cannot know at this camera and radius, whatever the method (no FLIP).
+    pub depth_buffer_error: Metrics,
+    /// The method (raw) against the screen-space reference: what its sampling loses (no FLIP).
+    pub sampling_error: Metrics,
+}
+
+/// One row: a method at one setting.
+#[derive(Clone, Debug, Serialize)]
+pub struct Row {
+    pub method: String,
+    pub setting: String,
+    pub samples: u32,
+    pub radius: f32,
+    pub width: u32,
+    pub height: u32,
+    /// Median wall-clock ms of each pass of the frame (AO passes and the others), by pass name.
+    pub passes: BTreeMap<String, f64>,
+    /// Median of the per-frame sum of the AO passes (group "ao").
+    pub total_ms: f64,
+    pub total_ms_min: f64,
+    pub total_ms_max: f64,
+    /// Median of the whole frame (every pass).
+    pub frame_ms: f64,
+    /// Median CPU ms of each pass (the process's CPU time, all threads): robust to other load.
+    pub passes_cpu: BTreeMap<String, f64>,
+    /// Median of the per-frame CPU ms of the AO passes.
+    pub total_cpu_ms: f64,
+    /// Raw error, mean over the test cameras.
+    pub rmse: f64,
+    pub mae: f64,
+    pub psnr: f64,
+    pub ssim: f64,
+    pub flip: f64,
+    /// The fitted map min(1, a·v^b) (from the training cameras) and the error after it (test cameras).
+    pub fit: Fit,
+    pub fitted: Metrics,
+    /// Error split, means over the test cameras: the screen-space reference against the
+    /// ray-traced one (the depth buffer's limit), and the method against the screen-space
+    /// reference (its sampling).
+    pub depth_buffer_error: Metrics,
+    pub sampling_error: Metrics,
+    pub cameras: Vec<CameraError>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct Report {
+    pub renderer: String,
+    pub software: bool,
+    pub timing: String,
+    pub cpus: usize,
+    pub width: u32,
+    pub height: u32,
+    pub reference: ReferenceInfo,
+    pub warmup_frames: u32,
+    pub timed_frames: u32,
+    pub scenes: Vec<String>,
+    pub cameras: Vec<(String, BenchCamera)>,
+    pub rows: Vec<Row>,
+    /// Wall-clock seconds of the whole run (reference renders included when not cached).
+    pub run_s: f64,
+    /// /proc/loadavg (1, 5, 15 min) when the timing started and when it ended: other processes
+    /// on the machine slow the frames down.
+    pub load_before: Option<[f64; 3]>,
+    pub load_after: Option<[f64; 3]>,
+}
+
+#[derive(Clone, Debug, Serialize)]
+pub struct ReferenceInfo {
+    pub rays: u32,
+    pub width: u32,
+    pub height: u32,
+    pub variant: &'static str,
+    pub rendered: usize,
+    pub cached: usize,
+    pub render_s: f64,
+    /// Screen-space references (same size, rays and radii, from the engine's depth buffer
+    /// rendered at that size): rendered this run, read from the cache, seconds spent.
+    pub screen_rays: u32,
+    pub screen_rendered: usize,
+    pub screen_cached: usize,
+    pub screen_render_s: f64,
+}

@@ -1,0 +1,253 @@
+//! One row of the bench: a method at one setting, timed at the scene's camera and compared with
+//! the references at every bench camera.
+
+use super::config::PerfConfig;
+use super::references::{RefMap, SceneData};
+use super::report::{CameraError, Row};
+use crate::ao::AoMethod;
+use crate::tools::bench::catalog::Setting;
+use crate::tools::bench::metrics::{self, Fit, Gray, Metrics};
+use crate::tools::bench::timing::median;
+use crate::render::{Engine, View};
+use anyhow::{bail, Result};
+use std::collections::BTreeMap;
+
+/// Medians of the timed frames.
+struct Timing {
+    passes: BTreeMap<String, f64>,
+    passes_cpu: BTreeMap<String, f64>,
+    total_ms: f64,
+    total_ms_min: f64,
+    total_ms_max: f64,
+    total_cpu_ms: f64,
+    frame_ms: f64,
+}
+
+/// Measures `method` at setting `s` on the scene `sd` (the engine runs at the bench size).
+pub fn run_setting(
+    engine: &mut Engine,
+    sd: &SceneData,
+    screen: &RefMap,
+    method: AoMethod,
+    s: &Setting,
+    cfg: &PerfConfig,
+) -> Result<Row> {
+    engine.ao_settings.method = method;
+    engine.ao_settings.samples = s.samples;
+    engine.ao_settings.quality = s.quality;
+    engine.ao_settings.radius = s.radius;
+    engine.ao_settings.enabled = true;
+    let scene_camera = sd.cameras[0].camera(&sd.desc.camera);
+    engine.camera = scene_camera;
+    engine.sync_shader_constants()?;
+    let timing = time_frames(engine, cfg)?;
+
+    let views = ao_views(engine, sd, s, cfg)?;
+    engine.camera = scene_camera;
+    engine.sync_shader_constants()?;
+
+    let fit = fit_on_training_cameras(sd, s, &views);
+    let cameras = camera_errors(sd, screen, s, &views, &fit, cfg.flip)?;
+    let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
+    let raw = mean_metrics(&test, |c| c.raw);
+    Ok(Row {
+        method: method.name().to_string(),
+        setting: s.label(),
+        samples: s.samples,
+        radius: s.radius,
+        width: cfg.width,
+        height: cfg.height,
+        passes: timing.passes,
+        total_ms: timing.total_ms,
+        total_ms_min: timing.total_ms_min,
+        total_ms_max: timing.total_ms_max,
+        frame_ms: timing.frame_ms,
+        passes_cpu: timing.passes_cpu,
+        total_cpu_ms: timing.total_cpu_ms,
+        rmse: raw.rmse,
+        mae: raw.mae,
+        psnr: raw.psnr,
+        ssim: raw.ssim,
+        flip: raw.flip,
+        fit,
+        fitted: mean_metrics(&test, |c| c.fitted),
+        depth_buffer_error: Metrics {
+            flip: 0.0,
+            ..mean_metrics(&test, |c| c.depth_buffer_error)
+        },
+        sampling_error: Metrics {
+            flip: 0.0,
+            ..mean_metrics(&test, |c| c.sampling_error)
+        },
+        cameras,
+    })
+}
+
+/// Renders `cfg.warmup` frames, then times `cfg.frames` frames pass by pass.
+fn time_frames(engine: &mut Engine, cfg: &PerfConfig) -> Result<Timing> {
+    engine.collect_stats = true;
+    for _ in 0..cfg.warmup {
+        engine.render_image()?;
+    }
+    let mut per_pass: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let mut per_pass_cpu: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    let (mut chain, mut frame, mut chain_cpu) = (Vec::new(), Vec::new(), Vec::new());
+    for _ in 0..cfg.frames {
+        engine.render_image()?;
+        let stats = engine.last_stats();
+        let (mut ao, mut ao_cpu, mut all) = (0.0, 0.0, 0.0);
+        for p in &stats {
+            per_pass.entry(p.name.to_string()).or_default().push(p.ms);
+            per_pass_cpu
+                .entry(p.name.to_string())
+                .or_default()
+                .push(p.cpu_ms);
+            all += p.ms;
+            if p.group == "ao" {
+                ao += p.ms;
+                ao_cpu += p.cpu_ms;
+            }
+        }
+        chain.push(ao);
+        chain_cpu.push(ao_cpu);
+        frame.push(all);
+    }
+    engine.collect_stats = false;
+    let medians = |m: BTreeMap<String, Vec<f64>>| -> BTreeMap<String, f64> {
+        m.into_iter()
+            .map(|(k, mut v)| (k, median(&mut v)))
+            .collect()
+    };
+    Ok(Timing {
+        passes: medians(per_pass),
+        passes_cpu: medians(per_pass_cpu),
+        total_cpu_ms: median(&mut chain_cpu),
+        total_ms_min: chain.iter().copied().fold(f64::INFINITY, f64::min),
+        total_ms_max: chain.iter().copied().fold(0.0, f64::max),
+        total_ms: median(&mut chain),
+        frame_ms: median(&mut frame),
+    })
+}
+
+/// The blurred AO view of every bench camera, box-averaged to the references' size.
+fn ao_views(
+    engine: &mut Engine,
+    sd: &SceneData,
+    s: &Setting,
+    cfg: &PerfConfig,
+) -> Result<Vec<Vec<f32>>> {
+    let (w, h) = (cfg.width as usize, cfg.height as usize);
+    let mut views = Vec::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        engine.camera = cam.camera(&sd.desc.camera);
+        engine.sync_shader_constants()?;
+        let v = engine.render_values(View::Ao)?;
+        let (v, dw, dh) = metrics::downsample(&v, w, h, cfg.ref_scale as usize);
+        let r = &sd.refs[&(ci, s.radius.to_bits())];
+        if (dw, dh) != (r.width as usize, r.height as usize) {
+            bail!(
+                "reference size {}x{} does not match {dw}x{dh}",
+                r.width,
+                r.height
+            );
+        }
+        views.push(v);
+    }
+    Ok(views)
+}
+
+/// Fits `min(1, a·v^b)` on the training cameras' surface pixels (at most ~400k pixel pairs,
+/// evenly strided).
+fn fit_on_training_cameras(sd: &SceneData, s: &Setting, views: &[Vec<f32>]) -> Fit {
+    let mut pairs = Vec::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        if !cam.train {
+            continue;
+        }
+        let r = &sd.refs[&(ci, s.radius.to_bits())];
+        let n = r.ao.len();
+        let stride = (n / 200_000).max(1);
+        for i in (0..n).step_by(stride) {
+            if r.linear_depth[i].is_finite() {
+                pairs.push((views[ci][i], r.ao[i]));
+            }
+        }
+    }
+    metrics::fit_power(&pairs)
+}
+
+/// The error of every camera: raw, fitted (test cameras), and the split into the depth buffer's
+/// share and the sampling's (test cameras, which have screen-space references).
+fn camera_errors(
+    sd: &SceneData,
+    screen: &RefMap,
+    s: &Setting,
+    views: &[Vec<f32>],
+    fit: &Fit,
+    flip: bool,
+) -> Result<Vec<CameraError>> {
+    let mut cameras = Vec::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        let r = &sd.refs[&(ci, s.radius.to_bits())];
+        let (rw, rh) = (r.width as usize, r.height as usize);
+        let mask = r.sky_mask().iter().map(|s| !s).collect::<Vec<bool>>();
+        let reference = Gray::new(rw, rh, &r.ao);
+        let raw = metrics::compare(
+            reference,
+            Gray::new(rw, rh, &views[ci]),
+            Some(&mask),
+            flip && !cam.train,
+        );
+        let fitted = if cam.train {
+            Metrics::default()
+        } else {
+            let f = fit.apply_all(&views[ci]);
+            metrics::compare(reference, Gray::new(rw, rh, &f), Some(&mask), flip)
+        };
+        // The split uses the ray-traced reference's mask too, so the three figures cover the
+        // same pixels. Training cameras have no screen-space reference (the split is reported on
+        // test cameras).
+        let (depth_buffer_error, sampling_error) = match screen.get(&(ci, s.radius.to_bits())) {
+            None => (Metrics::default(), Metrics::default()),
+            Some(ss) => {
+                if (ss.width, ss.height) != (r.width, r.height) {
+                    bail!(
+                        "screen-space reference size {}x{} does not match {rw}x{rh}",
+                        ss.width,
+                        ss.height
+                    );
+                }
+                let ss_gray = Gray::new(rw, rh, &ss.ao);
+                (
+                    metrics::compare(reference, ss_gray, Some(&mask), false),
+                    metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false),
+                )
+            }
+        };
+        cameras.push(CameraError {
+            scene: sd.name.clone(),
+            camera: cam.name.clone(),
+            train: cam.train,
+            raw,
+            fitted,
+            depth_buffer_error,
+            sampling_error,
+        });
+    }
+    Ok(cameras)
+}
+
+/// Mean of the picked figures over the test cameras (all zero without test cameras); `pixels` is
+/// the test cameras' raw pixel count.
+fn mean_metrics(test: &[&CameraError], pick: impl Fn(&CameraError) -> Metrics) -> Metrics {
+    let n = test.len().max(1) as f64;
+    let mean = |f: &dyn Fn(&Metrics) -> f64| test.iter().map(|c| f(&pick(c))).sum::<f64>() / n;
+    Metrics {
+        rmse: mean(&|m| m.rmse),
+        mae: mean(&|m| m.mae),
+        psnr: mean(&|m| m.psnr),
+        ssim: mean(&|m| m.ssim),
+        flip: mean(&|m| m.flip),
+        pixels: test.iter().map(|c| c.raw.pixels).sum(),
+    }
+}
