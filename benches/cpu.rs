@@ -8,13 +8,13 @@
 use std::sync::OnceLock;
 
 use glam::Vec3;
-use opengl3d::tools::bench::metrics::{self, Gray};
 use opengl3d::math::Camera;
+use opengl3d::res::ResDirs;
+use opengl3d::scene::SceneDesc;
+use opengl3d::tools::bench::metrics::{self, Gray};
 use opengl3d::tools::reference::{
     render_reference, render_screen_space, AoVariant, DepthBuffer, RefParams, Scene,
 };
-use opengl3d::res::ResDirs;
-use opengl3d::scene::SceneDesc;
 
 fn main() {
     divan::main();

@@ -9,12 +9,12 @@ use common::*;
 use glam::{Mat4, Vec3, Vec4};
 use opengl3d::math::Camera;
 use opengl3d::render::Engine;
+use opengl3d::res::ResDirs;
+use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::reference::{
     load_or_render_cached, load_or_render_screen_cached, pixel_dir, render_screen_space,
     screen_cache_key, view_direction, AoVariant, DepthBuffer, RefImage, RefParams, Scene,
 };
-use opengl3d::res::ResDirs;
-use opengl3d::scene::{shapes, SceneDesc};
 use std::f64::consts::PI;
 
 fn params(radius: f32, rays: u32) -> RefParams {
@@ -463,4 +463,32 @@ fn cli_writes_the_reference_when_its_cache_cannot_be_written() {
         );
     }
     assert_eq!(std::fs::read(&cache).unwrap(), b"not a folder");
+}
+
+/// The depth buffer is decoded by the convention it was written with: reversed-Z finds the same sky
+/// and the same distances as the course's D32 (it once decoded reversed-Z with the D32 formula and
+/// found no sky at all).
+#[test]
+fn reversed_z_depth_buffer_decodes_like_d32() {
+    use opengl3d::math::DepthMode;
+    let ctx = context();
+    let (w, h) = (96, 72);
+    let (mut e, _) = crease_engine(&ctx, "screen-reversed", w, h);
+    // Looking up over the crease: floor, wall and sky.
+    e.camera.target = e.camera.eye + Vec3::new(-1.0, 0.6, -1.0);
+    let d32 = DepthBuffer::from_engine(&mut e).unwrap();
+    e.set_depth_mode(DepthMode::D32fReversed).unwrap();
+    let reversed = DepthBuffer::from_engine(&mut e).unwrap();
+    let sky = |d: &DepthBuffer| d.linear_depth.iter().filter(|z| !z.is_finite()).count();
+    assert!(sky(&d32) > 0, "the crease view must show some sky");
+    assert_eq!(sky(&reversed), sky(&d32), "sky pixels: reversed-Z vs D32");
+    let worst = d32
+        .linear_depth
+        .iter()
+        .zip(&reversed.linear_depth)
+        .filter(|(a, _)| a.is_finite())
+        .map(|(a, b)| ((a - b) / a).abs())
+        .fold(0.0f32, f32::max);
+    // D32 quantises depth to 2^-32 of the window range: ~1e-5 relative at these distances.
+    assert!(worst < 1e-3, "relative depth difference {worst}");
 }

@@ -11,7 +11,9 @@
 use crate::ao::depth_chain::{camera_defines, restore};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::pass_state::Depth;
-use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture, TextureDesc};
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture, TextureDesc,
+};
 use crate::math::depth::projection;
 use crate::math::{Camera, DepthMode};
 use crate::res::ResDirs;
@@ -134,8 +136,13 @@ impl DepthProbe {
         }
         let depth = Rc::new(Texture::new(
             gl,
-            TextureDesc::target("probe depth", PROBE_SIZE, PROBE_SIZE, format.internal_format())
-                .compare(false),
+            TextureDesc::target(
+                "probe depth",
+                PROBE_SIZE,
+                PROBE_SIZE,
+                format.internal_format(),
+            )
+            .compare(false),
         )?);
         let fbo_depth = FramebufferObject::new(gl, None, Some(depth.clone()), 0, 0)?;
         let half = PROBE_SIZE / 2;

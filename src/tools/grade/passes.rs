@@ -1,7 +1,7 @@
 //! Running the lesson's passes of one side of the rig (the project's or the student's) on given
 //! inputs, and reading their output back.
 
-use crate::ao::{SaoLesson, AoSettings};
+use crate::ao::{AoSettings, SaoLesson};
 use crate::gl::MeshBuffer;
 use anyhow::Result;
 

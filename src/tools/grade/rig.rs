@@ -2,10 +2,10 @@
 //! side, the student's built from a private copy of the graded file, and what a step hands back.
 
 use super::picture::Panel;
-use crate::ao::{SaoLesson, AoSettings};
-use crate::platform::headless::{DevicePreference, HeadlessContext};
-use crate::math::Camera;
+use crate::ao::{AoSettings, SaoLesson};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, Texture, TextureDesc};
+use crate::math::Camera;
+use crate::platform::headless::{DevicePreference, HeadlessContext};
 use crate::res::ResDirs;
 use anyhow::Result;
 use std::collections::BTreeMap;

@@ -112,8 +112,7 @@ impl DepthBuffer {
             .iter()
             .map(|&d| {
                 if d.is_finite() && (0.0..=1.0).contains(&d) && d != mode.clear_value() {
-                    let z =
-                        crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
+                    let z = crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
                     if z.is_finite() && z > 0.0 {
                         return z as f32;
                     }

@@ -3,14 +3,14 @@
 //! the reference cache when it has them.
 
 use super::config::PerfConfig;
-use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::render::Engine;
+use crate::res::ResDirs;
+use crate::scene::SceneDesc;
+use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
     cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
     AoVariant, DepthBuffer, RefImage, RefParams, Scene,
 };
-use crate::res::ResDirs;
-use crate::scene::SceneDesc;
 use anyhow::Result;
 use indicatif::ProgressBar;
 use std::collections::BTreeMap;

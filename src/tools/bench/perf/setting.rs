@@ -5,10 +5,10 @@ use super::config::PerfConfig;
 use super::references::{RefMap, SceneData};
 use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
+use crate::render::{Engine, View};
 use crate::tools::bench::catalog::Setting;
 use crate::tools::bench::metrics::{self, Fit, Gray, Metrics};
 use crate::tools::bench::timing::median;
-use crate::render::{Engine, View};
 use anyhow::{bail, Result};
 use std::collections::BTreeMap;
 

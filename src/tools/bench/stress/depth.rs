@@ -3,10 +3,10 @@
 
 use super::cases::{base, Meshes};
 use super::report::{DepthConfigResult, DepthSample};
-use crate::tools::bench::depth_formats::{DepthFormat, DepthProbe};
 use crate::platform::HeadlessContext;
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
+use crate::tools::bench::depth_formats::{DepthFormat, DepthProbe};
 use anyhow::Result;
 use glam::Vec3;
 use indicatif::ProgressBar;
@@ -119,7 +119,9 @@ pub fn measure(
         pb.inc(1);
     }
     let note = match &probe.clip_control_error {
-        None => "glClipControl loaded through the context's loader; reversed-Z measured".to_string(),
+        None => {
+            "glClipControl loaded through the context's loader; reversed-Z measured".to_string()
+        }
         Some(e) => format!("reversed-Z not measured: {e}"),
     };
     Ok((depth_precision, note))

@@ -5,9 +5,9 @@
 //! output (max, no ×2, raw depth, wrong sign, D' = 2D + 1, the ×0.01 debug scale, average, one
 //! texel) to name the mistake.
 
+use crate::gl::{Texture, TextureDesc};
 use crate::math::depth::{delinearize, linearize};
 use crate::math::{Camera, DepthMode};
-use crate::gl::{Texture, TextureDesc};
 use crate::tools::grade::measure::matches;
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
