@@ -507,8 +507,10 @@ fn many_meshes_draw_like_one_and_upload_each_byte_once() {
 
     // N separate objects draw exactly like one mesh holding them all.
     let scene_with = |objects: Vec<opengl3d::scene::ObjectDesc>| {
-        let mut s = SceneDesc::default();
-        s.objects = objects;
+        let mut s = SceneDesc {
+            objects,
+            ..Default::default()
+        };
         s.camera.eye = [0.0, 2.5, 9.0];
         s.camera.target = [0.0, 2.0, 0.0];
         s.output.width = 96;

@@ -234,7 +234,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     let scene = load_scene(&args.scene, res)?;
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
-    if !(radius > 0.0) || args.rays == 0 || args.rays > 1 << 20 {
+    if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
         bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
     }
     let tris = scene.world_triangles(res)?;

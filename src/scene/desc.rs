@@ -14,14 +14,14 @@ pub struct OutputDesc {
     pub width: u32,
     pub height: u32,
     /// Main depth buffer: "d32" (the course's) or "d32f-reversed" (reversed-Z, float depth).
-    pub depth: crate::engine::DepthMode,
+    pub depth: crate::engine::depth::DepthMode,
 }
 impl Default for OutputDesc {
     fn default() -> Self {
         OutputDesc {
             width: 1280,
             height: 720,
-            depth: crate::engine::DepthMode::D32,
+            depth: crate::engine::depth::DepthMode::D32,
         }
     }
 }
