@@ -269,6 +269,19 @@ fn bad_scene_values_name_their_file_line_and_column_or_flag() {
             );
         }
     }
+    // A default that no longer fits is named as such, at its table.
+    let far = write_scene(&dir, "far.toml", "[camera]\nfar = 1e12\n");
+    let place = format!("{}:5:1", far.display());
+    fails_with(
+        &[
+            "render".as_ref(),
+            "--scene".as_ref(),
+            s(&far),
+            "--out".as_ref(),
+            s(&out),
+        ],
+        &[&place, "camera.near", "the default", "far/near"],
+    );
     // A flag that sets the value is named instead of the file.
     let fine = write_scene(
         &dir,

@@ -52,18 +52,22 @@ impl SceneFile {
         })
     }
 
-    /// "FILE:LINE:COL" of `key`'s value (or of the table it would be in), if the file writes it.
+    /// "FILE:LINE:COL" of `key`'s value, if the file writes it.
     pub fn place(&self, key: &str) -> Option<String> {
         let (line, col) = self.places.line_col(key, &self.text)?;
         Some(format!("{}:{line}:{col}", self.path.display()))
     }
 
-    /// An issue as "FILE:LINE:COL: key = value: message" (without a place when the file does not
-    /// write the key: it is a default).
+    /// An issue as "FILE:LINE:COL: key = value: message"; a key the file does not write is a
+    /// default, shown at its table's header when there is one.
     pub fn describe(&self, issue: &Issue) -> String {
-        match self.place(&issue.key) {
-            Some(place) => format!("{place}: {issue}"),
-            None => format!("{}: {issue} (a default)", self.path.display()),
+        let shown = self.path.display();
+        match self.places.nearest_line_col(&issue.key, &self.text) {
+            Some((line, col, true)) => format!("{shown}:{line}:{col}: {issue}"),
+            Some((line, col, false)) => {
+                format!("{shown}:{line}:{col}: {issue} (not written in this table: the default)")
+            }
+            None => format!("{shown}: {issue} (not written in the file: the default)"),
         }
     }
 }

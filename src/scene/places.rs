@@ -34,18 +34,31 @@ impl KeyPlaces {
         KeyPlaces { root, line_starts }
     }
 
-    /// 1-based line and column (in characters) of `key`'s value in `text`.
+    /// 1-based line and column (in characters) of `key`'s value in `text`, if the file writes it.
     pub fn line_col(&self, key: &str, text: &str) -> Option<(usize, usize)> {
-        let start = self.find(key)?;
+        match self.find(key)? {
+            (start, true) => self.to_line_col(start, text),
+            (_, false) => None,
+        }
+    }
+
+    /// Like `line_col`, but a key the file leaves to its default gives its nearest written parent
+    /// (the table header); the flag says whether the place is the key's own.
+    pub fn nearest_line_col(&self, key: &str, text: &str) -> Option<(usize, usize, bool)> {
+        let (start, exact) = self.find(key)?;
+        let (line, col) = self.to_line_col(start, text)?;
+        Some((line, col, exact))
+    }
+
+    fn to_line_col(&self, start: usize, text: &str) -> Option<(usize, usize)> {
         let line = self.line_starts.partition_point(|s| *s <= start);
         let line_start = self.line_starts[line - 1];
         let col = text.get(line_start..start)?.chars().count() + 1;
         Some((line, col))
     }
 
-    /// Byte offset of the value of `key`, or of its nearest written parent (a key that the file leaves
-    /// to its default is pointed at the table it would belong to, if that is written).
-    fn find(&self, key: &str) -> Option<usize> {
+    /// Byte offset of the value of `key` (true), or of its nearest written parent (false).
+    fn find(&self, key: &str) -> Option<(usize, bool)> {
         let mut table = &self.root;
         let mut found = None;
         let mut parts = split_key(key).into_iter().peekable();
@@ -57,19 +70,19 @@ impl KeyPlaces {
                 match node.get_ref() {
                     Node::Array(items) => match items.get(i) {
                         Some(item) => node = item,
-                        None => return Some(node.span().start),
+                        None => return Some((node.span().start, false)),
                     },
-                    _ => return Some(node.span().start),
+                    _ => return Some((node.span().start, false)),
                 }
             }
-            found = Some(node.span().start);
+            found = Some((node.span().start, false));
             match node.get_ref() {
                 Node::Table(t) => table = t,
                 _ if parts.peek().is_some() => return found,
                 _ => {}
             }
         }
-        found
+        found.map(|(start, _)| (start, true))
     }
 }
 
@@ -143,8 +156,9 @@ mod tests {
         assert_eq!(p.line_col("camera.near", text), Some((2, 8)));
         assert_eq!(p.line_col("object[1].mesh", text), Some((8, 8)));
         assert_eq!(p.line_col("object[1].scale[1]", text), Some((9, 13)));
-        // A key the file does not write points at its table.
-        assert_eq!(p.line_col("camera.far", text).map(|l| l.0), Some(2));
+        // A key the file does not write has no place of its own, only its table's header.
+        assert_eq!(p.line_col("camera.far", text), None);
+        assert_eq!(p.nearest_line_col("camera.far", text), Some((1, 1, false)));
         assert_eq!(p.line_col("bloom.strength", text), None);
     }
 }
