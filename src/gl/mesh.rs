@@ -137,65 +137,172 @@ pub struct StaticMesh {
     pub base_vertex: i32,
 }
 
+/// One GL buffer that grows by doubling: new data is appended with a sub-data upload, and on growth
+/// the old contents are copied GPU-side, so adding a mesh costs O(its size) amortised.
+struct GrowingBuffer {
+    buffer: glow::Buffer,
+    /// Bytes allocated.
+    capacity: usize,
+    /// Bytes in use (from 0).
+    used: usize,
+}
+
+/// Bytes moved by a `MeshBuffer` so far (to check that adding N meshes costs O(total size)).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct UploadCounts {
+    /// Bytes sent from the CPU.
+    pub uploaded: u64,
+    /// Bytes copied GPU-side when a buffer grew.
+    pub copied: u64,
+    /// Buffer reallocations.
+    pub grows: u32,
+}
+
+/// Smallest allocation: the full-screen quad and a few small meshes fit without growing.
+const MIN_CAPACITY: usize = 64 * 1024;
+
+impl GrowingBuffer {
+    fn new(gl: &Gl) -> Result<GrowingBuffer> {
+        let buffer = unsafe { gl.create_named_buffer() }.map_err(|e| anyhow::anyhow!(e))?;
+        Ok(GrowingBuffer {
+            buffer,
+            capacity: 0,
+            used: 0,
+        })
+    }
+
+    /// Appends `bytes`, growing (and moving) the buffer if needed; returns the byte offset written.
+    /// Returns whether the GL buffer object changed (the VAO must then point at the new one).
+    fn append(
+        &mut self,
+        gl: &Gl,
+        bytes: &[u8],
+        counts: &mut UploadCounts,
+    ) -> Result<(usize, bool)> {
+        let needed = self.used + bytes.len();
+        if needed > i32::MAX as usize {
+            bail!("meshes need {needed} bytes: more than one GL buffer holds (2 GiB)");
+        }
+        let mut moved = false;
+        if needed > self.capacity {
+            let capacity = needed
+                .max(self.capacity * 2)
+                .max(MIN_CAPACITY)
+                .min(i32::MAX as usize);
+            unsafe {
+                let fresh = gl.create_named_buffer().map_err(|e| anyhow::anyhow!(e))?;
+                gl.named_buffer_data_size(fresh, capacity as i32, glow::STATIC_DRAW);
+                if self.used > 0 {
+                    // No DSA copy in glow: bind the two buffers to the copy targets.
+                    gl.bind_buffer(glow::COPY_READ_BUFFER, Some(self.buffer));
+                    gl.bind_buffer(glow::COPY_WRITE_BUFFER, Some(fresh));
+                    gl.copy_buffer_sub_data(
+                        glow::COPY_READ_BUFFER,
+                        glow::COPY_WRITE_BUFFER,
+                        0,
+                        0,
+                        self.used as i32,
+                    );
+                    gl.bind_buffer(glow::COPY_READ_BUFFER, None);
+                    gl.bind_buffer(glow::COPY_WRITE_BUFFER, None);
+                }
+                gl.delete_buffer(self.buffer);
+                self.buffer = fresh;
+            }
+            counts.copied += self.used as u64;
+            counts.grows += 1;
+            self.capacity = capacity;
+            moved = true;
+        }
+        let offset = self.used;
+        unsafe {
+            gl.named_buffer_sub_data_u8_slice(self.buffer, offset as i32, bytes);
+        }
+        counts.uploaded += bytes.len() as u64;
+        self.used = needed;
+        Ok((offset, moved))
+    }
+}
+
 pub struct MeshBuffer {
     gl: Gl,
     vao: glow::VertexArray,
-    vbo: glow::Buffer,
-    ibo: glow::Buffer,
+    vbo: GrowingBuffer,
+    ibo: GrowingBuffer,
     meshes: HashMap<String, (StaticMesh, MeshData)>,
+    counts: UploadCounts,
     /// Draw calls issued so far (pass statistics read differences of it).
     pub draw_calls: std::cell::Cell<u64>,
 }
 
+/// Vertex size in bytes (position, texcoord, normal).
+const VERTEX_BYTES: usize = std::mem::size_of::<Vertex>();
+
 impl MeshBuffer {
     /// Creates the buffers and the full-screen `plane_xy` mesh every post pass draws.
     pub fn new(gl: &Gl) -> Result<MeshBuffer> {
+        let vao = unsafe { gl.create_named_vertex_array() }.map_err(|e| anyhow::anyhow!(e))?;
         unsafe {
-            let vao = gl
-                .create_named_vertex_array()
-                .map_err(|e| anyhow::anyhow!(e))?;
-            let vbo = gl.create_named_buffer().map_err(|e| anyhow::anyhow!(e))?;
-            let ibo = gl.create_named_buffer().map_err(|e| anyhow::anyhow!(e))?;
-            let stride = std::mem::size_of::<Vertex>() as i32;
-            gl.vertex_array_vertex_buffer(vao, 0, Some(vbo), 0, stride);
-            gl.vertex_array_element_buffer(vao, Some(ibo));
             for (loc, size, offset) in [(0u32, 3, 0u32), (1, 2, 12), (2, 3, 20)] {
                 gl.enable_vertex_array_attrib(vao, loc);
                 gl.vertex_array_attrib_format_f32(vao, loc, size, glow::FLOAT, false, offset);
                 gl.vertex_array_attrib_binding_f32(vao, loc, 0);
             }
-            let mut mb = MeshBuffer {
-                gl: gl.clone(),
-                vao,
-                vbo,
-                ibo,
-                meshes: HashMap::new(),
-                draw_calls: std::cell::Cell::new(0),
-            };
-            mb.add("plane_xy", plane_xy())?;
-            Ok(mb)
         }
+        let mut mb = MeshBuffer {
+            gl: gl.clone(),
+            vao,
+            vbo: GrowingBuffer::new(gl)?,
+            ibo: GrowingBuffer::new(gl)?,
+            meshes: HashMap::new(),
+            counts: UploadCounts::default(),
+            draw_calls: std::cell::Cell::new(0),
+        };
+        mb.add("plane_xy", plane_xy())?;
+        Ok(mb)
     }
 
-    /// Adds (or replaces) a mesh. All data is re-uploaded; meshes are added at load time only.
+    /// Adds (or replaces) a mesh: its data is appended to the shared buffers (a replaced mesh's old
+    /// range stays allocated, unused). Meshes already added keep their offsets.
     pub fn add(&mut self, name: &str, data: MeshData) -> Result<StaticMesh> {
         if data.indices.is_empty() {
             bail!("mesh '{name}' has no triangles");
         }
-        self.meshes.insert(
-            name.to_string(),
-            (
-                StaticMesh {
-                    mode: glow::TRIANGLES,
-                    count: 0,
-                    index_offset: 0,
-                    base_vertex: 0,
-                },
-                data,
-            ),
-        );
-        self.upload();
-        Ok(self.meshes[name].0)
+        let count = i32::try_from(data.indices.len())
+            .with_context(|| format!("mesh '{name}' has too many indices"))?;
+        let vbytes: Vec<u8> = data
+            .vertices
+            .iter()
+            .flat_map(|v| {
+                v.position
+                    .iter()
+                    .chain(&v.texcoord)
+                    .chain(&v.normal)
+                    .flat_map(|f| f.to_ne_bytes())
+            })
+            .collect();
+        let ibytes: Vec<u8> = data.indices.iter().flat_map(|i| i.to_ne_bytes()).collect();
+        let (voffset, vmoved) = self.vbo.append(&self.gl, &vbytes, &mut self.counts)?;
+        let (ioffset, imoved) = self.ibo.append(&self.gl, &ibytes, &mut self.counts)?;
+        unsafe {
+            if vmoved {
+                let stride = VERTEX_BYTES as i32;
+                self.gl
+                    .vertex_array_vertex_buffer(self.vao, 0, Some(self.vbo.buffer), 0, stride);
+            }
+            if imoved {
+                self.gl
+                    .vertex_array_element_buffer(self.vao, Some(self.ibo.buffer));
+            }
+        }
+        let mesh = StaticMesh {
+            mode: glow::TRIANGLES,
+            count,
+            index_offset: ioffset as i32,
+            base_vertex: (voffset / VERTEX_BYTES) as i32,
+        };
+        self.meshes.insert(name.to_string(), (mesh, data));
+        Ok(mesh)
     }
 
     pub fn load_obj(&mut self, name: &str, path: &Path) -> Result<StaticMesh> {
@@ -206,36 +313,9 @@ impl MeshBuffer {
         self.add(name, data)
     }
 
-    fn upload(&mut self) {
-        let mut vertices: Vec<Vertex> = Vec::new();
-        let mut indices: Vec<u32> = Vec::new();
-        let mut names: Vec<String> = self.meshes.keys().cloned().collect();
-        names.sort();
-        for n in names {
-            let (sm, data) = self.meshes.get_mut(&n).unwrap();
-            sm.base_vertex = vertices.len() as i32;
-            sm.index_offset = (indices.len() * 4) as i32;
-            sm.count = data.indices.len() as i32;
-            vertices.extend_from_slice(&data.vertices);
-            indices.extend_from_slice(&data.indices);
-        }
-        let vbytes: Vec<u8> = vertices
-            .iter()
-            .flat_map(|v| {
-                v.position
-                    .iter()
-                    .chain(&v.texcoord)
-                    .chain(&v.normal)
-                    .flat_map(|f| f.to_ne_bytes())
-            })
-            .collect();
-        let ibytes: Vec<u8> = indices.iter().flat_map(|i| i.to_ne_bytes()).collect();
-        unsafe {
-            self.gl
-                .named_buffer_data_u8_slice(self.vbo, &vbytes, glow::STATIC_DRAW);
-            self.gl
-                .named_buffer_data_u8_slice(self.ibo, &ibytes, glow::STATIC_DRAW);
-        }
+    /// Bytes uploaded and copied so far.
+    pub fn upload_counts(&self) -> UploadCounts {
+        self.counts
     }
 
     pub fn get(&self, name: &str) -> Option<StaticMesh> {
@@ -285,8 +365,8 @@ impl Drop for MeshBuffer {
     fn drop(&mut self) {
         unsafe {
             self.gl.delete_vertex_array(self.vao);
-            self.gl.delete_buffer(self.vbo);
-            self.gl.delete_buffer(self.ibo);
+            self.gl.delete_buffer(self.vbo.buffer);
+            self.gl.delete_buffer(self.ibo.buffer);
         }
     }
 }

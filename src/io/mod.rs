@@ -1,50 +1,99 @@
-//! Writing frames: 8-bit PNG, and Portable Float Map for raw values.
+//! Writing frames: 8-bit PNG, and Portable Float Map for raw values. Every I/O error names its file
+//! and says which of the usual causes it is (no such folder, permission denied, a folder in the way).
 
 use anyhow::{bail, Context as _, Result};
-use std::io::Write as _;
 use std::path::Path;
+
+/// An I/O error on `path` in words: "{path}: cannot {verb}: <cause> (<os message>)".
+pub fn io_error(path: &Path, verb: &str, e: &std::io::Error) -> anyhow::Error {
+    use std::io::ErrorKind as K;
+    let shown = path.display();
+    let cause = match e.kind() {
+        K::NotFound => match path.parent().filter(|p| !p.as_os_str().is_empty()) {
+            Some(dir) if !dir.is_dir() => format!("folder {} does not exist", dir.display()),
+            _ => "no such file".to_string(),
+        },
+        K::PermissionDenied => "permission denied".to_string(),
+        K::IsADirectory => "it is a folder".to_string(),
+        K::NotADirectory => "a part of the path is a file, not a folder".to_string(),
+        K::AlreadyExists => "a file is in the way".to_string(),
+        _ if path.is_dir() => "it is a folder".to_string(),
+        _ => "I/O error".to_string(),
+    };
+    anyhow::anyhow!("{shown}: cannot {verb}: {cause} ({e})")
+}
+
+/// Writes `bytes` to `path` (errors as `io_error`).
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
+    std::fs::write(path, bytes).map_err(|e| io_error(path, "write", &e))
+}
+
+/// Creates `dir` and its parents (errors as `io_error`).
+pub fn create_dir_all(dir: &Path) -> Result<()> {
+    std::fs::create_dir_all(dir).map_err(|e| io_error(dir, "create the folder", &e))
+}
+
+/// Creates the folder an output file goes into, if it names one.
+pub fn create_parent(path: &Path) -> Result<()> {
+    match path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        Some(dir) => create_dir_all(dir),
+        None => Ok(()),
+    }
+}
+
+/// Encodes an image as PNG in memory, then writes it (so a write error names the file and its cause).
+pub fn write_png<P, C>(path: &Path, img: &image::ImageBuffer<P, C>) -> Result<()>
+where
+    P: image::PixelWithColorType,
+    [P::Subpixel]: image::EncodableLayout,
+    C: std::ops::Deref<Target = [P::Subpixel]>,
+{
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    img.write_to(&mut bytes, image::ImageFormat::Png)
+        .with_context(|| format!("{}: cannot encode the PNG", path.display()))?;
+    write_file(path, bytes.get_ref())
+}
+
+/// A PFM file's bytes: header, then rows bottom-up as little-endian floats (`channels` per pixel).
+fn pfm_bytes(magic: &str, width: u32, height: u32, channels: usize, values: &[f32]) -> Vec<u8> {
+    // Negative scale = little-endian.
+    let mut out = format!("{magic}\n{width} {height}\n-1.0\n").into_bytes();
+    let row = width as usize * channels;
+    for y in (0..height as usize).rev() {
+        for v in &values[y * row..(y + 1) * row] {
+            out.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    out
+}
 
 /// Writes single-channel f32 values (rows top-down) as a PFM ("Pf"); PFM rows are bottom-up.
 pub fn write_pfm_gray(path: &Path, width: u32, height: u32, values: &[f32]) -> Result<()> {
     if values.len() != (width * height) as usize {
-        bail!("PFM: {} values for {width}x{height}", values.len());
+        bail!(
+            "{}: PFM: {} values for {width}x{height}",
+            path.display(),
+            values.len()
+        );
     }
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    // Negative scale = little-endian.
-    write!(f, "Pf\n{width} {height}\n-1.0\n")?;
-    for y in (0..height as usize).rev() {
-        for v in &values[y * width as usize..(y + 1) * width as usize] {
-            f.write_all(&v.to_le_bytes())?;
-        }
-    }
-    f.flush()?;
-    Ok(())
+    write_file(path, &pfm_bytes("Pf", width, height, 1, values))
 }
 
 /// Writes RGB f32 values (rows top-down) as a PFM ("PF").
 pub fn write_pfm_rgb(path: &Path, width: u32, height: u32, rgb: &[f32]) -> Result<()> {
     if rgb.len() != (width * height * 3) as usize {
-        bail!("PFM: {} values for {width}x{height}x3", rgb.len());
+        bail!(
+            "{}: PFM: {} values for {width}x{height}x3",
+            path.display(),
+            rgb.len()
+        );
     }
-    let mut f = std::io::BufWriter::new(
-        std::fs::File::create(path).with_context(|| format!("cannot create {}", path.display()))?,
-    );
-    write!(f, "PF\n{width} {height}\n-1.0\n")?;
-    let row = width as usize * 3;
-    for y in (0..height as usize).rev() {
-        for v in &rgb[y * row..(y + 1) * row] {
-            f.write_all(&v.to_le_bytes())?;
-        }
-    }
-    f.flush()?;
-    Ok(())
+    write_file(path, &pfm_bytes("PF", width, height, 3, rgb))
 }
 
 /// Reads a PFM (either kind) into (width, height, channels, values rows top-down).
 pub fn read_pfm(path: &Path) -> Result<(u32, u32, u32, Vec<f32>)> {
-    let bytes = std::fs::read(path).with_context(|| format!("cannot read {}", path.display()))?;
+    let bytes = std::fs::read(path).map_err(|e| io_error(path, "read", &e))?;
     let mut fields = Vec::new();
     let mut pos = 0;
     while fields.len() < 4 && pos < bytes.len() {
@@ -66,12 +115,22 @@ pub fn read_pfm(path: &Path) -> Result<(u32, u32, u32, Vec<f32>)> {
         "PF" => 3,
         other => bail!("{}: not a PFM file (magic '{other}')", path.display()),
     };
-    let w: u32 = fields[1].parse().context("PFM width")?;
-    let h: u32 = fields[2].parse().context("PFM height")?;
-    let scale: f32 = fields[3].parse().context("PFM scale")?;
-    let n = (w * h * channels) as usize;
+    let shown = path.display();
+    let w: u32 = fields[1]
+        .parse()
+        .with_context(|| format!("{shown}: PFM width"))?;
+    let h: u32 = fields[2]
+        .parse()
+        .with_context(|| format!("{shown}: PFM height"))?;
+    let scale: f32 = fields[3]
+        .parse()
+        .with_context(|| format!("{shown}: PFM scale"))?;
+    let n = (w as usize)
+        .checked_mul(h as usize)
+        .and_then(|p| p.checked_mul(channels as usize))
+        .with_context(|| format!("{shown}: PFM size {w}x{h} is too large"))?;
     let data = bytes
-        .get(pos..pos + n * 4)
+        .get(pos..pos.saturating_add(n.saturating_mul(4)))
         .with_context(|| format!("{}: truncated PFM data", path.display()))?;
     let le = scale < 0.0;
     let vals: Vec<f32> = data
@@ -99,7 +158,12 @@ pub fn gray_to_png(path: &Path, width: u32, height: u32, values: &[f32], scale: 
         .iter()
         .map(|v| ((v * scale).clamp(0.0, 1.0) * 255.0 + 0.5) as u8)
         .collect();
-    let img = image::GrayImage::from_raw(width, height, px).context("image size")?;
-    img.save(path)
-        .with_context(|| format!("cannot write {}", path.display()))
+    let img = image::GrayImage::from_raw(width, height, px).with_context(|| {
+        format!(
+            "{}: {} values for {width}x{height}",
+            path.display(),
+            values.len()
+        )
+    })?;
+    write_png(path, &img)
 }

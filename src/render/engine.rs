@@ -24,7 +24,6 @@ use crate::scene::{BloomDesc, LightDesc, SceneDesc};
 use anyhow::{anyhow, bail, Context as _, Result};
 use glam::{Mat4, Vec3, Vec4};
 use std::cell::RefCell;
-use std::path::Path;
 use std::rc::Rc;
 
 pub struct Engine {
@@ -104,7 +103,7 @@ impl Engine {
         let mut objects = Vec::new();
         for (i, o) in scene.objects.iter().enumerate() {
             let what = || format!("scene object {} ({})", i + 1, o.mesh);
-            let path = res.resolve_data(Path::new(&o.mesh)).with_context(what)?;
+            let path = scene.mesh_path(&o.mesh, &res).with_context(what)?;
             let mesh = meshes.load_obj(&o.mesh, &path).with_context(what)?;
             let data = meshes
                 .data(&o.mesh)

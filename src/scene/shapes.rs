@@ -315,11 +315,11 @@ pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
 
 /// Writes the demo meshes into `dir` (normally `Res/meshes`).
 pub fn write_demo_meshes(dir: &std::path::Path) -> anyhow::Result<Vec<std::path::PathBuf>> {
-    std::fs::create_dir_all(dir)?;
+    crate::io::create_dir_all(dir)?;
     let mut out = Vec::new();
     for (name, what, mesh) in demo_meshes() {
         let p = dir.join(name);
-        std::fs::write(&p, to_obj(&mesh, what))?;
+        crate::io::write_file(&p, to_obj(&mesh, what).as_bytes())?;
         out.push(p);
     }
     Ok(out)

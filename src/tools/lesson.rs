@@ -3,7 +3,7 @@
 
 use crate::render::View;
 use crate::res::project_res_dir;
-use anyhow::{bail, Context as _, Result};
+use anyhow::{bail, Result};
 use std::path::{Path, PathBuf};
 
 /// Number of steps (lessons/01-… to 12-…).
@@ -43,8 +43,7 @@ pub fn shaders_for_step(n: u32) -> &'static [&'static str] {
 /// replaced by stubs that compile. Existing files are never overwritten. Returns the files written.
 pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
     let res = project_res_dir();
-    std::fs::create_dir_all(dir.join("scenes"))
-        .with_context(|| format!("cannot create {}", dir.display()))?;
+    crate::io::create_dir_all(&dir.join("scenes"))?;
     let mut written = Vec::new();
     let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
         if to.exists() {
@@ -52,27 +51,39 @@ pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
             return Ok(());
         }
         std::fs::copy(&from, &to)
-            .with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))?;
+            .map_err(|e| crate::io::io_error(&to, &format!("copy {} to it", from.display()), &e))?;
         written.push(to);
         Ok(())
     };
-    for entry in std::fs::read_dir(&res)? {
-        let p = entry?.path();
-        let name = p.file_name().unwrap().to_string_lossy().to_string();
+    for p in list_dir(&res)? {
+        let Some(name) = p.file_name().map(|n| n.to_string_lossy().into_owned()) else {
+            continue;
+        };
         let is_shader = name.ends_with(".frag") || name.ends_with(".vert");
-        if !is_shader {
+        if !is_shader || !p.is_file() {
             continue;
         }
         if LESSON_SHADERS.contains(&name.as_str()) {
             copy(res.join("lesson-stubs").join(&name), dir.join(&name))?;
         } else {
-            copy(p, dir.join(&name))?;
+            copy(p.clone(), dir.join(&name))?;
         }
     }
-    for entry in std::fs::read_dir(res.join("scenes"))? {
-        let p = entry?.path();
-        copy(p.clone(), dir.join("scenes").join(p.file_name().unwrap()))?;
+    for p in list_dir(&res.join("scenes"))? {
+        if let Some(name) = p.file_name() {
+            copy(p.clone(), dir.join("scenes").join(name))?;
+        }
     }
     written.sort();
     Ok(written)
+}
+
+/// The paths in folder `dir` (errors name the folder).
+fn list_dir(dir: &Path) -> Result<Vec<PathBuf>> {
+    let read_error = |e: std::io::Error| crate::io::io_error(dir, "list the folder", &e);
+    let mut out = Vec::new();
+    for entry in std::fs::read_dir(dir).map_err(read_error)? {
+        out.push(entry.map_err(read_error)?.path());
+    }
+    Ok(out)
 }

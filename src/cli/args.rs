@@ -1,0 +1,179 @@
+//! The command line's arguments (clap); the domain types they fill carry no clap derives.
+//!
+//! Numeric flags accept a leading minus so `--fov -30` reaches the range check (with a message naming
+//! the flag) instead of clap reading `-3` as an unknown flag.
+
+use crate::render::View;
+use crate::ao::{AoMethod, CompositeMode, GtaoQuality};
+use crate::math::DepthMode;
+use clap::builder::TypedValueParser as _;
+use clap::{Args, ValueEnum};
+use glam::Vec3;
+use std::path::PathBuf;
+
+
+/// A parser for one of `all`, by the names `name` gives (the domain types know their names; only
+/// the command line knows clap).
+pub fn choice<T: Copy + Send + Sync + 'static>(
+    all: &'static [T],
+    name: fn(T) -> &'static str,
+) -> impl clap::builder::TypedValueParser<Value = T> {
+    let names: Vec<&'static str> = all.iter().map(|v| name(*v)).collect();
+    clap::builder::PossibleValuesParser::new(names).map(move |s: String| {
+        *all.iter()
+            .find(|v| name(**v) == s)
+            .expect("clap accepted only listed names")
+    })
+}
+
+#[derive(Args, Debug)]
+pub struct ReferenceArgs {
+    /// Scene flags; `--radius` is the ray length (m): a ray that hits nothing within it counts as
+    /// open (default: the scene's AO radius, so the reference matches what `render` shows).
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Cosine-weighted rays per pixel.
+    #[arg(long, default_value_t = 256, allow_negative_numbers = true)]
+    pub rays: u32,
+    /// Ambient obscurance (hits weighted by (t/R)²) instead of binary visibility.
+    #[arg(long, conflicts_with = "screen_space")]
+    pub obscurance: bool,
+    /// Screen-space reference instead: the same visibility computed exactly from the engine's
+    /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
+    #[arg(long)]
+    pub screen_space: bool,
+    /// Output: .pfm (raw visibility) or .png.
+    #[arg(long, default_value = "out/reference.pfm")]
+    pub out: PathBuf,
+    /// Folder of cached results (keyed by scene, camera, size and parameters).
+    #[arg(long, default_value = "out/reference-cache")]
+    pub cache: PathBuf,
+}
+
+#[derive(Args, Debug)]
+pub struct LessonArgs {
+    /// Step number 1-12, or `start`.
+    pub step: String,
+    /// With `start`: the folder to create (then use it with --res).
+    pub dir: Option<PathBuf>,
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// Render the step's view to --out instead of opening a window.
+    #[arg(long)]
+    pub headless: bool,
+    #[arg(long, default_value = "out/lesson.png")]
+    pub out: PathBuf,
+}
+
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum OnOff {
+    On,
+    Off,
+}
+
+#[derive(Args, Debug, Clone, Default)]
+pub struct SceneArgs {
+    /// Scene file (TOML); default: Res/scenes/demo.toml.
+    #[arg(long, value_name = "FILE", conflicts_with = "obj")]
+    pub scene: Option<PathBuf>,
+    /// Load one OBJ as the whole scene (identity transform, demo lighting and AO).
+    #[arg(long, value_name = "FILE")]
+    pub obj: Option<PathBuf>,
+    /// Camera position, "x,y,z".
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub eye: Option<Vec3>,
+    /// Point the camera looks at, "x,y,z" (up is +Y).
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub target: Option<Vec3>,
+    /// Vertical field of view in degrees.
+    #[arg(long, allow_negative_numbers = true)]
+    pub fov: Option<f32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub near: Option<f32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub far: Option<f32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub width: Option<u32>,
+    #[arg(long, allow_negative_numbers = true)]
+    pub height: Option<u32>,
+    /// Main depth buffer: d32 (the course's) or d32f-reversed (reversed-Z: far surfaces keep precision).
+    #[arg(long, value_parser = choice(&DepthMode::ALL, DepthMode::name))]
+    pub depth: Option<DepthMode>,
+    /// Ambient occlusion on or off.
+    #[arg(long, value_enum)]
+    pub ao: Option<OnOff>,
+    /// AO method.
+    #[arg(long, value_parser = choice(&AoMethod::ALL, AoMethod::name))]
+    pub method: Option<AoMethod>,
+    /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
+    #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
+    pub samples: Option<u32>,
+    /// GTAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
+    #[arg(long, value_parser = choice(&GtaoQuality::ALL, GtaoQuality::name))]
+    pub quality: Option<GtaoQuality>,
+    /// AO radius in metres.
+    #[arg(long, allow_negative_numbers = true)]
+    pub radius: Option<f32>,
+    /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
+    #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
+    pub composite: Option<CompositeMode>,
+    /// Tint colour for `--composite tinted`, "r,g,b" in 0..1.
+    #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
+    pub tint: Option<Vec3>,
+    /// Power applied to visibility before compositing.
+    #[arg(long, allow_negative_numbers = true)]
+    pub power: Option<f32>,
+}
+
+#[derive(Args, Debug)]
+pub struct RenderArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 = open).
+    #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
+    pub view: View,
+    /// Output file: .png (8-bit) or .pfm (raw floats).
+    #[arg(long, default_value = "out/frame.png")]
+    pub out: PathBuf,
+    /// Print each pass of the frame (name, group, ms, draw calls) as JSON on stdout.
+    #[arg(long)]
+    pub stats: bool,
+}
+
+#[derive(Args, Debug)]
+pub struct WindowArgs {
+    #[command(flatten)]
+    pub scene: SceneArgs,
+    #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
+    pub view: View,
+    /// Close after this many frames (for scripted runs and tests).
+    #[arg(long, allow_negative_numbers = true)]
+    pub frames: Option<u32>,
+    /// Save the last frame shown to this PNG (with --frames): the engine's frame, as `render` draws it.
+    #[arg(long)]
+    pub screenshot: Option<PathBuf>,
+    /// The screenshot holds what is on screen, parameter panel and error overlay included.
+    #[arg(long)]
+    pub screenshot_ui: bool,
+    /// Start with the parameter panel hidden (F1 shows it). Also: OPENGL3D_PANEL=off.
+    #[arg(long)]
+    pub no_panel: bool,
+    /// Start with per-pass timing on (the panel's "time each pass"). Also: OPENGL3D_TIME_PASSES=1.
+    #[arg(long)]
+    pub time_passes: bool,
+}
+
+pub fn parse_vec3(s: &str) -> Result<Vec3, String> {
+    let v: Vec<f32> = s
+        .split(',')
+        .map(|p| {
+            p.trim()
+                .parse::<f32>()
+                .map_err(|_| format!("'{p}' is not a number"))
+        })
+        .collect::<Result<_, _>>()?;
+    if v.len() != 3 || v.iter().any(|x| !x.is_finite()) {
+        return Err(format!("expected three finite numbers 'x,y,z', got '{s}'"));
+    }
+    Ok(Vec3::new(v[0], v[1], v[2]))
+}

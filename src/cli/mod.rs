@@ -1,0 +1,288 @@
+//! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
+
+mod args;
+mod output;
+mod res_check;
+mod scene_args;
+
+pub use args::{parse_vec3, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs};
+pub use output::{write_view, OutFormat, PNG_OR_PFM};
+pub use res_check::{check_res, ResUse};
+pub use scene_args::load_scene;
+
+use crate::platform::{self, HeadlessContext};
+use crate::render::{Engine, View};
+use crate::res::ResDirs;
+use anyhow::{bail, Context as _, Result};
+use clap::{Parser, Subcommand};
+use glam::Vec3;
+use std::path::{Path, PathBuf};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "opengl3d",
+    version,
+    about = "OpenGL 4.5 course engine with screen-space ambient occlusion (SAO)"
+)]
+pub struct Cli {
+    /// Folder searched for shaders and meshes before the project's own Res/ (a student's working copy).
+    #[arg(long, global = true, value_name = "DIR")]
+    pub res: Option<PathBuf>,
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Render one frame headless and write it to a PNG or PFM file.
+    Render(RenderArgs),
+    /// Open the interactive window (WASD + mouse, F1: parameter panel, Space: AO, M: method, V: view,
+    /// B: blur, R: reload shaders).
+    Window(WindowArgs),
+    /// Run the AO lesson at step N (1-12) showing that step's view, or `lesson start DIR` to write a
+    /// starting folder whose lesson shaders are stubs.
+    Lesson(LessonArgs),
+    /// World-space ray-traced ambient occlusion of the scene on the CPU (the ground truth).
+    Reference(ReferenceArgs),
+    /// Grade a student's shaders (--res DIR) against the lesson's steps; exits non-zero on a failed step.
+    Grade(crate::tools::grade::GradeArgs),
+    /// (Internal) grade one step in a child process of `grade`; prints one JSON line.
+    #[command(hide = true)]
+    GradeStep(crate::tools::grade::GradeStepArgs),
+    /// Run time against error of the AO methods, or `--stress` for numerical stability.
+    Bench(crate::tools::bench::BenchArgs),
+    /// Regenerate the demo meshes in Res/meshes (with --res DIR: in DIR/meshes).
+    GenDemo,
+}
+
+/// What `command` reads from `--res` (checked before it runs).
+fn res_use(command: &Option<Command>) -> Option<ResUse> {
+    Some(match command {
+        Some(Command::Lesson(a)) if a.step == "start" => return None,
+        Some(Command::Lesson(a)) => {
+            // A step that does not exist is reported by the lesson itself.
+            let n = a.step.parse().ok()?;
+            crate::tools::lesson::view_for_step(n).ok()?;
+            ResUse::AnyOf(crate::tools::lesson::shaders_for_step(n))
+        }
+        // The grader checks the student's folder itself, with its own messages.
+        Some(Command::Grade(_)) | Some(Command::GradeStep(_)) => return None,
+        Some(Command::Reference(a)) if !a.screen_space => ResUse::Scenes,
+        Some(Command::GenDemo) => ResUse::Folder,
+        _ => ResUse::ShadersOrScenes,
+    })
+}
+
+pub fn run() -> Result<()> {
+    let cli = Cli::parse();
+    if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
+        check_res(dir, what)?;
+    }
+    let res = ResDirs::with_override(cli.res.as_deref());
+    match cli.command {
+        Some(Command::Render(args)) => render(&res, &args),
+        Some(Command::Window(args)) => {
+            if let Some(shot) = &args.screenshot {
+                OutFormat::of("--screenshot", shot, &[OutFormat::Png])?;
+            }
+            let scene = load_scene(&args.scene, &res)?;
+            let mut options =
+                platform::window::WindowOptions::from_env(args.view, args.frames, args.screenshot);
+            options.screenshot_with_ui |= args.screenshot_ui;
+            options.panel_visible &= !args.no_panel;
+            options.time_passes |= args.time_passes;
+            platform::window::run_with(res, scene, options)
+        }
+        Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
+        Some(Command::Reference(args)) => reference(&res, &args),
+        Some(Command::Grade(args)) => {
+            let code = crate::tools::grade::run(&res, cli.res.as_deref(), &args)?;
+            if code != 0 {
+                std::process::exit(code);
+            }
+            Ok(())
+        }
+        Some(Command::Bench(args)) => crate::tools::bench::run(&res, &args),
+        Some(Command::GradeStep(args)) => crate::tools::grade::run_step(cli.res.as_deref(), &args),
+        Some(Command::GenDemo) => {
+            let dir = match &cli.res {
+                Some(d) => d.join("meshes"),
+                None => crate::res::project_res_dir().join("meshes"),
+            };
+            for p in crate::scene::shapes::write_demo_meshes(&dir)? {
+                println!("wrote {}", p.display());
+            }
+            Ok(())
+        }
+        None => {
+            if platform::display_available() {
+                let scene = load_scene(&SceneArgs::default(), &res)?;
+                match platform::window::run(res.clone(), scene, View::Composite, None, None) {
+                    Ok(()) => return Ok(()),
+                    Err(e) => {
+                        eprintln!("could not open a window ({e:#}); rendering headless instead")
+                    }
+                }
+            } else {
+                eprintln!("no display found (DISPLAY / WAYLAND_DISPLAY unset): rendering one frame headless");
+            }
+            let args = RenderArgs {
+                scene: SceneArgs::default(),
+                view: View::Composite,
+                out: PathBuf::from("out/frame.png"),
+                stats: false,
+            };
+            render(&res, &args)
+        }
+    }
+}
+
+/// Renders one frame headless per `args` and writes it.
+pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
+    OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
+    let scene = load_scene(&args.scene, res)?;
+    let ctx = HeadlessContext::new()?;
+    let mut engine = Engine::new(
+        &ctx.gl,
+        res.clone(),
+        &scene,
+        scene.output.width,
+        scene.output.height,
+    )?;
+    engine.view = args.view;
+    engine.collect_stats = args.stats;
+    write_view(&mut engine, args.view, &args.out)?;
+    let msg = format!(
+        "wrote {} ({}x{}, {}, {})",
+        args.out.display(),
+        scene.output.width,
+        scene.output.height,
+        args.view.label(),
+        ctx.renderer
+    );
+    if args.stats {
+        eprintln!("{msg}");
+        let timing = if ctx.software {
+            "wall clock around glFinish (llvmpipe)"
+        } else {
+            "wall clock around glFinish"
+        };
+        let json = serde_json::json!({ "renderer": ctx.renderer, "timing": timing, "passes": engine.last_stats() });
+        println!("{json}");
+    } else {
+        println!("{msg}");
+    }
+    Ok(())
+}
+
+fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
+    if args.step == "start" {
+        let dir = args
+            .dir
+            .as_ref()
+            .context("usage: opengl3d lesson start DIR")?;
+        let files = crate::tools::lesson::start(dir)?;
+        println!("wrote {} files to {}", files.len(), dir.display());
+        println!("the four lesson shaders are stubs: follow lessons/README.md, then run");
+        println!("  opengl3d lesson 2 --res {}", dir.display());
+        return Ok(());
+    }
+    let n: u32 = args.step.parse().map_err(|_| {
+        anyhow::anyhow!(
+            "'{}' is not a step: use 1-{} or start",
+            args.step,
+            crate::tools::lesson::STEPS
+        )
+    })?;
+    let view = crate::tools::lesson::view_for_step(n)?;
+    if args.headless || !platform::display_available() {
+        OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
+    }
+    if let Some(dir) = student {
+        for f in crate::tools::lesson::shaders_for_step(n) {
+            if !dir.join(f).is_file() {
+                eprintln!(
+                    "note: {} has no {f}; using the project's own",
+                    dir.display()
+                );
+            }
+        }
+    }
+    println!("lesson step {n}: showing {}", view.label());
+    let scene = load_scene(&args.scene, res)?;
+    if args.headless || !platform::display_available() {
+        let ctx = HeadlessContext::new()?;
+        let mut engine = Engine::new(
+            &ctx.gl,
+            res.clone(),
+            &scene,
+            scene.output.width,
+            scene.output.height,
+        )?;
+        engine.view = view;
+        write_view(&mut engine, view, &args.out)?;
+        println!("wrote {}", args.out.display());
+        Ok(())
+    } else {
+        platform::window::run(res.clone(), scene, view, None, None)
+    }
+}
+
+fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
+    use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
+    let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
+    let scene = load_scene(&args.scene, res)?;
+    // One --radius flag (the scene's): the AO radius is the ray length.
+    let radius = scene.ao.radius;
+    if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
+        bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
+    }
+    let tris = scene.world_triangles(res)?;
+    let bvh = Scene::new(tris)?;
+    let c = &scene.camera;
+    let cam = crate::math::Camera {
+        eye: c.eye.into(),
+        target: c.target.into(),
+        up: Vec3::Y,
+        fov_y_deg: c.fov_y,
+        near: c.near,
+        far: c.far,
+    };
+    let params = RefParams {
+        radius,
+        rays: args.rays,
+        variant: if args.obscurance {
+            AoVariant::Obscurance
+        } else {
+            AoVariant::Visibility
+        },
+        seed: 1,
+        progress: true,
+    };
+    let (w, h) = (scene.output.width, scene.output.height);
+    let img = if args.screen_space {
+        let ctx = HeadlessContext::new()?;
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, w, h)?;
+        let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
+        crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+    } else {
+        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
+    };
+    crate::io::create_parent(&args.out)?;
+    match format {
+        OutFormat::Pfm => crate::io::write_pfm_gray(&args.out, w, h, &img.ao)?,
+        OutFormat::Png => crate::io::gray_to_png(&args.out, w, h, &img.ao, 1.0)?,
+    }
+    let sky = img.sky_mask().iter().filter(|s| **s).count();
+    println!(
+        "wrote {} ({}, {w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
+        args.out.display(),
+        if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
+        bvh.triangle_count(),
+        radius,
+        args.rays,
+        img.mean_std_error(),
+        sky
+    );
+    Ok(())
+}

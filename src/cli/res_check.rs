@@ -1,0 +1,80 @@
+//! `--res DIR` is checked before any command runs: a folder that does not exist, is a file, or holds
+//! none of the files the command reads from it is an error naming it (otherwise the project's own
+//! files would be used without a word, and a student would grade the wrong shaders).
+
+use anyhow::{bail, Result};
+use std::path::Path;
+
+/// What a command reads from `--res`.
+#[derive(Clone, Copy, Debug)]
+pub enum ResUse {
+    /// Shaders (`*.vert`, `*.frag`, `*.glsl`, also in `ao/`) or scene data (`*.toml`, `*.obj`).
+    ShadersOrScenes,
+    /// Scene data only (the ray-traced reference draws nothing with GL).
+    Scenes,
+    /// At least one of these files (a lesson step's shaders).
+    AnyOf(&'static [&'static str]),
+    /// A folder to write into.
+    Folder,
+}
+
+/// Fails unless `dir` is a folder holding something `what` reads.
+pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
+    let shown = dir.display();
+    match std::fs::metadata(dir) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
+            bail!("--res {shown}: no such folder")
+        }
+        Err(e) => bail!("--res {shown}: cannot read it ({e})"),
+        Ok(m) if !m.is_dir() => bail!("--res {shown}: is a file, not a folder"),
+        Ok(_) => {}
+    }
+    let is_shader = |n: &str| n.ends_with(".vert") || n.ends_with(".frag") || n.ends_with(".glsl");
+    let is_scene = |n: &str| n.ends_with(".toml") || n.ends_with(".obj");
+    let (found, wanted) = match what {
+        ResUse::Folder => return Ok(()),
+        ResUse::AnyOf(names) => (
+            names.iter().any(|n| dir.join(n).is_file()),
+            names.join(", "),
+        ),
+        ResUse::ShadersOrScenes => (
+            has_file(dir, &|n| is_shader(n) || is_scene(n))?,
+            "shaders (*.vert, *.frag), scenes (*.toml) or meshes (*.obj)".to_string(),
+        ),
+        ResUse::Scenes => (
+            has_file(dir, &is_scene)?,
+            "scenes (*.toml) or meshes (*.obj)".to_string(),
+        ),
+    };
+    if !found {
+        bail!("--res {shown}: holds none of the files this command reads from it ({wanted})");
+    }
+    Ok(())
+}
+
+/// Whether `dir` or one of its folders (one level down, like `ao/` and `meshes/`) holds a file whose
+/// name passes `wanted`.
+fn has_file(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Result<bool> {
+    let read = |d: &Path| {
+        std::fs::read_dir(d)
+            .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", d.display()))
+    };
+    for entry in read(dir)? {
+        let path = entry
+            .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", dir.display()))?
+            .path();
+        if path.is_dir() {
+            for inner in read(&path)? {
+                let inner = inner
+                    .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", path.display()))?
+                    .path();
+                if inner.is_file() && wanted(&inner.to_string_lossy()) {
+                    return Ok(true);
+                }
+            }
+        } else if path.is_file() && wanted(&path.to_string_lossy()) {
+            return Ok(true);
+        }
+    }
+    Ok(false)
+}

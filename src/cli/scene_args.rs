@@ -1,0 +1,182 @@
+//! The scene a command renders: a scene file or one OBJ, with the command line's flags applied, then
+//! checked. Every bad value is reported with where it came from: the flag that set it, or the scene
+//! file's line and column, or the framing of an `--obj`.
+
+use super::args::{OnOff, SceneArgs};
+use crate::res::ResDirs;
+use crate::scene::{Issue, SceneDesc, SceneFile};
+use anyhow::{bail, Context as _, Result};
+use glam::Vec3;
+
+/// Where the scene's values came from, for messages.
+enum Origin {
+    File(Box<SceneFile>),
+    /// `--obj`: the OBJ's path; the camera is framed from its bounds.
+    Obj(String),
+}
+
+/// Keys set by the flags given, with the flag's name ("camera.near" -> "--near").
+type FlagKeys = Vec<(&'static str, &'static str)>;
+
+/// Loads the scene the arguments describe, with overrides applied and checked.
+pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
+    let (mut desc, origin, bounds) = if let Some(obj) = &args.obj {
+        let path = obj
+            .canonicalize()
+            .with_context(|| format!("{}: OBJ file not found", obj.display()))?;
+        let data = crate::gl::mesh::MeshData::load_obj(&path)?;
+        let desc = SceneDesc::single_obj(&path);
+        (desc, Origin::Obj(path.display().to_string()), data.bounds())
+    } else {
+        let path = match &args.scene {
+            Some(p) => p.clone(),
+            None => res
+                .find("scenes/demo.toml")
+                .map_err(|e| anyhow::anyhow!("{e}"))?,
+        };
+        let file = SceneFile::read(&path)?;
+        (file.desc.clone(), Origin::File(Box::new(file)), None)
+    };
+    let flags = apply_flags(args, &mut desc)?;
+    if let Some((lo, hi)) = bounds {
+        frame_bounds(&mut desc, lo, hi, args);
+    }
+    for w in desc.clamp_values() {
+        eprintln!("warning: {}", describe(&w, &origin, &flags));
+    }
+    let errors = desc.errors();
+    if !errors.is_empty() {
+        let lines: Vec<String> = errors
+            .iter()
+            .map(|e| describe(e, &origin, &flags))
+            .collect();
+        bail!("{}", lines.join("\n"));
+    }
+    Ok(desc)
+}
+
+/// One issue with its source: "--near 1e-30: ...", "FILE:LINE:COL: camera.near = 1e-30: ...".
+fn describe(issue: &Issue, origin: &Origin, flags: &FlagKeys) -> String {
+    let flag = flags
+        .iter()
+        .find(|(key, _)| issue.key == *key || issue.key.starts_with(&format!("{key}[")));
+    if let Some((_, flag)) = flag {
+        return format!("{flag} {}: {}", issue.value, issue.message);
+    }
+    match origin {
+        Origin::File(file) => file.describe(issue),
+        Origin::Obj(path) if issue.key.starts_with("camera.") => {
+            format!("{issue} (framed from the bounds of {path})")
+        }
+        Origin::Obj(path) => format!("{issue} (default for --obj {path})"),
+    }
+}
+
+/// Frames the OBJ's bounding sphere: the camera looks at it from a fixed direction unless `--eye` /
+/// `--target` are given, and near/far follow the sphere's distance so a model of any size (a CAD
+/// export in millimetres, a 2 km terrain) fills the frame with a sane far/near ratio.
+fn frame_bounds(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, args: &SceneArgs) {
+    let c = &mut desc.camera;
+    let center = (lo + hi) * 0.5;
+    let half = (hi - lo).length() * 0.5;
+    // A model that is a single point: any size frames it.
+    let r = if half > 0.0 { half } else { 1.0 };
+    if args.target.is_none() {
+        c.target = center.to_array();
+    }
+    if args.eye.is_none() {
+        let dist = r / (c.fov_y.to_radians() * 0.5).sin() * 1.1;
+        c.eye = (Vec3::from(c.target) + Vec3::new(0.55, 0.45, 1.0).normalize() * dist).to_array();
+    }
+    let d = Vec3::from(c.eye).distance(center);
+    // Room to step back in the window, and a near plane well in front of the model (or a tenth of
+    // its size when the eye is close), never more than 1e4 below far.
+    let far = (d + r) * 2.0;
+    let near = ((d - r) * 0.5).min(r * 0.1).max(far * 1e-4);
+    if args.far.is_none() {
+        c.far = far;
+    }
+    if args.near.is_none() {
+        c.near = near;
+    }
+}
+
+/// Applies the flags given and returns the keys they set; range checks of flags without a scene key
+/// happen here.
+fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
+    let mut keys = FlagKeys::new();
+    let c = &mut desc.camera;
+    if let Some(v) = args.eye {
+        c.eye = v.to_array();
+        keys.push(("camera.eye", "--eye"));
+    }
+    if let Some(v) = args.target {
+        c.target = v.to_array();
+        keys.push(("camera.target", "--target"));
+    }
+    if let Some(v) = args.fov {
+        c.fov_y = v;
+        keys.push(("camera.fov_y", "--fov"));
+    }
+    if let Some(v) = args.near {
+        c.near = v;
+        keys.push(("camera.near", "--near"));
+    }
+    if let Some(v) = args.far {
+        c.far = v;
+        keys.push(("camera.far", "--far"));
+    }
+    if let Some(w) = args.width {
+        desc.output.width = w;
+        keys.push(("output.width", "--width"));
+    }
+    if let Some(h) = args.height {
+        desc.output.height = h;
+        keys.push(("output.height", "--height"));
+    }
+    if let Some(d) = args.depth {
+        desc.output.depth = d;
+    }
+    if let Some(ao) = args.ao {
+        desc.ao.enabled = ao == OnOff::On;
+    }
+    if let Some(m) = args.method {
+        desc.ao.method = m;
+    }
+    if let Some(n) = args.samples {
+        if n == 0 || n > 256 {
+            bail!("--samples {n}: use 1 to 256");
+        }
+        desc.ao.samples = n;
+        // An explicit count wins over a preset from the scene file.
+        desc.ao.quality = None;
+    }
+    if let Some(q) = args.quality {
+        desc.ao.quality = Some(q);
+    }
+    if let Some(c) = args.composite {
+        desc.ao.composite = c;
+    }
+    if let Some(t) = args.tint {
+        if t.min_element() < 0.0 || t.max_element() > 1.0 {
+            bail!("--tint {t}: each channel must be between 0 and 1");
+        }
+        desc.ao.tint = t.to_array();
+        keys.push(("ao.tint", "--tint"));
+    }
+    if let Some(p) = args.power {
+        if !(p.is_finite() && (0.05..=20.0).contains(&p)) {
+            bail!("--power {p}: use a power between 0.05 and 20");
+        }
+        desc.ao.power = p;
+        keys.push(("ao.power", "--power"));
+    }
+    if let Some(r) = args.radius {
+        if !(r.is_finite() && r > 0.0 && r <= 100.0) {
+            bail!("--radius {r}: use a radius in metres between 0 and 100");
+        }
+        desc.ao.radius = r;
+        keys.push(("ao.radius", "--radius"));
+    }
+    Ok(keys)
+}
