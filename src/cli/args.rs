@@ -3,14 +3,13 @@
 //! Numeric flags accept a leading minus so `--fov -30` reaches the range check (with a message naming
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
-use crate::render::View;
 use crate::ao::{AoMethod, CompositeMode, GtaoQuality};
 use crate::math::DepthMode;
+use crate::render::View;
 use clap::builder::TypedValueParser as _;
 use clap::{Args, ValueEnum};
 use glam::Vec3;
 use std::path::PathBuf;
-
 
 /// A parser for one of `all`, by the names `name` gives (the domain types know their names; only
 /// the command line knows clap).

@@ -51,11 +51,11 @@ impl Camera {
         }
     }
     pub fn view(&self) -> Mat4 {
-        Mat4::look_at_rh(self.eye, self.target, self.safe_up())
+        glam::camera::rh::view::look_at_mat4(self.eye, self.target, self.safe_up())
     }
     /// The course's projection: OpenGL clip space, depth D = 0.5·(−z·B + A)/(−z) + 0.5.
     pub fn projection(&self, aspect: f32) -> Mat4 {
-        Mat4::perspective_rh_gl(
+        glam::camera::rh::proj::opengl::perspective(
             self.fov_y_deg.to_radians(),
             aspect.max(1e-6),
             self.near,

@@ -89,7 +89,12 @@ pub fn delinearize(mode: DepthMode, z: f64, near: f64, far: f64) -> f64 {
 /// [0, 1] clip depth: z_clip / w_clip = n·(f − d) / (d·(f − n)) at view distance d (near → 1, far → 0;
 /// with an infinite far plane, n / d). The z terms are computed in f64 so that f ≫ n loses nothing.
 pub fn projection(mode: DepthMode, fov_y_deg: f32, aspect: f32, near: f32, far: f32) -> Mat4 {
-    let standard = Mat4::perspective_rh_gl(fov_y_deg.to_radians(), aspect.max(1e-6), near, far);
+    let standard = glam::camera::rh::proj::opengl::perspective(
+        fov_y_deg.to_radians(),
+        aspect.max(1e-6),
+        near,
+        far,
+    );
     if !mode.reversed() {
         return standard;
     }

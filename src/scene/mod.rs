@@ -3,8 +3,8 @@
 mod check;
 mod desc;
 mod file;
-mod places;
 pub mod game_object;
+mod places;
 pub mod shapes;
 
 pub use check::{Issue, MAX_DEPTH_RATIO};

@@ -83,6 +83,6 @@ pub fn shadow_matrix(f: &Frame) -> Mat4 {
     } else {
         Vec3::Y
     };
-    let view = Mat4::look_at_rh(center + dir * r * 2.0, center, up);
-    Mat4::orthographic_rh_gl(-r, r, -r, r, 0.01, r * 4.0) * view
+    let view = glam::camera::rh::view::look_at_mat4(center + dir * r * 2.0, center, up);
+    glam::camera::rh::proj::opengl::orthographic(-r, r, -r, r, 0.01, r * 4.0) * view
 }

@@ -1,6 +1,6 @@
 //! World-space triangle soup with an obvhs compressed wide BVH for ray queries.
 //!
-//! obvhs is built on a newer glam than this crate, so its vector types are never named here:
+//! obvhs shares this crate's glam version; its vector types are still never named here:
 //! values cross the boundary as `[f32; 3]` and `.into()` (type inference picks obvhs's `Vec3A`).
 //! The BVH only culls with f32 boxes; the triangle test itself runs in f64 so that the
 //! self-intersection offset (1e-4 m) stays far above the rounding error even on the
