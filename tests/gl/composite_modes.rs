@@ -1,6 +1,6 @@
 //! The composite options: the lesson's blend, tinted with a power, and AO on the ambient term only.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::ao::CompositeMode;

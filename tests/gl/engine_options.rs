@@ -1,7 +1,7 @@
 //! Engine options: AO targets created only when AO runs, reversed-Z depth, the automatic mip count
 //! of the engine's SAO, GTAO quality presets.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::render::View;

@@ -1,6 +1,6 @@
 //! The GL layer on real Mesa: context creation, every shader in Res/ builds, shader errors are clear.
 
-mod common;
+use crate::common;
 
 use glow::HasContext;
 use opengl3d::gl::preprocess::{decode_shader_bytes, TextEncoding};

@@ -1,6 +1,6 @@
 //! The `opengl3d` binary: headless renders, the window under Xvfb, and clear errors on bad input.
 
-mod common;
+use crate::common;
 
 use opengl3d::io::read_pfm;
 use opengl3d::scene::shapes;

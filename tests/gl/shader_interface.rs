@@ -1,7 +1,7 @@
 //! Every program the engine builds declares exactly the uniforms, locations and texture units that
 //! `opengl3d::shader_interface` lists (the one place Rust writes them).
 
-mod common;
+use crate::common;
 
 use opengl3d::gl::ProgramObject;
 use opengl3d::res::ResDirs;

@@ -3,9 +3,7 @@
 //! reference. Pixels are only checked where every point within R of the surface point projects
 //! inside the image (the depth buffer knows nothing outside it).
 
-mod common;
-
-use common::*;
+use crate::common::*;
 use glam::{Mat4, Vec3, Vec4};
 use opengl3d::math::Camera;
 use opengl3d::render::Engine;

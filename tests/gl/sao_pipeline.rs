@@ -1,6 +1,6 @@
 //! The lesson's SAO passes, each checked against an independent computation on the CPU.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::ao::{AoSettings, SaoLesson};

@@ -1,6 +1,6 @@
 //! No NaN or Inf in any buffer of the pipeline, whatever the scene and size.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::gl::mesh::MeshData;

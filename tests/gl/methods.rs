@@ -1,6 +1,6 @@
 //! Every AO method renders without NaN/Inf, leaves an open floor (nearly) alone and finds a crease.
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::ao::AoMethod;

@@ -1,7 +1,7 @@
 //! Inputs that never mislead: `--res` checks, `--obj` framing, scene-relative meshes, scene values
 //! with file:line:col errors, output paths, non-UTF-8 file names, and mesh loading in O(N).
 
-mod common;
+use crate::common;
 
 use glam::Vec3;
 use opengl3d::gl::mesh::{MeshBuffer, MeshData};

@@ -1,0 +1,19 @@
+//! Every GL test in one binary (one link instead of fourteen): real Mesa GL through EGL, no display.
+//! The window tests, which need Xvfb, are the other binary (`tests/window_panel.rs`).
+
+mod bench;
+mod bench_skips;
+mod cli;
+#[path = "../common/mod.rs"]
+mod common;
+mod composite_modes;
+mod engine_options;
+mod gl_basics;
+mod grade;
+mod inputs;
+mod methods;
+mod numerics;
+mod reference_analytic;
+mod reference_screen;
+mod sao_pipeline;
+mod shader_interface;
