@@ -89,7 +89,7 @@ fn utf16_encoding(bytes: &[u8]) -> Option<TextEncoding> {
         [0xFE, 0xFF, ..] => return Some(TextEncoding::Utf16Be),
         _ => {}
     }
-    if bytes.len() < 8 || bytes.len() % 2 != 0 {
+    if bytes.len() < 8 || !bytes.len().is_multiple_of(2) {
         return None;
     }
     let zeros_at = |parity: usize| {
@@ -199,7 +199,7 @@ pub fn format_compile_log_sources(path: &str, includes: &[PathBuf], log: &str) -
         // Mesa: "0:12(5): error: msg"; NVIDIA: "0(12) : error C0000: msg".
         let parsed = parse_mesa(line).or_else(|| parse_nvidia(line));
         let source: usize = line
-            .split(|c| c == ':' || c == '(')
+            .split([':', '('])
             .next()
             .and_then(|s| s.trim().parse().ok())
             .unwrap_or(0);
