@@ -28,15 +28,7 @@ fn demo() -> &'static (Vec<[Vec3; 3]>, Camera) {
         let path = res.find("scenes/demo.toml").expect("Res/scenes/demo.toml");
         let desc = SceneDesc::load(&path).expect("demo scene");
         let tris = desc.world_triangles(&res).expect("demo meshes");
-        let c = &desc.camera;
-        let cam = Camera {
-            eye: c.eye.into(),
-            target: c.target.into(),
-            up: Vec3::Y,
-            fov_y_deg: c.fov_y,
-            near: c.near,
-            far: c.far,
-        };
+        let cam = desc.camera.camera();
         (tris, cam)
     })
 }

@@ -15,7 +15,6 @@ use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use anyhow::{bail, Context as _, Result};
 use clap::{Parser, Subcommand};
-use glam::Vec3;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser, Debug)]
@@ -142,13 +141,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
     let scene = load_scene(&args.scene, res)?;
     let ctx = HeadlessContext::new()?;
-    let mut engine = Engine::new(
-        &ctx.gl,
-        res.clone(),
-        &scene,
-        scene.output.width,
-        scene.output.height,
-    )?;
+    let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
     engine.view = args.view;
     engine.collect_stats = args.stats;
     write_view(&mut engine, args.view, &args.out)?;
@@ -212,13 +205,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
         let ctx = HeadlessContext::new()?;
-        let mut engine = Engine::new(
-            &ctx.gl,
-            res.clone(),
-            &scene,
-            scene.output.width,
-            scene.output.height,
-        )?;
+        let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         engine.view = view;
         write_view(&mut engine, view, &args.out)?;
         println!("wrote {}", args.out.display());
@@ -239,15 +226,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     }
     let tris = scene.world_triangles(res)?;
     let bvh = Scene::new(tris)?;
-    let c = &scene.camera;
-    let cam = crate::math::Camera {
-        eye: c.eye.into(),
-        target: c.target.into(),
-        up: Vec3::Y,
-        fov_y_deg: c.fov_y,
-        near: c.near,
-        far: c.far,
-    };
+    let cam = scene.camera.camera();
     let params = RefParams {
         radius,
         rays: args.rays,
@@ -262,7 +241,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     let (w, h) = (scene.output.width, scene.output.height);
     let img = if args.screen_space {
         let ctx = HeadlessContext::new()?;
-        let mut engine = Engine::new(&ctx.gl, res.clone(), &scene, w, h)?;
+        let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {

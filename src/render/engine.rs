@@ -64,17 +64,6 @@ pub struct Engine {
     stats: RefCell<Vec<PassStat>>,
 }
 
-fn camera_of(scene: &SceneDesc) -> Camera {
-    Camera {
-        eye: Vec3::from(scene.camera.eye),
-        target: Vec3::from(scene.camera.target),
-        up: Vec3::Y,
-        fov_y_deg: scene.camera.fov_y,
-        near: scene.camera.near,
-        far: scene.camera.far,
-    }
-}
-
 impl Engine {
     /// Loads every shader and mesh of `scene` and creates targets of `width`×`height`.
     pub fn new(
@@ -86,7 +75,7 @@ impl Engine {
     ) -> Result<Engine> {
         scene.validate()?;
         let (width, height) = (width.max(1), height.max(1));
-        let camera = camera_of(scene);
+        let camera = scene.camera.camera();
         let (ao_settings, notes) = scene.ao.sanitized();
         for n in notes {
             log::warn!("{n}");
@@ -158,6 +147,11 @@ impl Engine {
         engine.configure_ao_targets()?;
         check_error(gl, "creating the engine")?;
         Ok(engine)
+    }
+
+    /// `new` at the scene's `[output]` size (headless renders).
+    pub fn at_output_size(gl: &Gl, res: ResDirs, scene: &SceneDesc) -> Result<Engine> {
+        Engine::new(gl, res, scene, scene.output.width, scene.output.height)
     }
 
     pub fn gl(&self) -> &Gl {

@@ -36,6 +36,20 @@ pub struct CameraDesc {
     pub near: f32,
     pub far: f32,
 }
+impl CameraDesc {
+    /// The camera this description places (+Y up).
+    pub fn camera(&self) -> crate::math::Camera {
+        crate::math::Camera {
+            eye: self.eye.into(),
+            target: self.target.into(),
+            up: glam::Vec3::Y,
+            fov_y_deg: self.fov_y,
+            near: self.near,
+            far: self.far,
+        }
+    }
+}
+
 impl Default for CameraDesc {
     fn default() -> Self {
         CameraDesc {

@@ -85,13 +85,13 @@ pub fn markdown(r: &StressReport) -> Result<String, fmt::Error> {
         s,
         "A plane facing the camera (60° fov) at a known distance z; the table gives restored − exact \
          distance in metres. **engine D32** is the engine itself (`render_values(View::LinearDepth)`: \
-         DEPTH_COMPONENT32 main depth, `sao_restore_depth.frag`). The **probe** columns come from a small \
-         stand-alone pipeline in `src/bench/depth_formats.rs` that draws the same plane into a depth \
-         texture of the named format and restores it with the same formula in GLSL (standard: \
-         `A / ((2d − 1) − B)`, GL [-1, 1] clip space, LEQUAL); reversed-Z uses \
-         `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`, DEPTH32F, GREATER, cleared to 0, restored with \
-         `n·f / (d·(f − n) + n)`. The engine itself has no option for its depth format: those columns \
-         are what such an option would give. Steps are the theoretical distance of one depth-buffer \
+         DEPTH_COMPONENT32 main depth, `sao_restore_depth.frag`). The **probe** columns come from `src/tools/bench/depth_formats.rs`, \
+         which reuses the engine's parts (its projection for the convention, `shadow.vert` drawing the \
+         same plane into a depth texture of the named format, and the engine's restore shader: \
+         `sao_restore_depth.frag`, `A / ((2d − 1) − B)`, GL [-1, 1] clip space, LEQUAL; reversed-Z \
+         `ao/restore_depth_reversed.frag`, `glClipControl(GL_LOWER_LEFT, GL_ZERO_TO_ONE)`, DEPTH32F, \
+         GEQUAL, cleared to 0, `n·f / (d·(f − n) + n)`). The engine's `--depth d32f-reversed` is the \
+         last column's convention. Steps are the theoretical distance of one depth-buffer \
          unit, quantisation only, without the f32 arithmetic of projection and restore (unorm: \
          z²(f − n)/(f·n)·2⁻ᴺ; D32F standard: 2⁻²³ of NDC; reversed D32F: d·2⁻²³ with d ≈ n/z). The \
          sample at 0.99·far can round onto the far plane and read back as sky (= far). \
