@@ -73,9 +73,11 @@ fn printed_verdict(out: &str) -> Option<Result<StepReport, String>> {
 
 /// The address space a step may use. The child runs a student's shader through Mesa: a huge array
 /// or an endless allocation in the compiler must fail the step, not exhaust the machine's memory
-/// (and get the grader or other processes killed). A step needs about 0.5 GiB of address space
-/// (llvmpipe's threads and their stacks, the LLVM code, a few small targets), so 2 GiB leaves room
-/// on machines with many cores while stopping a runaway shader long before a typical 8 GiB fills.
+/// (and get the grader or other processes killed). The SAO step peaked at 620 MiB of address space
+/// on a 2-core machine (the LLVM code, llvmpipe's threads and their stacks, small targets); more
+/// cores add a thread stack each, and glibc falls back to a shared heap when a thread's own cannot
+/// be reserved, so 2 GiB leaves room while stopping a runaway shader long before 8 GiB fill (all
+/// four steps run at once: 8 GiB at most).
 const STEP_ADDRESS_SPACE: u64 = 2 << 30;
 
 /// Runs in the forked child before it becomes `opengl3d grade-step`: only async-signal-safe calls.
