@@ -326,11 +326,16 @@ fn a_shader_over_one_mib_is_refused_by_name_and_size() {
 
 #[test]
 fn an_endless_loop_times_out_and_grading_goes_on() {
-    // Lesson step 6: restore and down-sampling (the project's files) and the student's SAO.
-    let run = grade(
-        Some(&mutant("sao-endless-loop")),
-        &["--json", "--lesson", "6", "--timeout", "6"],
-    );
+    // Lesson step 6: the restore and down-sampling listings, and an SAO that never ends.
+    let dir = temp_dir("grade-endless");
+    for (m, f) in [
+        ("listing-restore", "sao_restore_depth.frag"),
+        ("listing-down-sampling", "sao_down_sampling.frag"),
+        ("sao-endless-loop", "sao.frag"),
+    ] {
+        std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
+    }
+    let run = grade(Some(&dir), &["--json", "--lesson", "6", "--timeout", "6"]);
     let v = run.json();
     check_shape(&v);
     assert_eq!(v["passed"], false);
