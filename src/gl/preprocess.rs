@@ -1,9 +1,17 @@
 //! The one shader preprocessor, used by the engine and the grader: decodes the file (UTF-8, UTF-16,
 //! Shift-JIS), expands `#include "file"`, injects `#define`s after `#version` with `#line` so that
 //! compiler messages keep the file's line numbers, and maps driver logs back to `file:line:col`.
+//!
+//! Shaders may be a student's untrusted files (the grader runs them): an `#include` must stay in
+//! the including shader's folder, and a file over `MAX_SHADER_BYTES` is refused before it is read.
 
 use super::shader_error::ProgramError;
+use std::io::Read as _;
 use std::path::{Path, PathBuf};
+
+/// The largest shader file accepted. The course's biggest shader is about 10 kB; a file of
+/// megabytes is a mistake (or an attempt to make the compiler or the grader run out of memory).
+pub const MAX_SHADER_BYTES: u64 = 1 << 20;
 
 /// Decoded shader source with its path (for messages).
 #[derive(Clone, Debug)]
@@ -16,12 +24,28 @@ pub struct ShaderSource {
 }
 
 impl ShaderSource {
+    /// Reads and decodes `path`; a file over `MAX_SHADER_BYTES` is refused by its size before it
+    /// is read.
     pub fn load(path: &Path) -> Result<ShaderSource, ProgramError> {
         let shown = path.display().to_string();
-        let bytes = std::fs::read(path).map_err(|source| ProgramError::Io {
+        let io = |source| ProgramError::Io {
             path: shown.clone(),
             source,
-        })?;
+        };
+        let file = std::fs::File::open(path).map_err(io)?;
+        let size = file.metadata().map_err(io)?.len();
+        if size > MAX_SHADER_BYTES {
+            return Err(io(too_big(size)));
+        }
+        // The size on disk can lie (a device, a pipe, a file still growing): read at most one byte
+        // past the limit, so that nothing larger is ever held in memory.
+        let mut bytes = Vec::with_capacity(size as usize);
+        file.take(MAX_SHADER_BYTES + 1)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        if bytes.len() as u64 > MAX_SHADER_BYTES {
+            return Err(io(too_big(bytes.len() as u64)));
+        }
         let (text, encoding) =
             decode_shader_bytes(&bytes).ok_or(ProgramError::Encoding { path: shown })?;
         Ok(ShaderSource {
@@ -30,6 +54,17 @@ impl ShaderSource {
             encoding,
         })
     }
+}
+
+/// The error for a shader file of `size` bytes (or more), over the limit.
+fn too_big(size: u64) -> std::io::Error {
+    std::io::Error::new(
+        std::io::ErrorKind::InvalidData,
+        format!(
+            "the file is {size} bytes or more; shader files over {} bytes (1 MiB) are refused",
+            MAX_SHADER_BYTES
+        ),
+    )
 }
 
 /// The text encodings a shader file may come in (Windows editors save UTF-16 as "Unicode" and
@@ -119,6 +154,54 @@ pub fn include_target(line: &str) -> Option<&str> {
     (!name.is_empty()).then_some(name)
 }
 
+/// The file an `#include "name"` on line `line` (1-based) of `shader` names, checked to stay inside
+/// the shader's folder: no absolute path, no `..`, and, once symbolic links are followed, still
+/// below the folder. Only the paths are looked at: a refused target is never opened, so its text
+/// cannot leak into a message. A target that does not exist is an I/O error naming it.
+pub fn resolve_include(shader: &Path, line: usize, name: &str) -> Result<PathBuf, ProgramError> {
+    let dir = shader.parent().unwrap_or(Path::new("."));
+    let dir = if dir.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        dir
+    };
+    let refuse = |why: &str| {
+        let at = format!("{}:{line}", shader.display());
+        ProgramError::Compile {
+            messages: vec![format!(
+                "{at}: #include \"{name}\" {why}; an included file must be in the shader's \
+                 folder {} or below it",
+                dir.display()
+            )],
+            path: shader.display().to_string(),
+        }
+    };
+    // Both separators: a `..\` written on Windows must not slip through on Linux either.
+    let absolute = Path::new(name).is_absolute()
+        || name.starts_with(['/', '\\'])
+        || name.chars().nth(1) == Some(':');
+    if absolute {
+        return Err(refuse("is an absolute path"));
+    }
+    if name.split(['/', '\\']).any(|part| part == "..") {
+        return Err(refuse("goes up with '..'"));
+    }
+    let path = dir.join(name);
+    let io = |p: &Path| {
+        let shown = format!("{} (included at {}:{line})", p.display(), shader.display());
+        move |source| ProgramError::Io {
+            path: shown,
+            source,
+        }
+    };
+    let real_dir = dir.canonicalize().map_err(io(dir))?;
+    let real = path.canonicalize().map_err(io(&path))?;
+    if !real.starts_with(&real_dir) {
+        return Err(refuse("leads outside it through a symbolic link"));
+    }
+    Ok(path)
+}
+
 /// A float literal GLSL accepts, exact for f32 (Rust's shortest round-trip form plus a '.0' if needed).
 pub fn glsl_float(v: f32) -> String {
     let s = format!("{v:?}");
@@ -157,7 +240,7 @@ pub fn prepare_source_with_includes(
     for (i, line) in src.text.lines().enumerate() {
         let ascii = ascii_only(line);
         if let Some(name) = include_target(&ascii) {
-            let path = src.path.parent().unwrap_or(Path::new(".")).join(name);
+            let path = resolve_include(&src.path, i + 1, name)?;
             let inc = ShaderSource::load(&path)?;
             includes.push(path);
             out.push_str(&format!("#line 1 {}\n", includes.len()));
@@ -240,4 +323,82 @@ fn parse_nvidia(line: &str) -> Option<(u32, Option<u32>, String)> {
     let (head, msg) = line.split_once(") :")?;
     let (_, l) = head.split_once('(')?;
     Some((l.trim().parse().ok()?, None, msg.trim().to_string()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A fresh folder under the system's temporary folder.
+    fn scratch(name: &str) -> PathBuf {
+        let d =
+            std::env::temp_dir().join(format!("opengl3d-preprocess-{name}-{}", std::process::id()));
+        match std::fs::remove_dir_all(&d) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => panic!("{}: {e}", d.display()),
+            _ => {}
+        }
+        std::fs::create_dir_all(d.join("shaders/lib")).unwrap();
+        std::fs::write(d.join("secret.glsl"), "SECRET TEXT").unwrap();
+        std::fs::write(d.join("shaders/lib/ok.glsl"), "float ok;").unwrap();
+        d
+    }
+
+    /// Builds `shaders/s.frag` holding `include` on its line 3; the error text, or "" when it built.
+    fn build_with(root: &Path, include: &str) -> String {
+        let shader = root.join("shaders/s.frag");
+        std::fs::write(
+            &shader,
+            format!("#version 450\n\n{include}\nvoid main() {{}}\n"),
+        )
+        .unwrap();
+        let src = ShaderSource::load(&shader).unwrap();
+        match prepare_source_with_includes(&src, &[]) {
+            Ok(_) => String::new(),
+            Err(e) => e.to_string(),
+        }
+    }
+
+    #[test]
+    fn includes_out_of_the_shaders_folder_are_refused_unread() {
+        let root = scratch("escape");
+        let secret = root.join("secret.glsl");
+        std::os::unix::fs::symlink(&secret, root.join("shaders/link.glsl")).unwrap();
+        for include in [
+            format!("#include \"{}\"", secret.display()),
+            "#include \"/etc/passwd\"".to_string(),
+            "#include \"../secret.glsl\"".to_string(),
+            "#include \"lib/../../secret.glsl\"".to_string(),
+            "#include \"..\\secret.glsl\"".to_string(),
+            "#include \"link.glsl\"".to_string(),
+        ] {
+            let e = build_with(&root, &include);
+            assert!(e.contains("shaders/s.frag:3: #include"), "{include}: {e}");
+            assert!(e.contains("in the shader's folder"), "{include}: {e}");
+            assert!(
+                !e.contains("SECRET") && !e.contains("root:"),
+                "{include}: {e}"
+            );
+        }
+        assert_eq!(build_with(&root, "#include \"lib/ok.glsl\""), "");
+        let e = build_with(&root, "#include \"lib/none.glsl\"");
+        assert!(e.contains("lib/none.glsl (included at "), "{e}");
+        assert!(e.contains("shaders/s.frag:3)"), "{e}");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn a_shader_over_one_mib_is_refused_by_name_and_size() {
+        let root = scratch("big");
+        let big = root.join("big.frag");
+        let mut text = b"#version 450\n".to_vec();
+        text.resize(MAX_SHADER_BYTES as usize + 1, b' ');
+        std::fs::write(&big, &text).unwrap();
+        let e = ShaderSource::load(&big).unwrap_err().to_string();
+        assert!(e.contains("big.frag"), "{e}");
+        assert!(e.contains("1048577 bytes"), "{e}");
+        text.truncate(MAX_SHADER_BYTES as usize);
+        std::fs::write(&big, &text).unwrap();
+        assert!(ShaderSource::load(&big).is_ok(), "exactly 1 MiB is allowed");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
 }

@@ -53,7 +53,8 @@ fn grade(res: Option<&Path>, args: &[&str]) -> Run {
     }
 }
 
-/// The report must have exactly {"passed", "steps": [{"step", "file", "passed", "message"}]}.
+/// The report must have exactly {"passed", "steps": [{"step", "file", "passed", "submitted",
+/// "message"}]}.
 fn check_shape(v: &Value) {
     let top = v.as_object().expect("a JSON object");
     let mut keys: Vec<&str> = top.keys().map(String::as_str).collect();
@@ -64,8 +65,13 @@ fn check_shape(v: &Value) {
         let o = s.as_object().expect("each step is an object");
         let mut keys: Vec<&str> = o.keys().map(String::as_str).collect();
         keys.sort();
-        assert_eq!(keys, ["file", "message", "passed", "step"], "{s}");
+        assert_eq!(
+            keys,
+            ["file", "message", "passed", "step", "submitted"],
+            "{s}"
+        );
         assert!(o["passed"].is_boolean() && o["message"].is_string());
+        assert!(o["submitted"].is_boolean());
     }
 }
 
@@ -162,6 +168,8 @@ fails! {
     sao_reading_only_level_0_fails: "sao-level-0" => ["never reads the mip levels 1–3", "textureLod(texDepth, uv, mipLevel)"],
     sao_with_a_squared_falloff_fails: "sao-falloff-squared" => ["f·f·f", "fades too slowly"],
     sao_with_a_compile_error_names_file_and_line: "sao-compile-error" => ["does not compile", "sao-compile-error/sao.frag:83:"],
+    sao_including_an_absolute_path_is_refused_unread: "sao-include-absolute" => ["sao-include-absolute/sao.frag:3: #include \"/etc/passwd\" is an absolute path"],
+    sao_including_from_above_its_folder_is_refused_unread: "sao-include-parent" => ["sao-include-parent/sao.frag:3: #include \"../rewrite-sao-include/sao_helpers.glsl\" goes up with '..'"],
     blur_without_normalisation_fails: "blur-no-normalise" => ["not normalised", "totalWeight"],
     blur_without_the_edge_weight_fails: "blur-no-edge-weight" => ["across a depth edge"],
 }
@@ -215,7 +223,71 @@ fn a_student_with_every_listing_passes_and_gets_pictures() {
 }
 
 #[test]
-fn missing_files_use_the_projects_and_lesson_selects_the_steps() {
+fn an_empty_folder_passes_nothing() {
+    let dir = temp_dir("grade-empty");
+    let run = grade(Some(&dir), &["--json"]);
+    let v = run.json();
+    check_shape(&v);
+    assert_eq!(run.code, Some(1), "{v}");
+    assert_eq!(v["passed"], false);
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 4);
+    for s in steps {
+        let file = s["file"].as_str().unwrap();
+        assert_eq!(s["passed"], false, "{s}");
+        assert_eq!(s["submitted"], false, "{s}");
+        let message = s["message"].as_str().unwrap();
+        assert_eq!(
+            message,
+            format!("not submitted: no {file} in {}", dir.display())
+        );
+    }
+    // The text report too: no PASS line.
+    let run = grade(Some(&dir), &[]);
+    assert_eq!(run.code, Some(1));
+    assert!(!run.stdout.contains("PASS"), "{}", run.stdout);
+    assert_eq!(run.stdout.matches("FAIL").count(), 4, "{}", run.stdout);
+}
+
+#[test]
+fn a_folder_named_like_the_shader_is_not_a_submission() {
+    let dir = temp_dir("grade-folder-named-sao");
+    std::fs::create_dir_all(dir.join("sao.frag")).unwrap();
+    let run = grade(Some(&dir), &["--json", "--step", "sao"]);
+    let v = run.json();
+    check_shape(&v);
+    assert_eq!(run.code, Some(1));
+    let s = &v["steps"][0];
+    assert_eq!(
+        (&s["passed"], &s["submitted"]),
+        (&false.into(), &false.into())
+    );
+    let message = s["message"].as_str().unwrap();
+    assert!(message.starts_with("not submitted: "), "{message}");
+    assert!(message.contains("sao.frag is a folder"), "{message}");
+}
+
+#[test]
+fn a_misnamed_file_is_not_submitted_and_named() {
+    let dir = temp_dir("grade-misnamed");
+    std::fs::copy(
+        mutant("listing-sao").join("sao.frag"),
+        dir.join("Sao.frag.txt"),
+    )
+    .unwrap();
+    let run = grade(Some(&dir), &["--json", "--step", "sao"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1));
+    assert_eq!(v["steps"][0]["submitted"], false);
+    let message = v["steps"][0]["message"].as_str().unwrap();
+    assert!(
+        message.contains("found Sao.frag.txt: rename it to sao.frag"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_partial_folder_grades_only_what_was_submitted() {
     // Lesson step 4 needs the restore and down-sampling shaders; the student has only the first.
     let dir = temp_dir("grade-partial");
     std::fs::copy(
@@ -223,33 +295,47 @@ fn missing_files_use_the_projects_and_lesson_selects_the_steps() {
         dir.join("sao_restore_depth.frag"),
     )
     .unwrap();
-    let run = grade(Some(&dir), &["--lesson", "4"]);
-    assert_eq!(run.code, Some(0), "{}{}", run.stdout, run.stderr);
-    let verdicts: Vec<&str> = run
-        .stdout
-        .lines()
-        .filter(|l| l.starts_with("PASS ") || l.starts_with("FAIL "))
-        .collect();
-    assert_eq!(verdicts.len(), 2, "{}", run.stdout);
-    assert!(
-        verdicts[0].starts_with("PASS sao_restore_depth.frag: "),
-        "{}",
-        run.stdout
-    );
-    assert!(
-        verdicts[1].starts_with("PASS sao_down_sampling.frag: (using the project's file)"),
-        "{}",
-        run.stdout
-    );
+    let run = grade(Some(&dir), &["--json", "--lesson", "4"]);
+    let v = run.json();
+    check_shape(&v);
+    assert_eq!(run.code, Some(1), "{v}");
+    let steps = v["steps"].as_array().unwrap();
+    assert_eq!(steps.len(), 2);
+    assert_eq!(steps[0]["step"], "restore");
+    assert_eq!(steps[0]["passed"], true, "{v}");
+    assert_eq!(steps[0]["submitted"], true, "{v}");
+    assert_eq!(steps[1]["step"], "down-sampling");
+    assert_eq!(steps[1]["passed"], false, "{v}");
+    assert_eq!(steps[1]["submitted"], false, "{v}");
+}
+
+#[test]
+fn a_shader_over_one_mib_is_refused_by_name_and_size() {
+    let dir = temp_dir("grade-huge-file");
+    let mut text = std::fs::read(mutant("listing-sao").join("sao.frag")).unwrap();
+    text.resize(1 << 21, b'\n');
+    std::fs::write(dir.join("sao.frag"), &text).unwrap();
+    let run = grade(Some(&dir), &["--json", "--step", "sao"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1));
+    let message = v["steps"][0]["message"].as_str().unwrap();
+    assert!(message.contains("grade-huge-file"), "{message}");
+    assert!(message.contains("sao.frag"), "{message}");
+    assert!(message.contains("2097152 bytes"), "{message}");
 }
 
 #[test]
 fn an_endless_loop_times_out_and_grading_goes_on() {
-    // Lesson step 6: restore and down-sampling (the project's files) and the student's SAO.
-    let run = grade(
-        Some(&mutant("sao-endless-loop")),
-        &["--json", "--lesson", "6", "--timeout", "6"],
-    );
+    // Lesson step 6: the restore and down-sampling listings, and an SAO that never ends.
+    let dir = temp_dir("grade-endless");
+    for (m, f) in [
+        ("listing-restore", "sao_restore_depth.frag"),
+        ("listing-down-sampling", "sao_down_sampling.frag"),
+        ("sao-endless-loop", "sao.frag"),
+    ] {
+        std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
+    }
+    let run = grade(Some(&dir), &["--json", "--lesson", "6", "--timeout", "6"]);
     let v = run.json();
     check_shape(&v);
     assert_eq!(v["passed"], false);
@@ -270,6 +356,11 @@ fn bad_arguments_are_errors() {
     assert!(run.stderr.contains("no lesson step 13"), "{}", run.stderr);
     let missing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-such-student-folder");
     let run = grade(Some(&missing), &[]);
+    assert_ne!(run.code, Some(0));
+    assert!(run.stderr.contains("not a folder"), "{}", run.stderr);
+    assert!(!run.stdout.contains("PASS"), "{}", run.stdout);
+    let file = mutant("listing-sao").join("sao.frag");
+    let run = grade(Some(&file), &[]);
     assert_ne!(run.code, Some(0));
     assert!(run.stderr.contains("not a folder"), "{}", run.stderr);
 }

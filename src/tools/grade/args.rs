@@ -47,7 +47,8 @@ pub struct GradeArgs {
     /// Grade only these steps (comma-separated or repeated); overrides --lesson.
     #[arg(long, value_enum, value_delimiter = ',')]
     pub step: Vec<Step>,
-    /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "message"}]}.
+    /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "submitted",
+    /// "message"}]}.
     #[arg(long)]
     pub json: bool,
     /// Folder for expected/actual/difference PNGs of each step.

@@ -4,6 +4,7 @@
 use super::args::Step;
 use super::report::StepReport;
 use std::io::Read;
+use std::os::unix::process::CommandExt as _;
 use std::process::{Command, ExitStatus, Stdio};
 use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
@@ -70,12 +71,52 @@ fn printed_verdict(out: &str) -> Option<Result<StepReport, String>> {
     )
 }
 
+/// The address space a step may use. The child runs a student's shader through Mesa: a huge array
+/// or an endless allocation in the compiler must fail the step, not exhaust the machine's memory
+/// (and get the grader or other processes killed). The SAO step peaked at 620 MiB of address space
+/// on a 2-core machine (the LLVM code, llvmpipe's threads and their stacks, small targets); more
+/// cores add a thread stack each, and glibc falls back to a shared heap when a thread's own cannot
+/// be reserved, so 2 GiB leaves room while stopping a runaway shader long before 8 GiB fill (all
+/// four steps run at once: 8 GiB at most).
+const STEP_ADDRESS_SPACE: u64 = 2 << 30;
+
+/// Runs in the forked child before it becomes `opengl3d grade-step`: only async-signal-safe calls.
+/// Limits its memory, and asks the kernel to kill it when the grader dies (else an endless shader
+/// would run on after a Ctrl-C).
+fn confine_step(grader: libc::pid_t) -> std::io::Result<()> {
+    let limit = libc::rlimit {
+        rlim_cur: STEP_ADDRESS_SPACE as libc::rlim_t,
+        rlim_max: STEP_ADDRESS_SPACE as libc::rlim_t,
+    };
+    // SAFETY: plain system calls on this process, with valid arguments.
+    unsafe {
+        if libc::setrlimit(libc::RLIMIT_AS, &limit) != 0
+            || libc::prctl(libc::PR_SET_PDEATHSIG, libc::SIGKILL as libc::c_ulong) != 0
+        {
+            return Err(std::io::Error::last_os_error());
+        }
+        // The grader may have died before the line above: then nobody would kill us.
+        if libc::getppid() != grader {
+            libc::_exit(1);
+        }
+    }
+    Ok(())
+}
+
 impl Child {
-    /// Starts `cmd` (the hidden `grade-step` command for `step`) with its output piped.
+    /// Starts `cmd` (the hidden `grade-step` command for `step`) with its output piped, in a
+    /// process group of its own (so that the time limit kills it and anything it started), with a
+    /// memory limit, and bound to die with the grader.
     pub fn spawn(mut cmd: Command, step: Step) -> std::io::Result<Child> {
         cmd.stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::piped());
+            .stderr(Stdio::piped())
+            .process_group(0);
+        let grader = std::process::id() as libc::pid_t;
+        // SAFETY: `confine_step` only makes async-signal-safe system calls and allocates nothing.
+        unsafe {
+            cmd.pre_exec(move || confine_step(grader));
+        }
         let mut child = cmd.spawn()?;
         let stdout = drain(child.stdout.take());
         let stderr = drain(child.stderr.take());
@@ -124,9 +165,16 @@ impl Child {
             match self.child.try_wait() {
                 Ok(Some(status)) => return Ok(Some(status)),
                 Ok(None) if self.started.elapsed() >= timeout => {
-                    self.child
-                        .kill()
-                        .map_err(|e| format!("cannot stop the step after its time limit: {e}"))?;
+                    // The whole group: the step is its leader (`process_group(0)`), and not yet
+                    // waited for, so its id still names the group.
+                    let group = -(self.child.id() as libc::pid_t);
+                    // SAFETY: a plain system call.
+                    if unsafe { libc::kill(group, libc::SIGKILL) } != 0 {
+                        return Err(format!(
+                            "cannot stop the step after its time limit: {}",
+                            std::io::Error::last_os_error()
+                        ));
+                    }
                     self.child
                         .wait()
                         .map_err(|e| format!("cannot wait for the stopped step: {e}"))?;
@@ -163,7 +211,7 @@ mod tests {
 
     #[test]
     fn the_last_json_line_is_the_verdict() {
-        let out = "noise\n{\"step\":\"sao\",\"file\":\"sao.frag\",\"passed\":true,\"message\":\"ok\"}\n\n";
+        let out = "noise\n{\"step\":\"sao\",\"file\":\"sao.frag\",\"passed\":true,\"submitted\":true,\"message\":\"ok\"}\n\n";
         let r = printed_verdict(out)
             .expect("a verdict line")
             .expect("a verdict");

@@ -9,21 +9,25 @@
 //! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input: RMSE, edges kept, flat surfaces smoothed, mean kept |
 //!
 //! Each step is graded on its own, from the project's inputs (a broken restore pass does not fail the
-//! SAO step). A step whose file is missing from the student's folder is graded on the project's file
-//! and says so. `--lesson N` grades the files lesson step N needs (the same as `opengl3d lesson N`:
-//! steps 1–3 the restore pass, 4–5 also down-sampling, 6–10 also SAO, 11–12 all four); `--step`
-//! picks steps by name.
+//! SAO step). With `--res DIR`, a step whose file is missing from DIR (or misnamed, a folder, a
+//! link out of DIR, unreadable) fails as "not submitted" (`submitted: false` in `--json`): it is
+//! never graded on the project's file. Without `--res` the project grades its own files.
+//! `--lesson N` grades the files lesson step N needs (the same as `opengl3d lesson N`: steps 1–3
+//! the restore pass, 4–5 also down-sampling, 6–10 also SAO, 11–12 all four); `--step` picks steps
+//! by name.
 //!
 //! Every step runs in a child process (`opengl3d grade-step STEP`, hidden) with a time limit, so a
-//! shader that never ends, or a driver crash, fails that step and grading goes on. The child prints
-//! one JSON object on stdout. Both the student's and the project's passes render into R32F targets
-//! (the engine's are R8), so an output that is not normalised shows its real size.
+//! shader that never ends, or a driver crash, fails that step and grading goes on. The child has
+//! its own process group (the time limit kills all of it), a memory limit, and dies with the
+//! grader. The child prints one JSON object on stdout. Both the student's and the project's passes
+//! render into R32F targets (the engine's are R8), so an output that is not normalised shows its
+//! real size.
 //!
 //! Files: `args` (command line, `Step`), `run` (the grader) with `child` (one step's process) and
-//! `report`; `run_step` (the child) with `staging` (the private copy), `rig` (GL context and both
-//! sides' passes), `passes` (running them), `steps/` (one file per step), `measure` (shared
-//! statistics), `tol` (every tolerance, with what it was measured against); `scene` and `picture`
-//! (the SAO scenes and the PNGs).
+//! `report`; `submission` (finding the student's file); `run_step` (the child) with `staging` (the
+//! private copy), `rig` (GL context and both sides' passes), `passes` (running them), `steps/` (one
+//! file per step), `measure` (shared statistics), `tol` (every tolerance, with what it was measured
+//! against); `scene` and `picture` (the SAO scenes and the PNGs).
 
 mod args;
 mod child;
@@ -37,6 +41,7 @@ mod run_step;
 pub mod scene;
 mod staging;
 mod steps;
+mod submission;
 mod tol;
 
 pub use args::{selected_steps, GradeArgs, GradeStepArgs, Step};

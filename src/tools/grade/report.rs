@@ -12,6 +12,8 @@ pub struct StepReport {
     pub step: String,
     pub file: String,
     pub passed: bool,
+    /// False when the student's folder has no usable file for the step (`message` says why).
+    pub submitted: bool,
     pub message: String,
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub metrics: BTreeMap<String, f64>,
@@ -24,8 +26,17 @@ impl StepReport {
             step: step.name().into(),
             file: step.file().into(),
             passed: false,
+            submitted: true,
             message,
             metrics: BTreeMap::new(),
+        }
+    }
+
+    /// The failing verdict of a step whose file is not in the student's folder, and why.
+    pub fn not_submitted(step: Step, reason: &str) -> StepReport {
+        StepReport {
+            submitted: false,
+            ..StepReport::failed(step, format!("not submitted: {reason}"))
         }
     }
 }
@@ -35,6 +46,7 @@ struct PublicStep<'a> {
     step: &'a str,
     file: &'a str,
     passed: bool,
+    submitted: bool,
     message: &'a str,
 }
 
@@ -45,7 +57,7 @@ struct PublicReport<'a> {
 }
 
 /// The JSON the grader prints with `--json`: {"passed", "steps": [{"step", "file", "passed",
-/// "message"}]}.
+/// "submitted", "message"}]}.
 pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
     serde_json::to_string(&PublicReport {
         passed: reports.iter().all(|r| r.passed),
@@ -55,6 +67,7 @@ pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
                 step: &r.step,
                 file: &r.file,
                 passed: r.passed,
+                submitted: r.submitted,
                 message: &r.message,
             })
             .collect(),

@@ -4,14 +4,31 @@
 use super::args::{selected_steps, GradeArgs};
 use super::child::Child;
 use super::report::{self, StepReport};
+use super::submission;
 use crate::res::{project_res_dir, ResDirs};
 use anyhow::{bail, Context as _, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
 
+/// The children's private folder, removed when the grader leaves `run`, whatever happens (a step
+/// killed at its time limit leaves its copy behind; a panic unwinds through here too).
+struct WorkDir(PathBuf);
+
+impl Drop for WorkDir {
+    fn drop(&mut self) {
+        // The verdicts stand whatever happens to the copies: a folder left behind is only reported.
+        match std::fs::remove_dir_all(&self.0) {
+            Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+                eprintln!("warning: cannot remove {}: {e}", self.0.display())
+            }
+            _ => {}
+        }
+    }
+}
+
 /// A fresh private folder for the children's copies of the graded files.
-fn work_dir() -> Result<PathBuf> {
+fn work_dir() -> Result<WorkDir> {
     // The pid alone keeps concurrent graders apart; the clock only guards against a reused pid, so a
     // clock set before 1970 just leaves it out.
     let nanos = std::time::SystemTime::now()
@@ -21,15 +38,17 @@ fn work_dir() -> Result<PathBuf> {
     let work = std::env::temp_dir().join(format!("opengl3d-grade-{}-{nanos}", std::process::id()));
     std::fs::create_dir_all(&work)
         .with_context(|| format!("cannot create folder {}", work.display()))?;
-    Ok(work)
+    Ok(WorkDir(work))
 }
 
 /// Grades the shaders found through `res`; returns the process exit code (0: every step passed).
 pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i32> {
     let steps = selected_steps(args)?;
     if let Some(dir) = student {
-        if !dir.is_dir() {
-            bail!("--res {}: not a folder", dir.display());
+        match std::fs::metadata(dir) {
+            Ok(m) if m.is_dir() => {}
+            Ok(_) => bail!("--res {}: not a folder", dir.display()),
+            Err(e) => bail!("--res {}: not a folder ({e})", dir.display()),
         }
     }
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
@@ -54,6 +73,11 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     let mut children = Vec::new();
     let mut reports = Vec::new();
     for &s in &steps {
+        // A step with nothing to grade needs no child.
+        if let Some(Err(reason)) = student.map(|d| submission::find(d, s)) {
+            reports.push(Some(StepReport::not_submitted(s, &reason)));
+            continue;
+        }
         let mut cmd = Command::new(&exe);
         if let Some(d) = student {
             cmd.arg("--res").arg(d);
@@ -61,7 +85,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         cmd.arg("grade-step")
             .arg(s.name())
             .arg("--work")
-            .arg(work.join(s.name()));
+            .arg(work.0.join(s.name()));
         if let Some(out) = &args.out {
             cmd.arg("--out").arg(out);
         }
@@ -80,10 +104,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     for (i, c) in children {
         reports[i] = Some(c.finish(timeout));
     }
-    // The verdicts stand whatever happens to the copies: a folder left behind is only reported.
-    if let Err(e) = std::fs::remove_dir_all(&work) {
-        eprintln!("warning: cannot remove {}: {e}", work.display());
-    }
+    drop(work);
     let reports: Vec<StepReport> = reports.into_iter().flatten().collect();
     let passed = reports.iter().all(|r| r.passed);
     if args.verbose {

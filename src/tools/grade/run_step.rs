@@ -8,6 +8,7 @@ use super::report::StepReport;
 use super::rig::{build_rig, Subject, Verdict};
 use super::staging::stage;
 use super::steps;
+use super::submission;
 use crate::ao::AoSettings;
 use crate::math::Camera;
 use crate::res::project_res_dir;
@@ -45,14 +46,23 @@ fn grade(step: Step, subject: &Subject, project_res: &Path) -> Verdict {
 pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
     let project = project_res_dir();
     let step = args.step;
-    let from_student = student.map(|d| d.join(step.file())).filter(|p| p.is_file());
-    let using_project = student.is_some() && from_student.is_none();
-    let file = from_student
-        .clone()
-        .unwrap_or_else(|| project.join(step.file()));
+    // Without --res the project grades its own files; with it, only the student's count.
+    let file = match student {
+        None => project.join(step.file()),
+        Some(dir) => match submission::find(dir, step) {
+            Ok(file) => file,
+            Err(reason) => {
+                println!(
+                    "{}",
+                    serde_json::to_string(&StepReport::not_submitted(step, &reason))?
+                );
+                return Ok(());
+            }
+        },
+    };
     let mut report = StepReport::failed(step, String::new());
     match stage(&file, &args.work) {
-        Err(e) => report.message = format!("cannot read {}: {e:#}", file.display()),
+        Err(e) => report.message = format!("{e:#}"),
         Ok(_) => {
             let shown = file.parent().unwrap_or(Path::new("")).to_path_buf();
             let subject = Subject {
@@ -74,9 +84,6 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
                 }
             }
         }
-    }
-    if using_project {
-        report.message = format!("(using the project's file) {}", report.message);
     }
     // The verdict stands whatever happens to the copy: a folder left behind is only reported.
     if let Err(e) = std::fs::remove_dir_all(&args.work) {

@@ -1,13 +1,15 @@
 //! Staging: copying the graded file, and the files it `#include`s, into the step's private folder,
 //! so that only this one file of the student's is used.
 
-use crate::gl::preprocess::include_target;
-use anyhow::{Context as _, Result};
-use std::path::{Component, Path, PathBuf};
+use crate::gl::preprocess::{include_target, resolve_include, ShaderSource, MAX_SHADER_BYTES};
+use crate::gl::ProgramError;
+use anyhow::{bail, Context as _, Result};
+use std::io::Read as _;
+use std::path::{Path, PathBuf};
 
 /// Copies `file` into a fresh `dir`, with the files it `#include`s (resolved next to it, as the
-/// engine does), keeping their relative paths. A missing include is not an error here: building the
-/// shader reports it with file:line.
+/// engine does, and refused when they lead out of its folder), keeping their relative paths. A
+/// missing include is not an error here: building the shader reports it with file:line.
 pub fn stage(file: &Path, dir: &Path) -> Result<PathBuf> {
     match std::fs::remove_dir_all(dir) {
         Ok(()) => {}
@@ -19,34 +21,50 @@ pub fn stage(file: &Path, dir: &Path) -> Result<PathBuf> {
         .file_name()
         .with_context(|| format!("{} names no file", file.display()))?;
     let to = dir.join(name);
+    // Loading checks the size and the encoding, naming the student's file.
+    let source = ShaderSource::load(file)?;
     copy(file, &to)?;
-    let bytes = std::fs::read(file).with_context(|| format!("cannot read {}", file.display()))?;
-    let from_dir = file.parent().unwrap_or(Path::new("."));
-    for name in String::from_utf8_lossy(&bytes)
-        .lines()
-        .filter_map(include_target)
-    {
-        let rel = Path::new(name);
-        // Only paths below the shader's folder: the copy must stay inside `dir`.
-        if rel.is_absolute() || rel.components().any(|c| !matches!(c, Component::Normal(_))) {
+    for (i, line) in source.text.lines().enumerate() {
+        let Some(name) = include_target(line) else {
             continue;
+        };
+        let src = match resolve_include(file, i + 1, name) {
+            Ok(src) => src,
+            Err(ProgramError::Io { .. }) => continue,
+            Err(refused) => return Err(refused.into()),
+        };
+        let dst = dir.join(name);
+        if let Some(parent) = dst.parent() {
+            std::fs::create_dir_all(parent)
+                .with_context(|| format!("cannot create {}", parent.display()))?;
         }
-        let (src, dst) = (from_dir.join(rel), dir.join(rel));
-        if src.is_file() {
-            if let Some(parent) = dst.parent() {
-                std::fs::create_dir_all(parent)
-                    .with_context(|| format!("cannot create {}", parent.display()))?;
-            }
-            copy(&src, &dst)?;
-        }
+        copy(&src, &dst)?;
     }
     Ok(to)
 }
 
+/// Copies a file of at most `MAX_SHADER_BYTES` (a larger one, or one that is not a plain file, is
+/// refused before it is copied: building the copy would refuse it anyway).
 fn copy(from: &Path, to: &Path) -> Result<()> {
-    std::fs::copy(from, to)
-        .map(|_| ())
-        .with_context(|| format!("cannot copy {} to {}", from.display(), to.display()))
+    let file =
+        std::fs::File::open(from).with_context(|| format!("cannot read {}", from.display()))?;
+    let meta = file
+        .metadata()
+        .with_context(|| format!("cannot read {}", from.display()))?;
+    if !meta.is_file() {
+        bail!("{}: not a plain file", from.display());
+    }
+    let mut bytes = Vec::new();
+    file.take(MAX_SHADER_BYTES + 1)
+        .read_to_end(&mut bytes)
+        .with_context(|| format!("cannot read {}", from.display()))?;
+    if bytes.len() as u64 > MAX_SHADER_BYTES {
+        bail!(
+            "{}: over {MAX_SHADER_BYTES} bytes (1 MiB); shader files that big are refused",
+            from.display()
+        );
+    }
+    std::fs::write(to, bytes).with_context(|| format!("cannot write {}", to.display()))
 }
 
 #[cfg(test)]
@@ -87,7 +105,7 @@ mod tests {
         let shader = student.join("sao.frag");
         std::fs::write(
             &shader,
-            "#version 450\n#include \"lib/h.glsl\"\n#include \"../outside.glsl\"\n#include \"missing.glsl\"\n",
+            "#version 450\n#include \"lib/h.glsl\"\n#include \"missing.glsl\"\n",
         )
         .unwrap();
         let work = root.join("a/work");
@@ -103,10 +121,6 @@ mod tests {
             !work.join("stale.frag").exists(),
             "the folder is emptied first"
         );
-        assert!(
-            !root.join("a/outside.glsl").exists(),
-            "nothing is copied above the folder"
-        );
         assert!(!work.join("missing.glsl").exists());
         let mut names: Vec<_> = std::fs::read_dir(&work)
             .unwrap()
@@ -114,6 +128,26 @@ mod tests {
             .collect();
         names.sort();
         assert_eq!(names, ["lib", "sao.frag"]);
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn an_include_out_of_the_folder_is_refused_without_copying_it() {
+        let root = scratch("out");
+        let student = root.join("student");
+        std::fs::create_dir_all(&student).unwrap();
+        std::fs::write(root.join("outside.glsl"), "SECRET TEXT").unwrap();
+        let shader = student.join("sao.frag");
+        std::fs::write(&shader, "#version 450\n\n#include \"../outside.glsl\"\n").unwrap();
+        let work = root.join("work");
+        let e = format!("{:#}", stage(&shader, &work).unwrap_err());
+        assert!(e.contains("student/sao.frag:3"), "{e}");
+        assert!(!e.contains("SECRET"), "{e}");
+        let names: Vec<_> = std::fs::read_dir(&work)
+            .unwrap()
+            .map(|e| e.unwrap().file_name().into_string().unwrap())
+            .collect();
+        assert_eq!(names, ["sao.frag"], "nothing but the shader is copied");
         std::fs::remove_dir_all(&root).unwrap();
     }
 
