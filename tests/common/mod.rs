@@ -110,3 +110,24 @@ pub fn assert_finite(label: &str, data: &[f32]) {
         data.len()
     );
 }
+
+/// World-space surface point of every non-sky pixel: (pixel index, point).
+pub fn surface_points(
+    img: &opengl3d::tools::reference::RefImage,
+    cam: &opengl3d::math::Camera,
+) -> Vec<(usize, Vec3)> {
+    let fwd = opengl3d::tools::reference::view_direction(cam);
+    let mut out = Vec::new();
+    for y in 0..img.height {
+        for x in 0..img.width {
+            let i = img.index(x, y);
+            let depth = img.linear_depth[i];
+            if depth.is_finite() {
+                let dir = opengl3d::tools::reference::pixel_dir(cam, x, y, img.width, img.height)
+                    .unwrap();
+                out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
+            }
+        }
+    }
+    out
+}

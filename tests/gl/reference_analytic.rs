@@ -8,11 +8,12 @@
 
 use std::f64::consts::PI;
 
+use crate::common::surface_points;
 use glam::Vec3;
 use opengl3d::math::Camera;
 use opengl3d::tools::reference::{
-    cache_key, cache_path, load_or_render_cached, pixel_dir, read_cached, render_reference,
-    view_direction, write_cached, AoVariant, RefImage, RefParams, Scene,
+    cache_key, cache_path, load_or_render_cached, read_cached, render_reference, write_cached,
+    AoVariant, RefImage, RefParams, Scene,
 };
 
 /// Two triangles covering the parallelogram a, b, c, a + c - b.
@@ -51,23 +52,6 @@ fn params(radius: f32, rays: u32, variant: AoVariant) -> RefParams {
         seed: 12345,
         progress: false,
     }
-}
-
-/// World-space surface point of every non-sky pixel: (pixel index, point).
-fn surface_points(img: &RefImage, cam: &Camera) -> Vec<(usize, Vec3)> {
-    let fwd = view_direction(cam);
-    let mut out = Vec::new();
-    for y in 0..img.height {
-        for x in 0..img.width {
-            let i = img.index(x, y);
-            let depth = img.linear_depth[i];
-            if depth.is_finite() {
-                let dir = pixel_dir(cam, x, y, img.width, img.height).unwrap();
-                out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
-            }
-        }
-    }
-    out
 }
 
 /// Compares the render with `exact(point)` (see the module docs). `slack` covers the

@@ -10,8 +10,8 @@ use opengl3d::render::Engine;
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::reference::{
-    load_or_render_cached, load_or_render_screen_cached, pixel_dir, render_screen_space,
-    screen_cache_key, view_direction, AoVariant, DepthBuffer, RefImage, RefParams, Scene,
+    load_or_render_cached, load_or_render_screen_cached, render_screen_space, screen_cache_key,
+    AoVariant, DepthBuffer, RefImage, RefParams, Scene,
 };
 use std::f64::consts::PI;
 
@@ -30,23 +30,6 @@ fn ref_camera(e: &Engine) -> Camera {
         up: Vec3::Y,
         ..e.camera
     }
-}
-
-/// World-space surface point of every non-sky pixel: (pixel index, point).
-fn surface_points(img: &RefImage, cam: &Camera) -> Vec<(usize, Vec3)> {
-    let fwd = view_direction(cam);
-    let mut out = Vec::new();
-    for y in 0..img.height {
-        for x in 0..img.width {
-            let i = img.index(x, y);
-            let depth = img.linear_depth[i];
-            if depth.is_finite() {
-                let dir = pixel_dir(cam, x, y, img.width, img.height).unwrap();
-                out.push((i, cam.eye + dir * (depth / dir.dot(fwd))));
-            }
-        }
-    }
-    out
 }
 
 /// Whether the cube of half-side `r` around `p` (and so the ball of radius r) projects inside
