@@ -11,6 +11,7 @@ mod engine_options;
 mod gl_basics;
 mod grade;
 mod inputs;
+mod lessons_ja;
 mod methods;
 mod numerics;
 mod reference_analytic;

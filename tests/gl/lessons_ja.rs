@@ -1,0 +1,184 @@
+//! The Japanese lessons (`lessons/ja/`) stay in step with the English ones: the same pages, the same
+//! heading structure, the same code blocks (every checkpoint command and listing, verbatim) and the same
+//! images; `README.ja.md` and `README.md` link each other.
+
+use std::collections::BTreeSet;
+use std::path::{Component, Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Markdown pages below `dir` (relative paths), skipping `skip` folders.
+fn pages(dir: &Path, skip: &str) -> BTreeSet<PathBuf> {
+    let mut out = BTreeSet::new();
+    let mut stack = vec![dir.to_path_buf()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap_or_else(|e| panic!("{}: {e}", d.display())) {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                if p.file_name().is_some_and(|n| n != skip) {
+                    stack.push(p);
+                }
+            } else if p.extension().is_some_and(|x| x == "md") {
+                out.insert(p.strip_prefix(dir).unwrap().to_path_buf());
+            }
+        }
+    }
+    out
+}
+
+/// What must agree between a page and its translation.
+#[derive(Debug, Default)]
+struct Outline {
+    /// Heading levels, in order.
+    headings: Vec<usize>,
+    /// Fenced code blocks, verbatim.
+    code: Vec<String>,
+    /// Image targets resolved against the page's folder, in order.
+    images: Vec<PathBuf>,
+}
+
+/// `a/b/../c` → `a/c` without touching the file system.
+fn normalise(p: &Path) -> PathBuf {
+    let mut out = PathBuf::new();
+    for c in p.components() {
+        match c {
+            Component::ParentDir => {
+                out.pop();
+            }
+            Component::CurDir => {}
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+fn outline(file: &Path) -> Outline {
+    let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let dir = file.parent().unwrap();
+    let mut o = Outline::default();
+    let mut fence: Option<(String, String)> = None;
+    for line in text.lines() {
+        let t = line.trim_start();
+        if let Some((marker, body)) = &mut fence {
+            if t.starts_with(marker.as_str()) {
+                o.code.push(std::mem::take(body));
+                fence = None;
+            } else {
+                body.push_str(line);
+                body.push('\n');
+            }
+            continue;
+        }
+        if t.starts_with("```") || t.starts_with("~~~") {
+            fence = Some((t[..3].to_string(), String::new()));
+            continue;
+        }
+        let hashes = line.chars().take_while(|c| *c == '#').count();
+        if hashes > 0 && line[hashes..].starts_with(' ') {
+            o.headings.push(hashes);
+        }
+        let mut rest = line;
+        while let Some(i) = rest.find("![") {
+            rest = &rest[i + 2..];
+            let Some(j) = rest.find("](") else { break };
+            let after = &rest[j + 2..];
+            let Some(k) = after.find(')') else { break };
+            let target = after[..k].split_whitespace().next().unwrap_or("");
+            if !target.contains("://") {
+                o.images.push(normalise(&dir.join(target)));
+            }
+            rest = &after[k..];
+        }
+    }
+    o
+}
+
+#[test]
+fn japanese_lessons_match_the_english_ones() {
+    let en_dir = root().join("lessons");
+    let ja_dir = en_dir.join("ja");
+    let en = pages(&en_dir, "ja");
+    let ja = pages(&ja_dir, "");
+    let missing: Vec<_> = en.difference(&ja).collect();
+    let extra: Vec<_> = ja.difference(&en).collect();
+    assert!(
+        missing.is_empty() && extra.is_empty(),
+        "lessons/ja/ lacks {missing:?} and has no English original for {extra:?}"
+    );
+    let mut problems = Vec::new();
+    for page in &en {
+        let (e, j) = (outline(&en_dir.join(page)), outline(&ja_dir.join(page)));
+        let name = page.display();
+        if e.headings != j.headings {
+            problems.push(format!(
+                "{name}: headings {:?} (en) vs {:?} (ja)",
+                e.headings, j.headings
+            ));
+        }
+        if e.code != j.code {
+            let first = e.code.iter().zip(&j.code).position(|(a, b)| a != b);
+            problems.push(format!(
+                "{name}: code blocks differ ({} en, {} ja; first difference at block {first:?})",
+                e.code.len(),
+                j.code.len()
+            ));
+        }
+        if e.images != j.images {
+            problems.push(format!(
+                "{name}: images {:?} (en) vs {:?} (ja)",
+                e.images, j.images
+            ));
+        }
+        for img in &j.images {
+            if !img.is_file() {
+                problems.push(format!("{name}: image {} does not exist", img.display()));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn readmes_link_each_other() {
+    let en = std::fs::read_to_string(root().join("README.md")).unwrap();
+    let ja = std::fs::read_to_string(root().join("README.ja.md")).expect("README.ja.md");
+    assert!(
+        en.contains("](README.ja.md)"),
+        "README.md must link README.ja.md"
+    );
+    assert!(
+        ja.contains("](README.md)"),
+        "README.ja.md must link README.md"
+    );
+    let (e, j) = (
+        outline(&root().join("README.md")),
+        outline(&root().join("README.ja.md")),
+    );
+    assert_eq!(
+        e.code, j.code,
+        "README code blocks (the commands) must be the same"
+    );
+    assert_eq!(e.images, j.images, "README images must be the same");
+}
+
+#[test]
+fn the_outline_check_notices_a_dropped_code_block_and_a_moved_image() {
+    let dir = std::env::temp_dir().join(format!("opengl3d-ja-outline-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("sub")).unwrap();
+    let a = dir.join("a.md");
+    let b = dir.join("sub/a.md");
+    std::fs::write(&a, "# T\n\n```sh\ncargo test\n```\n\n![x](img.png)\n").unwrap();
+    std::fs::write(&b, "# T\n\n![x](../img.png)\n").unwrap();
+    let (oa, ob) = (outline(&a), outline(&b));
+    assert_eq!(oa.images, ob.images, "the same image seen from two folders");
+    assert_ne!(oa.code, ob.code, "a dropped code block is seen");
+    std::fs::write(&b, "# T\n\n```sh\ncargo test\n```\n\n![x](img.png)\n").unwrap();
+    assert_ne!(
+        oa.images,
+        outline(&b).images,
+        "an image link not rewritten for the deeper folder is seen"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
+}
