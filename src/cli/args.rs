@@ -51,8 +51,8 @@ pub struct ReferenceArgs {
 
 #[derive(Args, Debug)]
 pub struct LessonArgs {
-    /// Step number 1-12, or `start`.
-    pub step: String,
+    /// Step number 1-12, or `start` (without it, the steps are listed).
+    pub step: Option<String>,
     /// With `start`: the folder to create (then use it with --res).
     pub dir: Option<PathBuf>,
     #[command(flatten)]

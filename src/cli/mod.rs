@@ -57,10 +57,10 @@ pub enum Command {
 /// What `command` reads from `--res` (checked before it runs).
 fn res_use(command: &Option<Command>) -> Option<ResUse> {
     Some(match command {
-        Some(Command::Lesson(a)) if a.step == "start" => return None,
+        Some(Command::Lesson(a)) if a.step.as_deref().is_none_or(|s| s == "start") => return None,
         Some(Command::Lesson(a)) => {
             // A step that does not exist is reported by the lesson itself.
-            let n = a.step.parse().ok()?;
+            let n = a.step.as_deref()?.parse().ok()?;
             crate::tools::lesson::view_for_step(n).ok()?;
             ResUse::AnyOf(crate::tools::lesson::shaders_for_step(n))
         }
@@ -168,22 +168,56 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     Ok(())
 }
 
+/// What `opengl3d lesson` prints without a step: the steps and how to begin.
+fn lesson_overview() -> String {
+    use crate::tools::lesson::{shaders_for_step, view_for_step, STEPS};
+    let mut s = String::from(
+        "opengl3d lesson STEP [--res DIR]   run the engine at step STEP of the AO lesson\n\
+         opengl3d lesson start DIR         write a working copy of Res/ with stub shaders to DIR\n\nsteps:\n",
+    );
+    for n in 1..=STEPS {
+        let view = view_for_step(n).map(|v| v.label()).unwrap_or("?");
+        let files = shaders_for_step(n).join(", ");
+        s.push_str(&format!("  {n:>2}  shows {view:<13} uses {files}\n"));
+    }
+    s.push_str("\nthe pages are lessons/NN-*.md (lessons/ja/ in Japanese)");
+    s
+}
+
 fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
-    if args.step == "start" {
+    let Some(step) = args.step.as_deref() else {
+        println!("{}", lesson_overview());
+        return Ok(());
+    };
+    if step == "start" {
         let dir = args
             .dir
             .as_ref()
             .context("usage: opengl3d lesson start DIR")?;
         let files = crate::tools::lesson::start(dir)?;
         println!("wrote {} files to {}", files.len(), dir.display());
-        println!("the four lesson shaders are stubs: follow lessons/README.md, then run");
+        let stubs: Vec<&str> = crate::tools::lesson::LESSON_SHADERS
+            .iter()
+            .copied()
+            .filter(|f| files.contains(&dir.join(f)))
+            .collect();
+        match stubs.len() {
+            0 => println!(
+                "the lesson shaders already in {} were kept, none replaced by a stub",
+                dir.display()
+            ),
+            4 => println!("the four lesson shaders are stubs: follow lessons/README.md, then run"),
+            _ => println!(
+                "new stubs: {}; the other lesson shaders already there were kept",
+                stubs.join(", ")
+            ),
+        }
         println!("  opengl3d lesson 2 --res {}", dir.display());
         return Ok(());
     }
-    let n: u32 = args.step.parse().map_err(|_| {
+    let n: u32 = step.parse().map_err(|_| {
         anyhow::anyhow!(
-            "'{}' is not a step: use 1-{} or start",
-            args.step,
+            "'{step}' is not a step: use 1-{} or start (`opengl3d lesson` lists them)",
             crate::tools::lesson::STEPS
         )
     })?;

@@ -414,3 +414,40 @@ fn objects_outside_the_view_are_culled() {
         "looking away should draw only what is in view ({opaque_away} draw calls)"
     );
 }
+
+/// `opengl3d lesson` without a step lists the steps; `lesson start` on a folder whose lesson shaders
+/// exist keeps them and says so instead of calling them stubs.
+#[test]
+fn lesson_without_a_step_lists_them_and_start_keeps_written_shaders() {
+    let o = run(&["lesson"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout);
+    for want in [
+        "lesson start DIR",
+        " 1  shows linear depth",
+        "12  shows composite",
+    ] {
+        assert!(out.contains(want), "missing '{want}' in:\n{out}");
+    }
+    let dir = common::temp_dir("cli-lesson-start").join("mine");
+    let dir_s = dir.to_str().unwrap();
+    let first = run(&["lesson", "start", dir_s]);
+    assert!(first.status.success(), "{}", stderr(&first));
+    assert!(String::from_utf8_lossy(&first.stdout).contains("the four lesson shaders are stubs"));
+    std::fs::write(
+        dir.join("sao.frag"),
+        "#version 450\n// the student's work\n",
+    )
+    .unwrap();
+    let again = run(&["lesson", "start", dir_s]);
+    assert!(again.status.success(), "{}", stderr(&again));
+    let said = String::from_utf8_lossy(&again.stdout);
+    assert!(
+        said.contains("kept, none replaced by a stub") && !said.contains("are stubs"),
+        "{said}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(dir.join("sao.frag")).unwrap(),
+        "#version 450\n// the student's work\n"
+    );
+}
