@@ -31,6 +31,8 @@
 
 mod args;
 mod child;
+mod class;
+mod class_report;
 mod measure;
 mod passes;
 pub mod picture;
@@ -41,6 +43,7 @@ mod run_step;
 pub mod scene;
 mod staging;
 mod steps;
+mod student;
 mod submission;
 mod tol;
 
