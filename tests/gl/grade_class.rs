@@ -213,11 +213,15 @@ fn a_class_is_graded_into_csv_html_and_junit() {
 fn a_class_that_passes_exits_0() {
     let class = temp_dir("grade-class-pass");
     student(&class, "ada", &CORRECT);
-    student(&class, "eve", &CORRECT);
+    // A name a spreadsheet would run as a formula.
+    student(&class, "=1+1", &CORRECT);
     let report = temp_dir("grade-class-pass-report");
     let o = grade_class(&class, &["--out", report.to_str().unwrap()]);
     let stdout = String::from_utf8_lossy(&o.stdout);
     assert_eq!(o.status.code(), Some(0), "{stdout}");
+    let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
+    let names: Vec<String> = parse_csv(&csv).into_iter().map(|r| r[0].clone()).collect();
+    assert_eq!(names, ["student", "'=1+1", "ada"], "{csv}");
     let (counts, _) = parse_junit(&std::fs::read_to_string(report.join("junit.xml")).unwrap());
     assert_eq!(counts.get("testcase"), Some(&8));
     assert_eq!(counts.get("failure"), None);

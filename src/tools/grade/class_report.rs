@@ -56,6 +56,17 @@ fn csv_row(fields: &[String]) -> String {
     row
 }
 
+/// A student's name as a CSV field a spreadsheet shows as text: a folder named `=HYPERLINK(…)`
+/// (or starting with `+`, `-`, `@`) would otherwise be run as a formula when the teacher opens the
+/// file, so such a name gets a leading `'`, as spreadsheets themselves mark text.
+fn csv_name(name: &str) -> String {
+    if name.starts_with(['=', '+', '-', '@']) {
+        format!("'{name}")
+    } else {
+        name.to_string()
+    }
+}
+
 /// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many).
 pub fn to_csv(steps: &[Step], results: &[StudentResult]) -> String {
     let mut header = vec!["student".to_string()];
@@ -63,7 +74,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult]) -> String {
     header.push("passed".into());
     let mut csv = csv_row(&header);
     for r in results {
-        let mut row = vec![r.name.clone()];
+        let mut row = vec![csv_name(&r.name)];
         row.extend(r.reports.iter().map(|s| verdict(s).to_string()));
         row.push(r.passed().to_string());
         csv.push_str(&csv_row(&row));
