@@ -10,6 +10,7 @@ mod composite_modes;
 mod engine_options;
 mod gl_basics;
 mod grade;
+mod grade_class;
 mod inputs;
 mod lessons_ja;
 mod methods;

@@ -51,9 +51,16 @@ pub struct GradeArgs {
     /// "message"}]}.
     #[arg(long)]
     pub json: bool,
-    /// Folder for expected/actual/difference PNGs of each step.
+    /// Folder for expected/actual/difference PNGs of each step; with --class, the folder for the
+    /// class's report (results.csv, report.html, junit.xml; default: grade-report).
     #[arg(long, value_name = "DIR")]
     pub out: Option<PathBuf>,
+    /// Grade a whole class: each folder in DIR is one student's shaders (named after the folder).
+    #[arg(long, value_name = "DIR", conflicts_with = "json")]
+    pub class: Option<PathBuf>,
+    /// With --class, how many students are graded at once (default: the number of cores).
+    #[arg(long, value_name = "N", requires = "class")]
+    pub jobs: Option<usize>,
     /// Seconds each step may take before it counts as hung (an endless loop in a shader).
     #[arg(long, default_value_t = 20.0, value_name = "SECONDS")]
     pub timeout: f64,

@@ -77,7 +77,8 @@ fn printed_verdict(out: &str) -> Option<Result<StepReport, String>> {
 /// on a 2-core machine (the LLVM code, llvmpipe's threads and their stacks, small targets); more
 /// cores add a thread stack each, and glibc falls back to a shared heap when a thread's own cannot
 /// be reserved, so 2 GiB leaves room while stopping a runaway shader long before 8 GiB fill (all
-/// four steps run at once: 8 GiB at most).
+/// four steps run at once: 8 GiB at most per student; `--class` grades `--jobs` students at once,
+/// so only runaway shaders in several of them together reach `--jobs` × 8 GiB).
 const STEP_ADDRESS_SPACE: u64 = 2 << 30;
 
 /// Runs in the forked child before it becomes `opengl3d grade-step`: only async-signal-safe calls.

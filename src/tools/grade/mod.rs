@@ -23,14 +23,20 @@
 //! render into R32F targets (the engine's are R8), so an output that is not normalised shows its
 //! real size.
 //!
-//! Files: `args` (command line, `Step`), `run` (the grader) with `child` (one step's process) and
-//! `report`; `submission` (finding the student's file); `run_step` (the child) with `staging` (the
+//! `--class DIR` grades every folder in DIR as one student, `--jobs` of them at once, each exactly as
+//! `--res` grades one, and writes results.csv, report.html and junit.xml into `--out`.
+//!
+//! Files: `args` (command line, `Step`), `run` (the grader) with `student` (one folder's steps),
+//! `child` (one step's process) and `report`; `class` (a whole class) with `class_report` (its CSV,
+//! HTML and JUnit); `submission` (finding the student's file); `run_step` (the child) with `staging` (the
 //! private copy), `rig` (GL context and both sides' passes), `passes` (running them), `steps/` (one
 //! file per step), `measure` (shared statistics), `tol` (every tolerance, with what it was measured
 //! against); `scene` and `picture` (the SAO scenes and the PNGs).
 
 mod args;
 mod child;
+mod class;
+mod class_report;
 mod measure;
 mod passes;
 pub mod picture;
@@ -41,6 +47,7 @@ mod run_step;
 pub mod scene;
 mod staging;
 mod steps;
+mod student;
 mod submission;
 mod tol;
 

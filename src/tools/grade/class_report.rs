@@ -1,0 +1,218 @@
+//! The class report (`grade --class`): one CSV row per student, one offline HTML table with the
+//! reason of each failure, and JUnit XML (a test suite per student, a test case per step) for CI
+//! pages such as GitHub Classroom's or GitLab's. Every text from a student (folder names, compiler
+//! messages echoing their shaders) is quoted or escaped for the format it lands in.
+
+use super::args::Step;
+use super::report::StepReport;
+
+/// One student's verdicts, in the order of the graded steps.
+pub struct StudentResult {
+    pub name: String,
+    pub reports: Vec<StepReport>,
+    /// Wall time spent grading the student.
+    pub seconds: f64,
+}
+
+impl StudentResult {
+    pub fn passed(&self) -> usize {
+        self.reports.iter().filter(|r| r.passed).count()
+    }
+    pub fn all_passed(&self) -> bool {
+        self.reports.iter().all(|r| r.passed)
+    }
+}
+
+/// PASS, FAIL, or "not submitted".
+fn verdict(r: &StepReport) -> &'static str {
+    if r.passed {
+        "PASS"
+    } else if r.submitted {
+        "FAIL"
+    } else {
+        "not submitted"
+    }
+}
+
+/// `field` as one CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a
+/// quote, a line break or edge spaces.
+fn csv_field(field: &str) -> String {
+    let needs =
+        field.contains([',', '"', '\n', '\r']) || field.starts_with(' ') || field.ends_with(' ');
+    if needs {
+        format!("\"{}\"", field.replace('"', "\"\""))
+    } else {
+        field.to_string()
+    }
+}
+
+fn csv_row(fields: &[String]) -> String {
+    let mut row = fields
+        .iter()
+        .map(|f| csv_field(f))
+        .collect::<Vec<_>>()
+        .join(",");
+    row.push_str("\r\n");
+    row
+}
+
+/// A student's name as a CSV field a spreadsheet shows as text: a folder named `=HYPERLINK(…)`
+/// (or starting with `+`, `-`, `@`) would otherwise be run as a formula when the teacher opens the
+/// file, so such a name gets a leading `'`, as spreadsheets themselves mark text.
+fn csv_name(name: &str) -> String {
+    if name.starts_with(['=', '+', '-', '@']) {
+        format!("'{name}")
+    } else {
+        name.to_string()
+    }
+}
+
+/// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many).
+pub fn to_csv(steps: &[Step], results: &[StudentResult]) -> String {
+    let mut header = vec!["student".to_string()];
+    header.extend(steps.iter().map(|s| s.name().to_string()));
+    header.push("passed".into());
+    let mut csv = csv_row(&header);
+    for r in results {
+        let mut row = vec![csv_name(&r.name)];
+        row.extend(r.reports.iter().map(|s| verdict(s).to_string()));
+        row.push(r.passed().to_string());
+        csv.push_str(&csv_row(&row));
+    }
+    csv
+}
+
+/// `text` escaped for HTML text and quoted attribute values.
+fn html(text: &str) -> String {
+    let mut s = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => s.push_str("&amp;"),
+            '<' => s.push_str("&lt;"),
+            '>' => s.push_str("&gt;"),
+            '"' => s.push_str("&quot;"),
+            '\'' => s.push_str("&#39;"),
+            c => s.push(c),
+        }
+    }
+    s
+}
+
+const STYLE: &str = "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}\
+th,td{border:1px solid #999;padding:.3em .5em;vertical-align:top;text-align:left}\
+td{max-width:28em}.pass{background:#c8f0c8}.fail{background:#f5c0c0}.missing{background:#e4e4e4}\
+.why{font-size:.8em;white-space:pre-wrap;overflow-wrap:anywhere}small{font-weight:normal}";
+
+/// report.html: one self-contained table (no scripts, no outside files), a row per student, a cell
+/// per step with its verdict and message.
+pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String {
+    let all = results.iter().filter(|r| r.all_passed()).count();
+    let mut h = String::new();
+    h.push_str(&format!(
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+         <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <h1>opengl3d grade: {t}</h1>\n<p>{all} of {n} student(s) passed every step.</p>\n\
+         <table>\n<thead><tr><th>student</th>",
+        t = html(title),
+        n = results.len()
+    ));
+    for s in steps {
+        h.push_str(&format!(
+            "<th>{}<br><small>{}</small></th>",
+            html(s.name()),
+            html(s.file())
+        ));
+    }
+    h.push_str("<th>passed</th></tr></thead>\n<tbody>\n");
+    for r in results {
+        h.push_str(&format!("<tr><th>{}</th>", html(&r.name)));
+        for s in &r.reports {
+            let class = match verdict(s) {
+                "PASS" => "pass",
+                "FAIL" => "fail",
+                _ => "missing",
+            };
+            h.push_str(&format!(
+                "<td class=\"{class}\"><b>{}</b><div class=\"why\">{}</div></td>",
+                verdict(s),
+                html(&s.message)
+            ));
+        }
+        h.push_str(&format!(
+            "<td>{}/{}</td></tr>\n",
+            r.passed(),
+            r.reports.len()
+        ));
+    }
+    h.push_str("</tbody>\n</table>\n</body>\n</html>\n");
+    h
+}
+
+/// `text` escaped for XML 1.0 text and attribute values: markup characters and line breaks as
+/// references (attribute values keep them), characters XML cannot hold at all (NUL, most control
+/// characters) as U+FFFD.
+fn xml(text: &str) -> String {
+    let mut s = String::with_capacity(text.len());
+    for c in text.chars() {
+        match c {
+            '&' => s.push_str("&amp;"),
+            '<' => s.push_str("&lt;"),
+            '>' => s.push_str("&gt;"),
+            '"' => s.push_str("&quot;"),
+            '\'' => s.push_str("&apos;"),
+            '\n' => s.push_str("&#10;"),
+            '\r' => s.push_str("&#13;"),
+            '\t' => s.push_str("&#9;"),
+            '\u{0}'..='\u{1f}' | '\u{fffe}' | '\u{ffff}' => s.push('\u{fffd}'),
+            c => s.push(c),
+        }
+    }
+    s
+}
+
+/// junit.xml: a `<testsuite>` per student, a `<testcase>` per step, a `<failure>` with the reason
+/// for each step that did not pass ("not submitted" included).
+pub fn to_junit(title: &str, results: &[StudentResult], seconds: f64) -> String {
+    let tests: usize = results.iter().map(|r| r.reports.len()).sum();
+    let failures: usize = results.iter().map(|r| r.reports.len() - r.passed()).sum();
+    let mut x = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
+    x.push_str(&format!(
+        "<testsuites name=\"{}\" tests=\"{tests}\" failures=\"{failures}\" errors=\"0\" \
+         time=\"{seconds:.3}\">\n",
+        xml(title)
+    ));
+    for r in results {
+        let name = xml(&r.name);
+        x.push_str(&format!(
+            "  <testsuite name=\"{name}\" tests=\"{}\" failures=\"{}\" errors=\"0\" \
+             skipped=\"0\" time=\"{:.3}\">\n",
+            r.reports.len(),
+            r.reports.len() - r.passed(),
+            r.seconds
+        ));
+        for s in &r.reports {
+            x.push_str(&format!(
+                "    <testcase classname=\"{name}\" name=\"{} ({})\">",
+                xml(&s.step),
+                xml(&s.file)
+            ));
+            let message = xml(&s.message);
+            if s.passed {
+                x.push_str(&format!("<system-out>{message}</system-out>"));
+            } else {
+                let kind = if s.submitted {
+                    "failed"
+                } else {
+                    "not submitted"
+                };
+                x.push_str(&format!(
+                    "<failure type=\"{kind}\" message=\"{message}\">{message}</failure>"
+                ));
+            }
+            x.push_str("</testcase>\n");
+        }
+        x.push_str("  </testsuite>\n");
+    }
+    x.push_str("</testsuites>\n");
+    x
+}

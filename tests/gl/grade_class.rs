@@ -1,0 +1,247 @@
+//! `opengl3d grade --class DIR` run as a teacher would run it, on a class built from
+//! tests/mutants/: one student with correct shaders, one with a broken SAO step (and a name that
+//! needs quoting and escaping), one empty folder, one whose SAO shader never ends.
+
+use quick_xml::events::Event;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn mutant(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/mutants")
+        .join(name)
+}
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
+    match std::fs::remove_dir_all(&d) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => panic!("{}: {e}", d.display()),
+        _ => {}
+    }
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// A student folder `class/name` holding the shaders of the mutant folders `from`.
+fn student(class: &Path, name: &str, from: &[&str]) {
+    let dir = class.join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    for m in from {
+        for f in std::fs::read_dir(mutant(m)).unwrap() {
+            let f = f.unwrap();
+            std::fs::copy(f.path(), dir.join(f.file_name())).unwrap();
+        }
+    }
+}
+
+const CORRECT: [&str; 4] = [
+    "listing-restore",
+    "listing-down-sampling",
+    "rewrite-sao",
+    "listing-blur",
+];
+const BROKEN_SAO: [&str; 4] = [
+    "listing-restore",
+    "listing-down-sampling",
+    "sao-flipped-normal",
+    "listing-blur",
+];
+const ODD_NAME: &str = "bob, \"<b>\" & 'co'";
+
+fn grade_class(class: &Path, args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .arg("grade")
+        .arg("--class")
+        .arg(class)
+        .args(args)
+        .output()
+        .expect("run opengl3d")
+}
+
+/// The records of a CSV text (RFC 4180: quoted fields, doubled quotes, CRLF).
+fn parse_csv(text: &str) -> Vec<Vec<String>> {
+    let mut rows = Vec::new();
+    let (mut row, mut field) = (Vec::new(), String::new());
+    let (mut quoted, mut chars) = (false, text.chars().peekable());
+    while let Some(c) = chars.next() {
+        match (quoted, c) {
+            (true, '"') if chars.peek() == Some(&'"') => {
+                chars.next();
+                field.push('"');
+            }
+            (true, '"') => quoted = false,
+            (true, c) => field.push(c),
+            (false, '"') => quoted = true,
+            (false, ',') => row.push(std::mem::take(&mut field)),
+            (false, '\r') => {}
+            (false, '\n') => {
+                row.push(std::mem::take(&mut field));
+                rows.push(std::mem::take(&mut row));
+            }
+            (false, c) => field.push(c),
+        }
+    }
+    assert!(!quoted && field.is_empty() && row.is_empty(), "{text}");
+    rows
+}
+
+/// How many elements of each name the XML holds, and the `name` attributes of the test suites;
+/// panics when it is not well-formed XML.
+fn parse_junit(text: &str) -> (std::collections::BTreeMap<String, usize>, Vec<String>) {
+    let mut reader = quick_xml::Reader::from_str(text);
+    let mut counts = std::collections::BTreeMap::new();
+    let mut suites = Vec::new();
+    let mut open = Vec::new();
+    loop {
+        let (tag, start) = match reader.read_event() {
+            Ok(Event::Eof) => break,
+            Ok(Event::Start(e)) => (e.into_owned(), true),
+            Ok(Event::Empty(e)) => (e.into_owned(), false),
+            Ok(Event::End(e)) => {
+                let closed = open.pop().expect("an end tag closes an open one");
+                assert_eq!(e.name().as_ref(), closed, "{text}");
+                continue;
+            }
+            Ok(_) => continue,
+            Err(e) => panic!("junit.xml is not XML ({e}):\n{text}"),
+        };
+        let name = String::from_utf8(tag.name().as_ref().to_vec()).unwrap();
+        if name == "testsuite" {
+            let attr = tag
+                .try_get_attribute("name")
+                .unwrap()
+                .expect("a testsuite has a name");
+            suites.push(
+                attr.normalized_value(quick_xml::XmlVersion::Explicit1_0)
+                    .unwrap()
+                    .into_owned(),
+            );
+        }
+        if start {
+            open.push(tag.name().as_ref().to_vec());
+        }
+        *counts.entry(name).or_insert(0) += 1;
+    }
+    assert!(open.is_empty(), "unclosed elements in {text}");
+    (counts, suites)
+}
+
+#[test]
+fn a_class_is_graded_into_csv_html_and_junit() {
+    let class = temp_dir("grade-class");
+    student(&class, "ada", &CORRECT);
+    student(&class, ODD_NAME, &BROKEN_SAO);
+    student(&class, "cleo", &[]);
+    student(&class, "dan", &["sao-endless-loop"]);
+    // A file beside the folders is no student (a .zip is not unpacked).
+    std::fs::write(class.join("notes.txt"), "not a student").unwrap();
+    let report = temp_dir("grade-class-report");
+    let o = grade_class(
+        &class,
+        &[
+            "--out",
+            report.to_str().unwrap(),
+            "--jobs",
+            "2",
+            "--timeout",
+            "6",
+        ],
+    );
+    let (stdout, stderr) = (
+        String::from_utf8_lossy(&o.stdout),
+        String::from_utf8_lossy(&o.stderr),
+    );
+    assert_eq!(o.status.code(), Some(1), "{stdout}\n{stderr}");
+    assert!(stderr.contains("notes.txt"), "{stderr}");
+
+    let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
+    let rows = parse_csv(&csv);
+    let expected: Vec<Vec<&str>> = vec![
+        vec![
+            "student",
+            "restore",
+            "down-sampling",
+            "sao",
+            "blur",
+            "passed",
+        ],
+        vec!["ada", "PASS", "PASS", "PASS", "PASS", "4"],
+        vec![ODD_NAME, "PASS", "PASS", "FAIL", "PASS", "3"],
+        vec![
+            "cleo",
+            "not submitted",
+            "not submitted",
+            "not submitted",
+            "not submitted",
+            "0",
+        ],
+        vec![
+            "dan",
+            "not submitted",
+            "not submitted",
+            "FAIL",
+            "not submitted",
+            "0",
+        ],
+    ];
+    assert_eq!(rows, expected, "{csv}\n{stdout}");
+
+    let junit = std::fs::read_to_string(report.join("junit.xml")).unwrap();
+    let (counts, suites) = parse_junit(&junit);
+    assert_eq!(counts.get("testsuites"), Some(&1), "{junit}");
+    assert_eq!(counts.get("testsuite"), Some(&4), "{junit}");
+    assert_eq!(counts.get("testcase"), Some(&16), "{junit}");
+    // bob's SAO, cleo's four, dan's four (three not submitted, SAO timed out).
+    assert_eq!(counts.get("failure"), Some(&9), "{junit}");
+    assert_eq!(suites, ["ada", ODD_NAME, "cleo", "dan"], "{junit}");
+    assert!(junit.contains("timed out after 6 s"), "{junit}");
+
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    for name in ["ada", "cleo", "dan"] {
+        assert!(html.contains(&format!("<th>{name}</th>")), "{html}");
+    }
+    assert!(
+        html.contains("<th>bob, &quot;&lt;b&gt;&quot; &amp; &#39;co&#39;</th>"),
+        "{html}"
+    );
+    assert!(!html.contains("\"<b>\""), "{html}");
+    assert!(html.contains("not submitted: no sao.frag in"), "{html}");
+    assert!(html.contains("timed out after 6 s"), "{html}");
+}
+
+#[test]
+fn a_class_that_passes_exits_0() {
+    let class = temp_dir("grade-class-pass");
+    student(&class, "ada", &CORRECT);
+    // A name a spreadsheet would run as a formula.
+    student(&class, "=1+1", &CORRECT);
+    let report = temp_dir("grade-class-pass-report");
+    let o = grade_class(&class, &["--out", report.to_str().unwrap()]);
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    assert_eq!(o.status.code(), Some(0), "{stdout}");
+    let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
+    let names: Vec<String> = parse_csv(&csv).into_iter().map(|r| r[0].clone()).collect();
+    assert_eq!(names, ["student", "'=1+1", "ada"], "{csv}");
+    let (counts, _) = parse_junit(&std::fs::read_to_string(report.join("junit.xml")).unwrap());
+    assert_eq!(counts.get("testcase"), Some(&8));
+    assert_eq!(counts.get("failure"), None);
+}
+
+#[test]
+fn a_missing_or_empty_class_is_an_error_naming_it() {
+    let missing = Path::new(env!("CARGO_TARGET_TMPDIR")).join("no-such-class");
+    let o = grade_class(&missing, &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(stderr.contains("no-such-class"), "{stderr}");
+
+    let empty = temp_dir("grade-class-empty");
+    std::fs::write(empty.join("a.zip"), "PK").unwrap();
+    let o = grade_class(&empty, &[]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert_ne!(o.status.code(), Some(0));
+    assert!(
+        stderr.contains(&*empty.to_string_lossy()) && stderr.contains("no student folder"),
+        "{stderr}"
+    );
+}
