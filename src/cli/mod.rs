@@ -5,7 +5,9 @@ mod output;
 mod res_check;
 mod scene_args;
 
-pub use args::{parse_vec3, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs};
+pub use args::{
+    parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs,
+};
 pub use output::{write_view, OutFormat, PNG_OR_PFM};
 pub use res_check::{check_res, ResUse};
 pub use scene_args::load_scene;
@@ -27,6 +29,8 @@ pub struct Cli {
     /// Folder searched for shaders and meshes before the project's own Res/ (a student's working copy).
     #[arg(long, global = true, value_name = "DIR")]
     pub res: Option<PathBuf>,
+    #[command(flatten)]
+    pub lang: LangArgs,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -74,6 +78,7 @@ fn res_use(command: &Option<Command>) -> Option<ResUse> {
 
 pub fn run() -> Result<()> {
     let cli = Cli::parse();
+    crate::i18n::set(crate::i18n::from_env(cli.lang.lang));
     if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
         check_res(dir, what)?;
     }
