@@ -81,9 +81,10 @@ pub fn selected_steps(args: &GradeArgs) -> Result<Vec<Step>> {
         args.step.clone()
     } else if let Some(n) = args.lesson {
         if !(1..=crate::tools::lesson::STEPS).contains(&n) {
+            let steps = crate::tools::lesson::STEPS;
             bail!(
-                "there is no lesson step {n}: steps are 1 to {}",
-                crate::tools::lesson::STEPS
+                "{}",
+                rust_i18n::t!("lesson.no_such_step", n = n, steps = steps)
             );
         }
         crate::tools::lesson::shaders_for_step(n)

@@ -7,6 +7,7 @@ use super::report::{self, StepReport};
 use super::submission;
 use crate::res::{project_res_dir, ResDirs};
 use anyhow::{bail, Context as _, Result};
+use rust_i18n::t;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Duration;
@@ -47,12 +48,12 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if let Some(dir) = student {
         match std::fs::metadata(dir) {
             Ok(m) if m.is_dir() => {}
-            Ok(_) => bail!("--res {}: not a folder", dir.display()),
-            Err(e) => bail!("--res {}: not a folder ({e})", dir.display()),
+            Ok(_) => bail!("{}", t!("grade.res_not_folder", dir = dir.display())),
+            Err(e) => bail!("{} ({e})", t!("grade.res_not_folder", dir = dir.display())),
         }
     }
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
-        bail!("--timeout {}: give a number of seconds > 0", args.timeout);
+        bail!("{}", t!("grade.bad_timeout", value = args.timeout));
     }
     if let Some(out) = &args.out {
         std::fs::create_dir_all(out)
@@ -62,10 +63,13 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     let work = work_dir()?;
     if !args.json {
         match student {
-            Some(d) => println!("grading {} ({} step(s))", d.display(), steps.len()),
+            Some(d) => println!(
+                "{}",
+                t!("grade.grading_dir", dir = d.display(), count = steps.len())
+            ),
             None => println!(
-                "grading the project's own {} (no --res DIR given)",
-                project_res_dir().display()
+                "{}",
+                t!("grade.grading_project", dir = project_res_dir().display())
             ),
         }
     }
@@ -82,6 +86,8 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         if let Some(d) = student {
             cmd.arg("--res").arg(d);
         }
+        // The child writes its messages in the grader's language, whether flag or locale chose it.
+        cmd.arg("--lang").arg(crate::i18n::current().code());
         cmd.arg("grade-step")
             .arg(s.name())
             .arg("--work")
