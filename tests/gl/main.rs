@@ -10,6 +10,7 @@ mod composite_modes;
 mod engine_options;
 mod gl_basics;
 mod grade;
+mod i18n;
 mod inputs;
 mod lessons_ja;
 mod methods;
