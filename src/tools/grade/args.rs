@@ -48,7 +48,8 @@ pub struct GradeArgs {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub step: Vec<Step>,
     /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "submitted",
-    /// "message"}]}.
+    /// "message"}]}; the keys and "message" stay English, and a message also written in Japanese
+    /// (`--lang ja`, or a ja locale) comes as "message_localised" too.
     #[arg(long)]
     pub json: bool,
     /// Folder for expected/actual/difference PNGs of each step.
