@@ -11,6 +11,7 @@
 pub mod ao;
 pub mod cli;
 pub mod gl;
+pub mod i18n;
 pub mod io;
 pub mod math;
 pub mod platform;
@@ -19,3 +20,6 @@ pub mod res;
 pub mod scene;
 pub mod shader_interface;
 pub mod tools;
+
+// The messages' texts (locales/*.yml), compiled in; `rust_i18n::t!` looks them up from any module.
+rust_i18n::i18n!("locales", fallback = "en");

@@ -4,6 +4,7 @@
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
 use crate::ao::{AoMethod, CompositeMode, GtaoQuality};
+use crate::i18n::Lang;
 use crate::math::DepthMode;
 use crate::render::View;
 use clap::builder::TypedValueParser as _;
@@ -23,6 +24,15 @@ pub fn choice<T: Copy + Send + Sync + 'static>(
             .find(|v| name(**v) == s)
             .expect("clap accepted only listed names")
     })
+}
+
+/// The language flag, accepted by every command.
+#[derive(Args, Debug, Clone, Default)]
+pub struct LangArgs {
+    /// Language of the messages: en or ja (default: from LC_ALL, LC_MESSAGES or LANG; `--json`
+    /// keeps English keys and messages, adding `message_localised` in Japanese).
+    #[arg(long, global = true, value_parser = choice(&Lang::ALL, Lang::code))]
+    pub lang: Option<Lang>,
 }
 
 #[derive(Args, Debug)]

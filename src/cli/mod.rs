@@ -5,7 +5,9 @@ mod output;
 mod res_check;
 mod scene_args;
 
-pub use args::{parse_vec3, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs};
+pub use args::{
+    parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs,
+};
 pub use output::{write_view, OutFormat, PNG_OR_PFM};
 pub use res_check::{check_res, ResUse};
 pub use scene_args::load_scene;
@@ -15,6 +17,7 @@ use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use anyhow::{bail, Context as _, Result};
 use clap::{Parser, Subcommand};
+use rust_i18n::t;
 use std::path::{Path, PathBuf};
 
 #[derive(Parser, Debug)]
@@ -27,6 +30,8 @@ pub struct Cli {
     /// Folder searched for shaders and meshes before the project's own Res/ (a student's working copy).
     #[arg(long, global = true, value_name = "DIR")]
     pub res: Option<PathBuf>,
+    #[command(flatten)]
+    pub lang: LangArgs,
     #[command(subcommand)]
     pub command: Option<Command>,
 }
@@ -74,6 +79,7 @@ fn res_use(command: &Option<Command>) -> Option<ResUse> {
 
 pub fn run() -> Result<()> {
     let cli = Cli::parse();
+    crate::i18n::set(crate::i18n::from_env(cli.lang.lang));
     if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
         check_res(dir, what)?;
     }
@@ -171,16 +177,19 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
 /// What `opengl3d lesson` prints without a step: the steps and how to begin.
 fn lesson_overview() -> String {
     use crate::tools::lesson::{shaders_for_step, view_for_step, STEPS};
-    let mut s = String::from(
-        "opengl3d lesson STEP [--res DIR]   run the engine at step STEP of the AO lesson\n\
-         opengl3d lesson start DIR         write a working copy of Res/ with stub shaders to DIR\n\nsteps:\n",
-    );
+    let mut s = t!("lesson.overview_usage").into_owned();
     for n in 1..=STEPS {
         let view = view_for_step(n).map(|v| v.label()).unwrap_or("?");
         let files = shaders_for_step(n).join(", ");
-        s.push_str(&format!("  {n:>2}  shows {view:<13} uses {files}\n"));
+        let (n, view) = (format!("{n:>2}"), format!("{view:<13}"));
+        s.push_str(&t!(
+            "lesson.overview_step",
+            n = n,
+            view = view,
+            files = files
+        ));
     }
-    s.push_str("\nthe pages are lessons/NN-*.md (lessons/ja/ in Japanese)");
+    s.push_str(&t!("lesson.overview_pages"));
     s
 }
 
@@ -193,33 +202,32 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
         let dir = args
             .dir
             .as_ref()
-            .context("usage: opengl3d lesson start DIR")?;
+            .with_context(|| t!("lesson.start_usage"))?;
         let files = crate::tools::lesson::start(dir)?;
-        println!("wrote {} files to {}", files.len(), dir.display());
+        let shown = dir.display();
+        println!(
+            "{}",
+            t!("lesson.start_wrote", count = files.len(), dir = shown)
+        );
         let stubs: Vec<&str> = crate::tools::lesson::LESSON_SHADERS
             .iter()
             .copied()
             .filter(|f| files.contains(&dir.join(f)))
             .collect();
         match stubs.len() {
-            0 => println!(
-                "the lesson shaders already in {} were kept, none replaced by a stub",
-                dir.display()
-            ),
-            4 => println!("the four lesson shaders are stubs: follow lessons/README.md, then run"),
+            0 => println!("{}", t!("lesson.start_kept_all", dir = shown)),
+            4 => println!("{}", t!("lesson.start_all_stubs")),
             _ => println!(
-                "new stubs: {}; the other lesson shaders already there were kept",
-                stubs.join(", ")
+                "{}",
+                t!("lesson.start_some_stubs", stubs = stubs.join(", "))
             ),
         }
         println!("  opengl3d lesson 2 --res {}", dir.display());
         return Ok(());
     }
     let n: u32 = step.parse().map_err(|_| {
-        anyhow::anyhow!(
-            "'{step}' is not a step: use 1-{} or start (`opengl3d lesson` lists them)",
-            crate::tools::lesson::STEPS
-        )
+        let steps = crate::tools::lesson::STEPS;
+        anyhow::anyhow!("{}", t!("lesson.not_a_step", step = step, steps = steps))
     })?;
     let view = crate::tools::lesson::view_for_step(n)?;
     if args.headless || !platform::display_available() {
@@ -228,21 +236,19 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     if let Some(dir) = student {
         for f in crate::tools::lesson::shaders_for_step(n) {
             if !dir.join(f).is_file() {
-                eprintln!(
-                    "note: {} has no {f}; using the project's own",
-                    dir.display()
-                );
+                let dir = dir.display();
+                eprintln!("{}", t!("lesson.missing_shader", dir = dir, file = f));
             }
         }
     }
-    println!("lesson step {n}: showing {}", view.label());
+    println!("{}", t!("lesson.showing", n = n, view = view.label()));
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         engine.view = view;
         write_view(&mut engine, view, &args.out)?;
-        println!("wrote {}", args.out.display());
+        println!("{}", t!("lesson.wrote", path = args.out.display()));
         Ok(())
     } else {
         platform::window::run(res.clone(), scene, view, None, None)

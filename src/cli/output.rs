@@ -3,6 +3,7 @@
 
 use crate::render::{Engine, View};
 use anyhow::{bail, Result};
+use rust_i18n::t;
 use std::path::Path;
 
 /// What an output file holds.
@@ -35,10 +36,15 @@ impl OutFormat {
                         OutFormat::Pfm => ".pfm",
                     })
                     .collect();
+                let exts = names.join(&t!("cli.or"));
                 bail!(
-                    "{flag} {}: output must end in {}",
-                    path.display(),
-                    names.join(" or ")
+                    "{}",
+                    t!(
+                        "cli.out_format",
+                        flag = flag,
+                        path = path.display(),
+                        exts = exts
+                    )
                 )
             }
         }

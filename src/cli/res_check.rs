@@ -3,6 +3,7 @@
 //! files would be used without a word, and a student would grade the wrong shaders).
 
 use anyhow::{bail, Result};
+use rust_i18n::t;
 use std::path::Path;
 
 /// What a command reads from `--res`.
@@ -23,10 +24,10 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
     let shown = dir.display();
     match std::fs::metadata(dir) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
-            bail!("--res {shown}: no such folder")
+            bail!("{}", t!("cli.res_missing", dir = shown))
         }
-        Err(e) => bail!("--res {shown}: cannot read it ({e})"),
-        Ok(m) if !m.is_dir() => bail!("--res {shown}: is a file, not a folder"),
+        Err(e) => bail!("{}", t!("cli.res_unreadable", dir = shown, error = e)),
+        Ok(m) if !m.is_dir() => bail!("{}", t!("cli.res_is_file", dir = shown)),
         Ok(_) => {}
     }
     let is_shader = |n: &str| n.ends_with(".vert") || n.ends_with(".frag") || n.ends_with(".glsl");
@@ -39,15 +40,15 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
         ),
         ResUse::ShadersOrScenes => (
             has_file(dir, &|n| is_shader(n) || is_scene(n))?,
-            "shaders (*.vert, *.frag), scenes (*.toml) or meshes (*.obj)".to_string(),
+            t!("cli.wanted_shaders_or_scenes").into_owned(),
         ),
         ResUse::Scenes => (
             has_file(dir, &is_scene)?,
-            "scenes (*.toml) or meshes (*.obj)".to_string(),
+            t!("cli.wanted_scenes").into_owned(),
         ),
     };
     if !found {
-        bail!("--res {shown}: holds none of the files this command reads from it ({wanted})");
+        bail!("{}", t!("cli.res_empty", dir = shown, wanted = wanted));
     }
     Ok(())
 }
@@ -55,19 +56,18 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
 /// Whether `dir` or one of its folders (one level down, like `ao/` and `meshes/`) holds a file whose
 /// name passes `wanted`.
 fn has_file(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Result<bool> {
-    let read = |d: &Path| {
-        std::fs::read_dir(d)
-            .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", d.display()))
+    let cannot_list = |d: &Path, e: std::io::Error| {
+        anyhow::anyhow!(
+            "{}",
+            t!("cli.res_cannot_list", dir = d.display(), error = e)
+        )
     };
+    let read = |d: &Path| std::fs::read_dir(d).map_err(|e| cannot_list(d, e));
     for entry in read(dir)? {
-        let path = entry
-            .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", dir.display()))?
-            .path();
+        let path = entry.map_err(|e| cannot_list(dir, e))?.path();
         if path.is_dir() {
             for inner in read(&path)? {
-                let inner = inner
-                    .map_err(|e| anyhow::anyhow!("--res {}: cannot list it ({e})", path.display()))?
-                    .path();
+                let inner = inner.map_err(|e| cannot_list(&path, e))?.path();
                 if inner.is_file() && wanted(&inner.to_string_lossy()) {
                     return Ok(true);
                 }

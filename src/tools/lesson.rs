@@ -4,6 +4,7 @@
 use crate::render::View;
 use crate::res::project_res_dir;
 use anyhow::{bail, Result};
+use rust_i18n::t;
 use std::path::{Path, PathBuf};
 
 /// Number of steps (lessons/01-… to 12-…).
@@ -25,7 +26,7 @@ pub fn view_for_step(n: u32) -> Result<View> {
         6..=10 => View::AoRaw,
         11 => View::Ao,
         12 => View::Composite,
-        _ => bail!("there is no lesson step {n}: steps are 1 to {STEPS}"),
+        _ => bail!("{}", t!("lesson.no_such_step", n = n, steps = STEPS)),
     })
 }
 
@@ -47,7 +48,7 @@ pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut written = Vec::new();
     let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
         if to.exists() {
-            eprintln!("kept existing {}", to.display());
+            eprintln!("{}", t!("lesson.kept_existing", path = to.display()));
             return Ok(());
         }
         std::fs::copy(&from, &to)

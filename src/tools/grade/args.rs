@@ -48,7 +48,8 @@ pub struct GradeArgs {
     #[arg(long, value_enum, value_delimiter = ',')]
     pub step: Vec<Step>,
     /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "submitted",
-    /// "message"}]}.
+    /// "message"}]}; the keys and "message" stay English, and a message also written in Japanese
+    /// (`--lang ja`, or a ja locale) comes as "message_localised" too.
     #[arg(long)]
     pub json: bool,
     /// Folder for expected/actual/difference PNGs of each step; with --class, the folder for the
@@ -88,9 +89,10 @@ pub fn selected_steps(args: &GradeArgs) -> Result<Vec<Step>> {
         args.step.clone()
     } else if let Some(n) = args.lesson {
         if !(1..=crate::tools::lesson::STEPS).contains(&n) {
+            let steps = crate::tools::lesson::STEPS;
             bail!(
-                "there is no lesson step {n}: steps are 1 to {}",
-                crate::tools::lesson::STEPS
+                "{}",
+                rust_i18n::t!("lesson.no_such_step", n = n, steps = steps)
             );
         }
         crate::tools::lesson::shaders_for_step(n)

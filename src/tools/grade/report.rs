@@ -2,6 +2,8 @@
 //! it (text or JSON).
 
 use super::args::Step;
+use crate::i18n::Text;
+use rust_i18n::t;
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -15,6 +17,9 @@ pub struct StepReport {
     /// False when the student's folder has no usable file for the step (`message` says why).
     pub submitted: bool,
     pub message: String,
+    /// `message` in the chosen language when that is not English (`--lang`, or the locale).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub message_localised: Option<String>,
     #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
     pub metrics: BTreeMap<String, f64>,
 }
@@ -28,16 +33,29 @@ impl StepReport {
             passed: false,
             submitted: true,
             message,
+            message_localised: None,
             metrics: BTreeMap::new(),
         }
     }
 
     /// The failing verdict of a step whose file is not in the student's folder, and why.
-    pub fn not_submitted(step: Step, reason: &str) -> StepReport {
+    pub fn not_submitted(step: Step, reason: &Text) -> StepReport {
+        let said = |locale: &str, reason: &str| {
+            t!("grade.not_submitted", locale = locale, reason = reason).into_owned()
+        };
         StepReport {
             submitted: false,
-            ..StepReport::failed(step, format!("not submitted: {reason}"))
+            message_localised: reason
+                .localised
+                .as_deref()
+                .map(|r| said(crate::i18n::current().code(), r)),
+            ..StepReport::failed(step, said("en", &reason.en))
         }
+    }
+
+    /// What a person reads: the localised message, else the English one.
+    pub fn shown_message(&self) -> &str {
+        self.message_localised.as_deref().unwrap_or(&self.message)
     }
 }
 
@@ -48,6 +66,8 @@ struct PublicStep<'a> {
     passed: bool,
     submitted: bool,
     message: &'a str,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    message_localised: Option<&'a str>,
 }
 
 #[derive(Serialize)]
@@ -57,7 +77,8 @@ struct PublicReport<'a> {
 }
 
 /// The JSON the grader prints with `--json`: {"passed", "steps": [{"step", "file", "passed",
-/// "submitted", "message"}]}.
+/// "submitted", "message"}]}, plus "message_localised" on a step whose message was also written in
+/// a language other than English.
 pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
     serde_json::to_string(&PublicReport {
         passed: reports.iter().all(|r| r.passed),
@@ -69,6 +90,7 @@ pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
                 passed: r.passed,
                 submitted: r.submitted,
                 message: &r.message,
+                message_localised: r.message_localised.as_deref(),
             })
             .collect(),
     })
@@ -77,21 +99,25 @@ pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
 /// Prints one PASS/FAIL line per step and a summary on stdout.
 pub fn print_text(reports: &[StepReport], pictures: Option<&Path>) {
     for r in reports {
-        println!(
-            "{} {}: {}",
-            if r.passed { "PASS" } else { "FAIL" },
-            r.file,
-            r.message
-        );
+        let verdict = if r.passed {
+            t!("grade.pass")
+        } else {
+            t!("grade.fail")
+        };
+        println!("{verdict} {}: {}", r.file, r.shown_message());
     }
     let failed = reports.iter().filter(|r| !r.passed).count();
+    let count = reports.len();
     if failed == 0 {
-        println!("all {} step(s) passed", reports.len());
+        println!("{}", t!("grade.all_passed", count = count));
     } else {
-        println!("{failed} of {} step(s) failed", reports.len());
+        println!(
+            "{}",
+            t!("grade.some_failed", failed = failed, count = count)
+        );
     }
     if let Some(out) = pictures {
-        println!("pictures in {}", out.display());
+        println!("{}", t!("grade.pictures", dir = out.display()));
     }
 }
 

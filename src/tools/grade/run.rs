@@ -7,6 +7,7 @@ use super::report;
 use super::student::{self, Grading};
 use crate::res::{project_res_dir, ResDirs};
 use anyhow::{bail, Context as _, Result};
+use rust_i18n::t;
 use std::path::Path;
 use std::time::Duration;
 
@@ -15,7 +16,7 @@ use std::time::Duration;
 pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i32> {
     let steps = selected_steps(args)?;
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
-        bail!("--timeout {}: give a number of seconds > 0", args.timeout);
+        bail!("{}", t!("grade.bad_timeout", value = args.timeout));
     }
     let timeout = Duration::from_secs_f64(args.timeout);
     let exe = std::env::current_exe().context("cannot find the opengl3d executable")?;
@@ -32,8 +33,8 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if let Some(dir) = student {
         match std::fs::metadata(dir) {
             Ok(m) if m.is_dir() => {}
-            Ok(_) => bail!("--res {}: not a folder", dir.display()),
-            Err(e) => bail!("--res {}: not a folder ({e})", dir.display()),
+            Ok(_) => bail!("{}", t!("grade.res_not_folder", dir = dir.display())),
+            Err(e) => bail!("{} ({e})", t!("grade.res_not_folder", dir = dir.display())),
         }
     }
     if let Some(out) = &args.out {
@@ -42,10 +43,13 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     }
     if !args.json {
         match student {
-            Some(d) => println!("grading {} ({} step(s))", d.display(), steps.len()),
+            Some(d) => println!(
+                "{}",
+                t!("grade.grading_dir", dir = d.display(), count = steps.len())
+            ),
             None => println!(
-                "grading the project's own {} (no --res DIR given)",
-                project_res_dir().display()
+                "{}",
+                t!("grade.grading_project", dir = project_res_dir().display())
             ),
         }
     }

@@ -69,6 +69,8 @@ pub fn grade(g: &Grading, student: Option<&Path>, steps: &[Step]) -> Result<Vec<
         if let Some(d) = student {
             cmd.arg("--res").arg(d);
         }
+        // The child writes its messages in the grader's language, whether flag or locale chose it.
+        cmd.arg("--lang").arg(crate::i18n::current().code());
         cmd.arg("grade-step")
             .arg(s.name())
             .arg("--work")

@@ -1,0 +1,168 @@
+//! Messages in Japanese: `--lang ja|en` on any command, else LC_ALL / LC_MESSAGES / LANG; `--json`
+//! keeps its English keys and messages and adds `message_localised`.
+
+use crate::common;
+use serde_json::Value;
+use std::process::{Command, Output};
+
+/// The binary with the locale variables set to exactly `env` (the others removed).
+fn run(env: &[(&str, &str)], args: &[&str]) -> Output {
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_opengl3d"));
+    for v in ["LC_ALL", "LC_MESSAGES", "LANG", "LANGUAGE"] {
+        cmd.env_remove(v);
+    }
+    cmd.envs(env.iter().copied())
+        .args(args)
+        .output()
+        .expect("run opengl3d")
+}
+
+fn out(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn err(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+const JA: (&str, &str) = ("LANG", "ja_JP.UTF-8");
+const C: (&str, &str) = ("LANG", "C.UTF-8");
+
+fn is_japanese_overview(s: &str) -> bool {
+    s.contains("ステップ:") && s.contains("表示:") && s.contains("lessons/ja/")
+}
+
+#[test]
+fn lang_ja_writes_the_lesson_overview_in_japanese() {
+    let o = run(&[C], &["--lang", "ja", "lesson"]);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(is_japanese_overview(&out(&o)), "{}", out(&o));
+    assert!(!out(&o).contains("shows"), "{}", out(&o));
+    // The flag after the command works too.
+    let o = run(&[C], &["lesson", "--lang", "ja"]);
+    assert!(is_japanese_overview(&out(&o)), "{}", out(&o));
+}
+
+#[test]
+fn the_locale_chooses_japanese_without_the_flag() {
+    let o = run(&[JA], &["lesson"]);
+    assert!(is_japanese_overview(&out(&o)), "{}", out(&o));
+    let o = run(&[("LC_MESSAGES", "ja_JP.UTF-8"), C], &["lesson"]);
+    assert!(is_japanese_overview(&out(&o)), "{}", out(&o));
+}
+
+#[test]
+fn lang_en_and_lc_all_c_win_over_a_japanese_lang() {
+    for (env, args) in [
+        (vec![JA], vec!["--lang", "en", "lesson"]),
+        (vec![JA, ("LC_ALL", "C")], vec!["lesson"]),
+        (vec![C], vec!["lesson"]),
+    ] {
+        let o = run(&env, &args);
+        let s = out(&o);
+        assert!(o.status.success(), "{}", err(&o));
+        assert!(
+            s.contains("steps:") && s.contains(" shows "),
+            "{env:?} {args:?}: {s}"
+        );
+        assert!(!s.contains("ステップ"), "{env:?} {args:?}: {s}");
+    }
+}
+
+#[test]
+fn lesson_start_speaks_japanese() {
+    let dir = common::temp_dir("i18n-lesson-start");
+    let d = dir.join("work");
+    let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", err(&o));
+    let s = out(&o);
+    assert!(s.contains("個のファイルを書き出しました"), "{s}");
+    assert!(s.contains("4 つの課題シェーダーはスタブです"), "{s}");
+    let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
+    assert!(out(&o).contains("そのまま残しました"), "{}", out(&o));
+}
+
+#[test]
+fn grading_an_empty_folder_says_not_submitted_in_japanese() {
+    let dir = common::temp_dir("i18n-grade-empty");
+    let res = dir.to_str().unwrap();
+    let o = run(&[C], &["grade", "--lang", "ja", "--res", res]);
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let s = out(&o);
+    assert_eq!(s.matches("不合格 ").count(), 4, "{s}");
+    assert!(
+        s.contains(&format!("未提出: {res} に sao.frag がありません")),
+        "{s}"
+    );
+    assert!(s.contains("4 ステップ中 4 ステップが不合格です"), "{s}");
+    assert!(!s.contains("FAIL") && !s.contains("not submitted"), "{s}");
+}
+
+#[test]
+fn json_keeps_english_and_adds_the_localised_message() {
+    let dir = common::temp_dir("i18n-grade-json");
+    let res = dir.to_str().unwrap();
+    let keys = |v: &Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
+    let o = run(&[JA], &["--res", res, "grade", "--json", "--step", "sao"]);
+    let v: Value = serde_json::from_str(out(&o).trim()).expect("JSON");
+    assert_eq!(keys(&v), ["passed", "steps"]);
+    let step = &v["steps"][0];
+    assert_eq!(
+        keys(step),
+        [
+            "file",
+            "message",
+            "message_localised",
+            "passed",
+            "step",
+            "submitted"
+        ]
+    );
+    assert_eq!(
+        step["message"],
+        format!("not submitted: no sao.frag in {res}")
+    );
+    assert_eq!(
+        step["message_localised"],
+        format!("未提出: {res} に sao.frag がありません")
+    );
+    // In English there is nothing to add.
+    let o = run(&[C], &["--res", res, "grade", "--json", "--step", "sao"]);
+    let v: Value = serde_json::from_str(out(&o).trim()).expect("JSON");
+    assert_eq!(
+        keys(&v["steps"][0]),
+        ["file", "message", "passed", "step", "submitted"]
+    );
+}
+
+#[test]
+fn common_command_line_errors_in_japanese() {
+    let dir = common::temp_dir("i18n-errors");
+    let missing = dir.join("nowhere");
+    let o = run(&[JA], &["--res", missing.to_str().unwrap(), "render"]);
+    assert!(!o.status.success());
+    assert!(
+        err(&o).contains("そのようなフォルダーはありません"),
+        "{}",
+        err(&o)
+    );
+    let o = run(
+        &[JA],
+        &["render", "--out", dir.join("f.bmp").to_str().unwrap()],
+    );
+    assert!(!o.status.success());
+    assert!(
+        err(&o).contains("拡張子は .png または .pfm にしてください"),
+        "{}",
+        err(&o)
+    );
+    let o = run(&[JA], &["lesson", "x"]);
+    assert!(
+        err(&o).contains("'x' はステップではありません"),
+        "{}",
+        err(&o)
+    );
+    // The same error in English with --lang en.
+    let o = run(&[JA], &["--lang", "en", "lesson", "x"]);
+    assert!(err(&o).contains("'x' is not a step"), "{}", err(&o));
+}
