@@ -131,3 +131,37 @@ pub fn surface_points(
     }
     out
 }
+
+/// The `opengl3d` binary under test.
+pub fn bin() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+}
+
+/// Runs the binary with `args` and waits for it.
+pub fn run<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> std::process::Output {
+    bin().args(args).output().expect("run opengl3d")
+}
+
+pub fn stderr(o: &std::process::Output) -> String {
+    String::from_utf8_lossy(&o.stderr).to_string()
+}
+
+/// Runs `args`, expects a failure whose message holds every needle (and no panic), and returns the
+/// message.
+pub fn fails_with<S: AsRef<std::ffi::OsStr>>(args: &[S], needles: &[&str]) -> String {
+    let o = run(args);
+    let shown: Vec<String> = args
+        .iter()
+        .map(|a| a.as_ref().to_string_lossy().into_owned())
+        .collect();
+    assert!(!o.status.success(), "should fail: {shown:?}");
+    let e = stderr(&o);
+    for n in needles {
+        assert!(
+            e.contains(n),
+            "error for {shown:?} should mention '{n}', got:\n{e}"
+        );
+    }
+    assert!(!e.contains("panicked"), "must not panic:\n{e}");
+    e
+}

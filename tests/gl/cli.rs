@@ -1,23 +1,12 @@
 //! The `opengl3d` binary: headless renders, the window under Xvfb, and clear errors on bad input.
 
 use crate::common;
+use crate::common::{fails_with, run, stderr};
 
 use opengl3d::io::read_pfm;
 use opengl3d::scene::shapes;
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_opengl3d"))
-}
-
-fn run(args: &[&str]) -> Output {
-    bin().args(args).output().expect("run opengl3d")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
+use std::process::Command;
 
 #[test]
 fn render_writes_the_demo_png_at_the_requested_size() {
@@ -98,16 +87,7 @@ fn linear_depth_pfm_is_metres() {
 }
 
 fn assert_fails_naming(args: &[&str], needles: &[&str]) {
-    let o = run(args);
-    assert!(!o.status.success(), "should fail: {args:?}");
-    let e = stderr(&o);
-    for n in needles {
-        assert!(
-            e.contains(n),
-            "error for {args:?} should mention '{n}', got:\n{e}"
-        );
-    }
-    assert!(!e.contains("panicked"), "must not panic:\n{e}");
+    fails_with(args, needles);
 }
 
 #[test]

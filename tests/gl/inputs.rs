@@ -2,6 +2,7 @@
 //! with file:line:col errors, output paths, non-UTF-8 file names, and mesh loading in O(N).
 
 use crate::common;
+use crate::common::{bin, fails_with, run, stderr};
 
 use glam::Vec3;
 use opengl3d::gl::mesh::{MeshBuffer, MeshData};
@@ -9,41 +10,9 @@ use opengl3d::io::read_pfm;
 use opengl3d::scene::{shapes, SceneDesc};
 use std::ffi::OsStr;
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_opengl3d"))
-}
-
-fn run<S: AsRef<OsStr>>(args: &[S]) -> Output {
-    bin().args(args).output().expect("run opengl3d")
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).to_string()
-}
 
 fn s(p: &Path) -> &OsStr {
     p.as_os_str()
-}
-
-/// Runs `args`, expects a failure whose message holds every needle, and returns the message.
-fn fails_with<S: AsRef<OsStr>>(args: &[S], needles: &[&str]) -> String {
-    let o = run(args);
-    let shown: Vec<String> = args
-        .iter()
-        .map(|a| a.as_ref().to_string_lossy().into_owned())
-        .collect();
-    assert!(!o.status.success(), "should fail: {shown:?}");
-    let e = stderr(&o);
-    for n in needles {
-        assert!(
-            e.contains(n),
-            "error for {shown:?} should mention '{n}', got:\n{e}"
-        );
-    }
-    assert!(!e.contains("panicked"), "must not panic:\n{e}");
-    e
 }
 
 #[test]
