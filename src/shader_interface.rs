@@ -42,6 +42,8 @@ pub mod loc {
     pub const AO_COUNTS: i32 = 202;
     /// ao/common.glsl: the clamp on the screen-space radius (half-size pixels).
     pub const MAX_RADIUS_PIXELS: i32 = 203;
+    /// ao/vbao.frag: how far (m) behind each depth sample the surface extends.
+    pub const AO_THICKNESS: i32 = 204;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -234,6 +236,17 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         AO_METHOD_SAMPLERS,
     ),
     fullscreen("ao/gtao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen(
+        "ao/vbao.frag",
+        &[
+            u("aoInfo", AO_INFO),
+            u("ndcToView", NDC_TO_VIEW),
+            u("aoCounts", AO_COUNTS),
+            u("maxRadiusPixels", MAX_RADIUS_PIXELS),
+            u("aoThickness", AO_THICKNESS),
+        ],
+        AO_METHOD_SAMPLERS,
+    ),
 ];
 
 /// Every defines any program of `PROGRAMS` needs to compile (camera planes, the lesson's sample

@@ -52,8 +52,13 @@ vec2 ProjectToUv(vec3 p) {
 vec3 ReconstructNormal(ivec2 p, vec3 c) {
   vec3 l = TexelPos(p - ivec2(1, 0)), r = TexelPos(p + ivec2(1, 0));
   vec3 d = TexelPos(p - ivec2(0, 1)), u = TexelPos(p + ivec2(0, 1));
-  vec3 dx = abs(r.z - c.z) < abs(c.z - l.z) ? r - c : c - l;
-  vec3 dy = abs(u.z - c.z) < abs(c.z - d.z) ? u - c : c - d;
+  // On the screen's border the outer neighbour is clamped onto the pixel itself (a zero step):
+  // use the inner one there, or the normal degenerates to the view axis.
+  ivec2 last = ivec2(DepthSize()) - 1;
+  bool useRight = p.x <= 0 || (p.x < last.x && abs(r.z - c.z) < abs(c.z - l.z));
+  bool useUp = p.y <= 0 || (p.y < last.y && abs(u.z - c.z) < abs(c.z - d.z));
+  vec3 dx = useRight ? r - c : c - l;
+  vec3 dy = useUp ? u - c : c - d;
   vec3 n = cross(dx, dy);
   float len2 = dot(n, n);
   return len2 > 1e-30 ? n * inversesqrt(len2) : vec3(0, 0, 1);

@@ -85,6 +85,9 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
         unsafe { gl.program_uniform_2_i32(program.id(), Some(&location), counts[0], counts[1]) };
     }
     program.set_f32(loc::MAX_RADIUS_PIXELS, max_radius_pixels(w, h));
+    if program.has_location(loc::AO_THICKNESS) {
+        program.set_f32(loc::AO_THICKNESS, s.thickness_metres());
+    }
 }
 
 /// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion.

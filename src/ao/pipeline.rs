@@ -4,7 +4,7 @@
 
 use super::blur::SeparableBlur;
 use super::depth_chain::DepthChain;
-use super::method::{angle_based, crytek, gtao, hbao, hemisphere, sao, sao_lesson};
+use super::method::{angle_based, crytek, gtao, hbao, hemisphere, sao, sao_lesson, vbao};
 use super::method_pass::{method_defines, AoInputs, AoMethodPass};
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{half_size, AoTargets, LazyAoTargets};
@@ -45,6 +45,7 @@ fn build_method(
         AoMethod::Hbao => Box::new(hbao::build(gl, res, camera)?),
         AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
         AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
+        AoMethod::Vbao => Box::new(vbao::build(gl, res, camera)?),
     })
 }
 

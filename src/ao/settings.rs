@@ -22,10 +22,12 @@ pub enum AoMethod {
     AngleBased,
     /// Ground-truth-based AO (analytic cosine-weighted horizon integral).
     Gtao,
+    /// Visibility bitmask: occluders of finite thickness, sectors of equal cosine weight.
+    Vbao,
 }
 
 impl AoMethod {
-    pub const ALL: [AoMethod; 7] = [
+    pub const ALL: [AoMethod; 8] = [
         AoMethod::SaoLesson,
         AoMethod::Sao,
         AoMethod::Crytek,
@@ -33,6 +35,7 @@ impl AoMethod {
         AoMethod::Hbao,
         AoMethod::AngleBased,
         AoMethod::Gtao,
+        AoMethod::Vbao,
     ];
 
     pub fn name(self) -> &'static str {
@@ -44,6 +47,7 @@ impl AoMethod {
             AoMethod::Hbao => "hbao",
             AoMethod::AngleBased => "angle-based",
             AoMethod::Gtao => "gtao",
+            AoMethod::Vbao => "vbao",
         }
     }
 
@@ -52,7 +56,8 @@ impl AoMethod {
     }
 }
 
-/// GTAO quality presets (`--quality`, `[ao] quality`): slices × steps per side. Every preset reads
+/// Slice-method quality presets (`--quality`, `[ao] quality`) for `gtao` and `vbao`: slices × steps
+/// per side. Every preset reads
 /// level 0 of the half-size linear-depth chain (GTAO's horizon search needs exact depths: the min
 /// mip chain would raise horizons); the sample count is what costs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
@@ -148,9 +153,17 @@ pub struct AoSettings {
     pub tint: [f32; 3],
     /// Visibility is raised to this power before compositing (1 = as computed).
     pub power: f32,
-    /// GTAO preset (slices × steps); when set it decides GTAO's sample counts instead of `samples`.
+    /// GTAO/VBAO preset (slices × steps); when set it decides their sample counts instead of `samples`.
     pub quality: Option<GtaoQuality>,
+    /// How far (m) behind each depth sample `vbao` takes the surface to extend; unset: a fraction of
+    /// the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
+    pub thickness: Option<f32>,
 }
+
+/// `vbao`'s default thickness as a fraction of the radius, chosen on the bench's training cameras
+/// (docs/bench/vbao-thickness.md): thinner lets light through walls seen edge-on, thicker turns
+/// every foreground silhouette into a wall reaching the radius.
+pub const DEFAULT_THICKNESS_OF_RADIUS: f32 = 1.0;
 
 impl Default for AoSettings {
     fn default() -> Self {
@@ -167,6 +180,7 @@ impl Default for AoSettings {
             tint: [0.0; 3],
             power: 1.0,
             quality: None,
+            thickness: None,
         }
     }
 }
@@ -180,8 +194,16 @@ pub const INTENSITY_RANGE: (f32, f32) = (0.0, 1000.0);
 pub const POWER_RANGE: (f32, f32) = (0.05, 20.0);
 pub const SAMPLES_RANGE: (u32, u32) = (1, 256);
 pub const SPIRAL_TURNS_RANGE: (u32, u32) = (1, 64);
+/// Thickness: 0.1 mm (a sheet) to 1 km (a heightfield, as GTAO assumes).
+pub const THICKNESS_RANGE: (f32, f32) = (1e-4, 1000.0);
 
 impl AoSettings {
+    /// The thickness `vbao` uses (m).
+    pub fn thickness_metres(&self) -> f32 {
+        self.thickness
+            .unwrap_or(DEFAULT_THICKNESS_OF_RADIUS * self.radius)
+    }
+
     /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
     /// `[ao]` key).
     pub fn sanitized(mut self) -> (AoSettings, Vec<String>) {
@@ -201,6 +223,9 @@ impl AoSettings {
         fix("bias", &mut self.bias, BIAS_RANGE);
         fix("intensity", &mut self.intensity, INTENSITY_RANGE);
         fix("power", &mut self.power, POWER_RANGE);
+        if let Some(t) = &mut self.thickness {
+            fix("thickness", t, THICKNESS_RANGE);
+        }
         for c in &mut self.tint {
             let old = *c;
             *c = if c.is_finite() {

@@ -117,12 +117,15 @@ pub struct SceneArgs {
     /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
     #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
     pub samples: Option<u32>,
-    /// GTAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
+    /// GTAO/VBAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
     #[arg(long, value_parser = choice(&GtaoQuality::ALL, GtaoQuality::name))]
     pub quality: Option<GtaoQuality>,
     /// AO radius in metres.
     #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f32>,
+    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: the radius).
+    #[arg(long, allow_negative_numbers = true)]
+    pub thickness: Option<f32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
     #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
     pub composite: Option<CompositeMode>,

@@ -178,5 +178,13 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
         desc.ao.radius = r;
         keys.push(("ao.radius", "--radius"));
     }
+    if let Some(t) = args.thickness {
+        let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
+        if !(t.is_finite() && (lo..=hi).contains(&t)) {
+            bail!("--thickness {t}: use a thickness in metres between {lo} and {hi}");
+        }
+        desc.ao.thickness = Some(t);
+        keys.push(("ao.thickness", "--thickness"));
+    }
     Ok(keys)
 }

@@ -20,3 +20,4 @@ mod reference_analytic;
 mod reference_screen;
 mod sao_pipeline;
 mod shader_interface;
+mod vbao;

@@ -7,3 +7,4 @@ pub mod hbao;
 pub mod hemisphere;
 pub mod sao;
 pub mod sao_lesson;
+pub mod vbao;

@@ -90,7 +90,7 @@ pub(crate) fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> 
     }
     match method {
         AoMethod::SaoLesson => grid(&LESSON_SAMPLES, &LESSON_RADII),
-        AoMethod::Gtao => {
+        AoMethod::Gtao | AoMethod::Vbao => {
             // Its presets too: the accuracy target is on "high".
             let mut v = settings_for(AoMethod::Sao, &[], &[]);
             for radius in [1.0, 0.5] {
