@@ -207,6 +207,12 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[],
         &[s("texDepth", INPUT)],
     ),
+    fullscreen("ao/restore_depth_full.frag", &[], &[s("texDepth", INPUT)]),
+    fullscreen(
+        "ao/restore_depth_full_reversed.frag",
+        &[],
+        &[s("texDepth", INPUT)],
+    ),
     fullscreen(
         "ao/blur_separable.frag",
         &[u("axis", BLUR_AXIS)],

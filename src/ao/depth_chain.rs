@@ -1,7 +1,9 @@
 //! The first two passes every AO method shares: restore linear depth from the main depth buffer at
-//! half size (`sao_restore_depth.frag`, or `ao/restore_depth_reversed.frag` for reversed-Z), then the
-//! min mip chain (`sao_down_sampling.frag`).
+//! half size (`sao_restore_depth.frag`, or `ao/restore_depth_reversed.frag` for reversed-Z) or at
+//! full size (`ao/restore_depth_full.frag`, `ao/restore_depth_full_reversed.frag`), then the min mip
+//! chain (`sao_down_sampling.frag`).
 
+use super::settings::AoResolution;
 use super::targets::AoTargets;
 use crate::gl::preprocess::glsl_float;
 use crate::gl::{
@@ -25,6 +27,9 @@ pub struct DepthChain {
     pub restore: ProgramObject,
     /// Built the first time reversed-Z is used.
     pub restore_reversed: Option<ProgramObject>,
+    /// Full-resolution restores (standard, reversed-Z), built the first time they are needed.
+    pub restore_full: Option<ProgramObject>,
+    pub restore_full_reversed: Option<ProgramObject>,
     pub down_sampling: ProgramObject,
     res: ResDirs,
 }
@@ -41,6 +46,8 @@ impl DepthChain {
                 &planes,
             )?,
             restore_reversed: None,
+            restore_full: None,
+            restore_full_reversed: None,
             down_sampling: ProgramObject::from_res(
                 gl,
                 res,
@@ -52,19 +59,31 @@ impl DepthChain {
         })
     }
 
-    /// Builds what `mode` needs (the reversed-Z restore) if not built yet.
+    /// Builds what `mode` and `resolution` need (the reversed-Z and full-size restores) if not
+    /// built yet.
     pub fn prepare(
         &mut self,
         gl: &Gl,
         mode: DepthMode,
+        resolution: AoResolution,
         camera: &Camera,
     ) -> Result<(), ProgramError> {
-        if mode.reversed() && self.restore_reversed.is_none() {
-            self.restore_reversed = Some(ProgramObject::from_res(
+        let full = resolution == AoResolution::Full;
+        let (slot, file) = match (mode.reversed(), full) {
+            (false, false) => return Ok(()),
+            (true, false) => (&mut self.restore_reversed, "ao/restore_depth_reversed.frag"),
+            (false, true) => (&mut self.restore_full, "ao/restore_depth_full.frag"),
+            (true, true) => (
+                &mut self.restore_full_reversed,
+                "ao/restore_depth_full_reversed.frag",
+            ),
+        };
+        if slot.is_none() {
+            *slot = Some(ProgramObject::from_res(
                 gl,
                 &self.res,
                 "simple.vert",
-                "ao/restore_depth_reversed.frag",
+                file,
                 &camera_defines(camera),
             )?);
         }
@@ -74,6 +93,8 @@ impl DepthChain {
     pub fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         let mut v = vec![&mut self.restore, &mut self.down_sampling];
         v.extend(self.restore_reversed.as_mut());
+        v.extend(self.restore_full.as_mut());
+        v.extend(self.restore_full_reversed.as_mut());
         v
     }
 
@@ -85,7 +106,9 @@ impl DepthChain {
         Ok(())
     }
 
-    /// Main depth → linear depth level 0 with the restore that matches `mode`'s convention.
+    /// Main depth → linear depth level 0 with the restore that matches `mode`'s convention and the
+    /// targets' size (full when they are as large as the main depth buffer); an error when that
+    /// restore was not prepared.
     pub fn restore_linear_depth(
         &self,
         gl: &Gl,
@@ -93,12 +116,24 @@ impl DepthChain {
         meshes: &MeshBuffer,
         main_depth: &Texture,
         mode: DepthMode,
-    ) {
-        let program = match (&self.restore_reversed, mode.reversed()) {
-            (Some(p), true) => p,
-            _ => &self.restore,
+    ) -> anyhow::Result<()> {
+        let full =
+            targets.size() == (main_depth.width(), main_depth.height()) && targets.size() != (1, 1);
+        let program = match (mode.reversed(), full) {
+            (false, false) => Some(&self.restore),
+            (true, false) => self.restore_reversed.as_ref(),
+            (false, true) => self.restore_full.as_ref(),
+            (true, true) => self.restore_full_reversed.as_ref(),
         };
+        let program = program.ok_or_else(|| {
+            anyhow::anyhow!(
+                "the linear-depth restore for {} at {} resolution was not prepared",
+                mode.name(),
+                if full { "full" } else { "half" }
+            )
+        })?;
         restore(gl, program, &targets.fbo_depth[0], meshes, main_depth);
+        Ok(())
     }
 }
 

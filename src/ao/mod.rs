@@ -13,5 +13,5 @@ pub mod targets;
 
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
-pub use settings::{AoMethod, AoSettings, CompositeMode, GtaoQuality};
+pub use settings::{AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality};
 pub use targets::AoTargets;

@@ -6,8 +6,9 @@ use super::blur::SeparableBlur;
 use super::depth_chain::DepthChain;
 use super::method::{angle_based, crytek, gtao, hbao, hemisphere, sao, sao_lesson, vbao};
 use super::method_pass::{method_defines, AoInputs, AoMethodPass};
+use super::settings::AoResolution;
 use super::settings::{AoMethod, AoSettings};
-use super::targets::{half_size, AoTargets, LazyAoTargets};
+use super::targets::{ao_size, AoTargets, LazyAoTargets};
 use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::res::ResDirs;
@@ -95,13 +96,15 @@ impl AoPipeline {
         Ok(())
     }
 
-    /// Builds what the depth convention needs (the reversed-Z restore).
+    /// Builds what the depth convention and the AO resolution need (the reversed-Z and full-size
+    /// restores).
     pub fn prepare_depth_mode(
         &mut self,
         mode: DepthMode,
+        resolution: AoResolution,
         camera: &Camera,
     ) -> Result<(), ProgramError> {
-        self.depth_chain.prepare(&self.gl, mode, camera)
+        self.depth_chain.prepare(&self.gl, mode, resolution, camera)
     }
 
     /// The method's passes; an error when `prepare` was not called for it.
@@ -112,11 +115,17 @@ impl AoPipeline {
             .ok_or_else(|| anyhow!("AO method {} was not prepared", method.name()))
     }
 
-    /// Level count of the linear-depth chain `method` reads for a main image of `size`.
-    pub fn wanted_depth_levels(&self, method: AoMethod, (w, h): (u32, u32)) -> u32 {
-        let half = half_size(w, h);
+    /// Level count of the linear-depth chain `method` reads for a main image of `size` with AO at
+    /// `resolution`.
+    pub fn wanted_depth_levels(
+        &self,
+        method: AoMethod,
+        (w, h): (u32, u32),
+        resolution: AoResolution,
+    ) -> u32 {
+        let buffer = ao_size(w, h, resolution);
         match self.methods.get(&method) {
-            Some(m) => m.depth_levels(half),
+            Some(m) => m.depth_levels(buffer),
             None => super::targets::SAO_DEPTH_LEVELS,
         }
     }

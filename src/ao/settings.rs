@@ -101,6 +101,31 @@ impl GtaoQuality {
     }
 }
 
+/// The size the engine's AO methods run at (`--ao-resolution`, `[ao] resolution`); `sao-lesson`
+/// always runs at half size, as the course teaches it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum AoResolution {
+    /// Half the main size in each axis (the course's choice: a quarter of the pixels).
+    #[default]
+    Half,
+    /// The main size: no up-sampling, exact depth at every pixel.
+    Full,
+}
+
+impl AoResolution {
+    pub const ALL: [AoResolution; 2] = [AoResolution::Half, AoResolution::Full];
+    pub fn name(self) -> &'static str {
+        match self {
+            AoResolution::Half => "half",
+            AoResolution::Full => "full",
+        }
+    }
+    pub fn from_name(name: &str) -> Option<AoResolution> {
+        AoResolution::ALL.into_iter().find(|r| r.name() == name)
+    }
+}
+
 /// How occlusion is applied to the image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -158,6 +183,8 @@ pub struct AoSettings {
     /// How far (m) behind each depth sample `vbao` takes the surface to extend; unset: a fraction of
     /// the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
     pub thickness: Option<f32>,
+    /// Size the engine's methods run at (`sao-lesson` ignores it: see `effective_resolution`).
+    pub resolution: AoResolution,
 }
 
 /// `vbao`'s default thickness as a fraction of the radius, chosen on the bench's training cameras
@@ -181,6 +208,7 @@ impl Default for AoSettings {
             power: 1.0,
             quality: None,
             thickness: None,
+            resolution: AoResolution::Half,
         }
     }
 }
@@ -198,6 +226,14 @@ pub const SPIRAL_TURNS_RANGE: (u32, u32) = (1, 64);
 pub const THICKNESS_RANGE: (f32, f32) = (1e-4, 1000.0);
 
 impl AoSettings {
+    /// The resolution the selected method runs at: the lesson's SAO stays at half size as taught.
+    pub fn effective_resolution(&self) -> AoResolution {
+        match self.method {
+            AoMethod::SaoLesson => AoResolution::Half,
+            _ => self.resolution,
+        }
+    }
+
     /// The thickness `vbao` uses (m).
     pub fn thickness_metres(&self) -> f32 {
         self.thickness
@@ -269,6 +305,9 @@ mod tests {
         }
         for c in CompositeMode::ALL {
             assert_eq!(CompositeMode::from_name(c.name()), Some(c));
+        }
+        for r in AoResolution::ALL {
+            assert_eq!(AoResolution::from_name(r.name()), Some(r));
         }
         assert_eq!(AoMethod::from_name("ssao"), None);
     }

@@ -2,6 +2,7 @@
 //! the occlusion target (`texSAO`) and the blurred one (`texSAOBlur`); created lazily so that an engine
 //! that never runs AO owns no AO texture.
 
+use super::settings::AoResolution;
 use crate::gl::{FramebufferObject, Gl, Texture, TextureDesc};
 use anyhow::Result;
 use std::cell::{Cell, OnceCell};
@@ -16,7 +17,15 @@ pub fn half_size(width: u32, height: u32) -> (u32, u32) {
     ((width / 2).max(1), (height / 2).max(1))
 }
 
-/// The lesson's half-size targets.
+/// Size of the AO buffers for a `width`×`height` main image at `resolution`, never 0.
+pub fn ao_size(width: u32, height: u32, resolution: AoResolution) -> (u32, u32) {
+    match resolution {
+        AoResolution::Half => half_size(width, height),
+        AoResolution::Full => (width.max(1), height.max(1)),
+    }
+}
+
+/// The lesson's half-size targets (or full-size ones for `--ao-resolution full`).
 pub struct AoTargets {
     /// `texSAODepth`: R32F linear depth in metres, half size, one level per `fbo_depth` entry.
     pub tex_depth: Rc<Texture>,
@@ -28,9 +37,20 @@ pub struct AoTargets {
 }
 
 impl AoTargets {
-    /// Creates the targets for a `width`×`height` main image.
+    /// Creates the half-size targets for a `width`×`height` main image.
     pub fn new(gl: &Gl, width: u32, height: u32, depth_levels: u32) -> Result<AoTargets> {
-        let (hw, hh) = half_size(width, height);
+        AoTargets::at_resolution(gl, width, height, depth_levels, AoResolution::Half)
+    }
+
+    /// Creates the targets for a `width`×`height` main image at `resolution`.
+    pub fn at_resolution(
+        gl: &Gl,
+        width: u32,
+        height: u32,
+        depth_levels: u32,
+        resolution: AoResolution,
+    ) -> Result<AoTargets> {
+        let (hw, hh) = ao_size(width, height, resolution);
         // A mipmap filter: with the course's GL_LINEAR, textureLod(…, level) reads level 0 for every level.
         let tex_depth = Rc::new(Texture::new(
             gl,
@@ -80,7 +100,7 @@ impl AoTargets {
         }
     }
 
-    /// (width, height) of the half-size buffers.
+    /// (width, height) of the AO buffers (half or full size).
     pub fn size(&self) -> (u32, u32) {
         (self.fbo_depth[0].width(), self.fbo_depth[0].height())
     }
@@ -94,6 +114,7 @@ pub struct LazyAoTargets {
     /// Main image size and linear-depth level count the targets are (or will be) created with.
     size: Cell<(u32, u32)>,
     depth_levels: Cell<u32>,
+    resolution: Cell<AoResolution>,
 }
 
 impl LazyAoTargets {
@@ -103,6 +124,7 @@ impl LazyAoTargets {
             live: OnceCell::new(),
             size: Cell::new(size),
             depth_levels: Cell::new(depth_levels),
+            resolution: Cell::new(AoResolution::Half),
         }
     }
 
@@ -117,15 +139,30 @@ impl LazyAoTargets {
             return Ok(t);
         }
         let (w, h) = self.size.get();
-        let targets = AoTargets::new(&self.gl, w, h, self.depth_levels.get())?;
+        let targets = AoTargets::at_resolution(
+            &self.gl,
+            w,
+            h,
+            self.depth_levels.get(),
+            self.resolution.get(),
+        )?;
         Ok(self.live.get_or_init(|| targets))
     }
 
-    /// Sets the size and level count; existing targets are re-created when either changed.
-    pub fn configure(&mut self, size: (u32, u32), depth_levels: u32) -> Result<()> {
-        let changed = size != self.size.get() || depth_levels != self.depth_levels.get();
+    /// Sets the main size, level count and resolution; existing targets are re-created when any
+    /// changed.
+    pub fn configure(
+        &mut self,
+        size: (u32, u32),
+        depth_levels: u32,
+        resolution: AoResolution,
+    ) -> Result<()> {
+        let changed = size != self.size.get()
+            || depth_levels != self.depth_levels.get()
+            || resolution != self.resolution.get();
         self.size.set(size);
         self.depth_levels.set(depth_levels);
+        self.resolution.set(resolution);
         if changed && self.live.get().is_some() {
             self.live = OnceCell::new();
             self.get_or_create()?;

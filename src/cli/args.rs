@@ -3,7 +3,7 @@
 //! Numeric flags accept a leading minus so `--fov -30` reaches the range check (with a message naming
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
-use crate::ao::{AoMethod, CompositeMode, GtaoQuality};
+use crate::ao::{AoMethod, AoResolution, CompositeMode, GtaoQuality};
 use crate::i18n::Lang;
 use crate::math::DepthMode;
 use crate::render::View;
@@ -123,6 +123,9 @@ pub struct SceneArgs {
     /// AO radius in metres.
     #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f32>,
+    /// Size the engine's AO methods run at: half (the course's) or full (`sao-lesson` stays at half).
+    #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
+    pub ao_resolution: Option<AoResolution>,
     /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: the radius).
     #[arg(long, allow_negative_numbers = true)]
     pub thickness: Option<f32>,

@@ -178,6 +178,9 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
         desc.ao.radius = r;
         keys.push(("ao.radius", "--radius"));
     }
+    if let Some(r) = args.ao_resolution {
+        desc.ao.resolution = r;
+    }
     if let Some(t) = args.thickness {
         let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
         if !(t.is_finite() && (lo..=hi).contains(&t)) {

@@ -172,7 +172,8 @@ impl Engine {
         if mode.reversed() && self.clip_control.is_none() {
             self.clip_control = Some(ClipControl::get().map_err(|e| anyhow!(e))?);
         }
-        self.ao.prepare_depth_mode(mode, &self.camera)?;
+        let resolution = self.ao_settings.effective_resolution();
+        self.ao.prepare_depth_mode(mode, resolution, &self.camera)?;
         if mode != self.depth_mode {
             self.fbo_main = create_main_fbo(&self.gl, self.width, self.height, mode)?;
             self.depth_mode = mode;
@@ -209,16 +210,19 @@ impl Engine {
     pub fn wanted_depth_levels(&self) -> u32 {
         match self.depth_levels_override {
             Some(n) => n.max(1),
-            None => self
-                .ao
-                .wanted_depth_levels(self.ao_settings.method, self.size()),
+            None => self.ao.wanted_depth_levels(
+                self.ao_settings.method,
+                self.size(),
+                self.ao_settings.effective_resolution(),
+            ),
         }
     }
 
     /// Gives the lazily created AO targets the current size and level count (re-creating existing ones).
     fn configure_ao_targets(&mut self) -> Result<()> {
         let levels = self.wanted_depth_levels();
-        self.ao.targets.configure(self.size(), levels)
+        let resolution = self.ao_settings.effective_resolution();
+        self.ao.targets.configure(self.size(), levels, resolution)
     }
 
     /// The AO targets, created if no frame created them yet (tests and tools inspect them).
@@ -241,7 +245,8 @@ impl Engine {
     pub fn sync_shader_constants(&mut self) -> Result<()> {
         let (camera, settings) = (self.camera, self.ao_settings);
         self.ao.prepare(settings.method, &camera, &settings)?;
-        self.ao.prepare_depth_mode(self.depth_mode, &camera)?;
+        self.ao
+            .prepare_depth_mode(self.depth_mode, settings.effective_resolution(), &camera)?;
         self.ao.update_defines(&camera, &settings)?;
         self.configure_ao_targets()
     }
@@ -438,7 +443,7 @@ impl Engine {
         let chain = &self.ao.depth_chain;
         self.pass("sao restore depth", "ao", || {
             chain.restore_linear_depth(&self.gl, targets, &self.meshes, depth, self.depth_mode)
-        });
+        })?;
         self.pass("sao down sampling", "ao", || {
             crate::ao::depth_chain::down_sample(
                 &self.gl,

@@ -1,0 +1,101 @@
+//! `--ao-resolution full`: the engine's methods run on one linear-depth texel per pixel, restored
+//! exactly (both depth conventions), while the lesson's SAO stays at half size as taught.
+
+use crate::common;
+
+use glam::Vec3;
+use opengl3d::ao::{AoMethod, AoResolution};
+use opengl3d::math::DepthMode;
+use opengl3d::render::View;
+use opengl3d::scene::{shapes, SceneDesc};
+use opengl3d::tools::reference::{pixel_dir, view_direction};
+
+const W: u32 = 64;
+const H: u32 = 48;
+
+/// A floor seen obliquely: the exact view distance changes from pixel to pixel.
+fn floor_scene(dir: &std::path::Path) -> SceneDesc {
+    let mut s = SceneDesc::default();
+    s.objects.push(common::object(
+        dir,
+        "floor",
+        &shapes::ground(50.0, 10),
+        Vec3::ZERO,
+        Vec3::ONE,
+    ));
+    s.camera.eye = [0.0, 2.0, 0.0];
+    s.camera.target = [0.0, 0.0, -4.0];
+    s.output.width = W;
+    s.output.height = H;
+    s.bloom.enabled = false;
+    s
+}
+
+/// The floor's exact view distance (−z_view) at the centre of pixel (x, y), row 0 at the top;
+/// `None` where the ray misses the floor.
+fn exact_depth(scene: &SceneDesc, x: u32, y: u32) -> Option<f32> {
+    let cam = scene.camera.camera();
+    let d = pixel_dir(&cam, x, y, W, H)?;
+    if d.y >= -1e-6 {
+        return None;
+    }
+    let t = cam.eye.y / -d.y;
+    (t < 50.0).then(|| t * d.dot(view_direction(&cam)))
+}
+
+#[test]
+fn full_resolution_restores_every_pixel_exactly_in_both_depth_conventions() {
+    let ctx = common::context();
+    let dir = common::temp_dir("ao-full");
+    for mode in [DepthMode::D32, DepthMode::D32fReversed] {
+        let mut scene = floor_scene(&dir);
+        scene.output.depth = mode;
+        scene.ao.method = AoMethod::Vbao;
+        let mut worst = [0.0f32; 2];
+        for (i, resolution) in [AoResolution::Full, AoResolution::Half]
+            .into_iter()
+            .enumerate()
+        {
+            scene.ao.resolution = resolution;
+            let mut eng = common::engine(&ctx, &scene);
+            let v = eng.render_values(View::LinearDepth).unwrap();
+            let size = eng.ao_targets().unwrap().size();
+            let expected_size = match resolution {
+                AoResolution::Full => (W, H),
+                AoResolution::Half => (W / 2, H / 2),
+            };
+            assert_eq!(size, expected_size, "{mode:?} {resolution:?}");
+            for y in 0..H {
+                for x in 0..W {
+                    if let Some(d) = exact_depth(&scene, x, y) {
+                        let got = v[(y * W + x) as usize];
+                        worst[i] = worst[i].max((got - d).abs() / d);
+                    }
+                }
+            }
+        }
+        eprintln!(
+            "{mode:?}: worst relative depth error, full {:e}, half {:e}",
+            worst[0], worst[1]
+        );
+        // Full: the restore's f32 arithmetic only. Half: each texel holds the nearest of 2x2.
+        assert!(worst[0] < 1e-4, "{mode:?} full: {:e}", worst[0]);
+        assert!(worst[1] > 10.0 * worst[0], "{mode:?} half {:e}", worst[1]);
+    }
+}
+
+#[test]
+fn the_lessons_sao_stays_at_half_size_whatever_the_setting() {
+    let ctx = common::context();
+    let dir = common::temp_dir("ao-full-lesson");
+    let mut scene = floor_scene(&dir);
+    scene.ao.method = AoMethod::SaoLesson;
+    scene.ao.resolution = AoResolution::Full;
+    let mut eng = common::engine(&ctx, &scene);
+    common::assert_finite("sao-lesson", &eng.render_values(View::Ao).unwrap());
+    assert_eq!(eng.ao_targets().unwrap().size(), (W / 2, H / 2));
+    // Switching the method to an engine one re-creates the targets at full size.
+    eng.ao_settings.method = AoMethod::Gtao;
+    common::assert_finite("gtao", &eng.render_values(View::Ao).unwrap());
+    assert_eq!(eng.ao_targets().unwrap().size(), (W, H));
+}
