@@ -47,6 +47,9 @@ void main()
       for (int j = 0; j < steps; ++j) {
         float dist = (float(j) + stepNoise) / float(steps) * ssR + 1.0;
         ivec2 q = pix + ivec2(round(sgn * dir.xy * dist));
+        if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(DepthSize())))) {
+          break; // off screen: unknown, not the border texel repeated (which fakes occluders)
+        }
         vec3 D = TexelPos(q) - P;
         float len = length(D);
         if (len < 1e-6) {
