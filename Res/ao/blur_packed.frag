@@ -1,6 +1,6 @@
 #version 450
 
-// The separable bilateral blur of blur_separable.frag (same 9 taps, weights and 0.15 m depth falloff)
+// The separable bilateral blur of blur_separable.frag (same 9 taps, weights and depth test)
 // for the engine's `sao`, whose AO pass also writes (occlusion, linear depth) into one RG texture:
 // each tap is one fetch instead of two (McGuire packs the blur key next to the AO value the same
 // way). The first pass writes the pair on for the second; the second writes occlusion into R8.
@@ -12,6 +12,8 @@ layout(location=210) uniform ivec2 axis;       // (1,0) then (0,1)
 #ifndef CAMERA_FAR
 #define CAMERA_FAR 1000.0
 #endif
+
+#include "blur_edge.glsl"
 
 layout(location=0) out vec2 outColor;
 
@@ -27,6 +29,8 @@ void main()
   if (depth >= CAMERA_FAR) {
     return;
   }
+  float slope = InverseDepthSlope(texelFetch(texPacked, clamp(uv - axis, ivec2(0), maxUV), 0).y, depth,
+                                  texelFetch(texPacked, clamp(uv + axis, ivec2(0), maxUV), 0).y);
   float sum = center.x * gaussian[0];
   float total = gaussian[0];
   for (int r = -4; r <= 4; ++r) {
@@ -34,7 +38,7 @@ void main()
       continue;
     }
     vec2 tap = texelFetch(texPacked, clamp(uv + axis * r, ivec2(0), maxUV), 0).xy;
-    float w = gaussian[abs(r)] * max(0.0, 1.0 - abs(tap.y - depth) / 0.15);
+    float w = gaussian[abs(r)] * EdgeWeight(depth, slope, r, tap.y);
     sum += tap.x * w;
     total += w;
   }

@@ -1,7 +1,8 @@
 #version 450
 
 // One direction of the separable bilateral blur (McGuire's reference: 2 passes x 9 taps, radius 4,
-// McGuire's weights (a sigma = 3 Gaussian in taps); weights fall to 0 across a depth step of 0.15 m). Taps are 1 texel apart, not 2:
+// McGuire's weights (a sigma = 3 Gaussian in taps); taps off the centre's plane lose their weight:
+// blur_edge.glsl). Taps are 1 texel apart, not 2:
 // the methods rotate their samples with a 4x4 tile, and taps 2 apart would only ever see 2 of its 4
 // phases per axis, leaving the tile's pattern in the picture.
 
@@ -13,6 +14,8 @@ layout(location=210) uniform ivec2 axis;      // (1,0) then (0,1)
 #ifndef CAMERA_FAR
 #define CAMERA_FAR 1000.0
 #endif
+
+#include "blur_edge.glsl"
 
 out float outColor;
 
@@ -28,6 +31,8 @@ void main()
   if (depth >= CAMERA_FAR) {
     return;
   }
+  float slope = InverseDepthSlope(texelFetch(texDepth, clamp(uv - axis, ivec2(0), maxUV), 0).x, depth,
+                                  texelFetch(texDepth, clamp(uv + axis, ivec2(0), maxUV), 0).x);
   float sum = center * gaussian[0];
   float total = gaussian[0];
   for (int r = -4; r <= 4; ++r) {
@@ -35,7 +40,7 @@ void main()
       continue;
     }
     ivec2 q = clamp(uv + axis * r, ivec2(0), maxUV);
-    float w = gaussian[abs(r)] * max(0.0, 1.0 - abs(texelFetch(texDepth, q, 0).x - depth) / 0.15);
+    float w = gaussian[abs(r)] * EdgeWeight(depth, slope, r, texelFetch(texDepth, q, 0).x);
     sum += texelFetch(texColor, q, 0).x * w;
     total += w;
   }

@@ -26,6 +26,7 @@ void main()
   float noise = NoiseAngle(pix) / (2.0 * PI);
   float stepNoise = fract(noise * 7.0 + 0.37);
   float visibility = 0;
+  float openSum = 0;
   for (int s = 0; s < slices; ++s) {
     float phi = PI * (float(s) + noise) / float(slices);
     vec3 dir = vec3(cos(phi), sin(phi), 0.0);
@@ -38,6 +39,9 @@ void main()
     }
     float cosN = clamp(dot(projN, V) / projLen, -1.0, 1.0);
     float nAngle = sign(dot(ortho, projN)) * acos(cosN);
+    float sinN = sin(nAngle);
+    // The slice's tangent: the projected normal turned a quarter towards ortho.
+    vec3 tSlice = cosN * normalize(ortho) - sinN * V;
     float hc[2];
     for (int side = 0; side < 2; ++side) {
       float sgn = side == 0 ? -1.0 : 1.0;
@@ -55,7 +59,13 @@ void main()
         if (len < 1e-6) {
           continue;
         }
-        float c = dot(D / len, V);
+        // Cosine to V of the tap's direction in the slice, from its height over the tangent plane
+        // (full normal) and its position along the slice's tangent: a tap rounded to a texel lies
+        // off the slice plane, and dot(D, V) alone would lift a flat floor's taps above it (false
+        // occlusion on an open floor). Equal to dot(D, V) / len for taps in the plane.
+        float u = dot(D, n) / projLen;
+        float v = dot(D, tSlice);
+        float c = (cosN * u - sinN * v) * inversesqrt(max(u * u + v * v, 1e-30));
         // Fade occluders out between 0.6 R and R (no hard cut at the radius).
         float w = clamp((AO_RADIUS - len) / (0.4 * AO_RADIUS), 0.0, 1.0);
         best = max(best, mix(lowCos, c, w));
@@ -66,11 +76,15 @@ void main()
     float h1 = acos(clamp(hc[1], -1.0, 1.0));
     h0 = nAngle + max(h0 - nAngle, -0.5 * PI);
     h1 = nAngle + min(h1 - nAngle, 0.5 * PI);
-    float sinN = sin(nAngle);
     float a0 = -cos(2.0 * h0 - nAngle) + cosN + 2.0 * h0 * sinN;
     float a1 = -cos(2.0 * h1 - nAngle) + cosN + 2.0 * h1 * sinN;
     visibility += projLen * 0.25 * (a0 + a1);
+    // The same slice with nothing above the tangent plane: cos(n) + n sin(n).
+    openSum += projLen * (cosN + nAngle * sinN);
   }
-  visibility = clamp(visibility / float(slices), 0.0, 1.0);
+  // Normalised by the open value of the same slices, not by the slice count: the slice average reaches
+  // 1 on an open tilted surface only over many slice angles; per pixel it lands above or below, and
+  // clamping the values above 1 left a floor 2.7 % occluded on average.
+  visibility = openSum > 0.0 ? clamp(visibility / openSum, 0.0, 1.0) : 1.0;
   outColor = ApplyIntensity(1.0 - visibility);
 }

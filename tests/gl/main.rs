@@ -4,6 +4,7 @@
 mod ao_resolution;
 mod bench;
 mod bench_skips;
+mod blur_stripes;
 mod cli;
 #[path = "../common/mod.rs"]
 mod common;
