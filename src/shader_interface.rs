@@ -49,6 +49,8 @@ pub mod loc {
     pub const DEBUG_VIEW_SCALE: i32 = 211;
     /// ao/blur_separable.frag, ao/blur_packed.frag: (1,0) then (0,1).
     pub const BLUR_AXIS: i32 = 210;
+    /// ao/upsample_bilateral.frag: (near, far, 1 for reversed-Z) to linearise the main depth.
+    pub const UPSAMPLE_DEPTH_PLANES: i32 = 230;
     /// ao/composite_tint.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -60,6 +62,8 @@ pub mod binding {
     pub const INPUT: u32 = 0;
     /// sao_blur.frag and ao/blur_separable.frag: linear depth beside the occlusion; image processing: bloom.
     pub const SECOND_INPUT: u32 = 1;
+    /// ao/upsample_bilateral.frag: the main depth buffer.
+    pub const THIRD_INPUT: u32 = 2;
     /// standard.frag: `texShadow`.
     pub const SHADOW_MAP: u32 = 2;
     /// standard.frag: occlusion for AO on the ambient term only.
@@ -208,6 +212,15 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[s("texDepth", INPUT)],
     ),
     fullscreen("ao/restore_depth_full.frag", &[], &[s("texDepth", INPUT)]),
+    fullscreen(
+        "ao/upsample_bilateral.frag",
+        &[u("depthPlanes", UPSAMPLE_DEPTH_PLANES)],
+        &[
+            s("texOcclusion", INPUT),
+            s("texDepth", SECOND_INPUT),
+            s("texMainDepth", THIRD_INPUT),
+        ],
+    ),
     fullscreen(
         "ao/restore_depth_full_reversed.frag",
         &[],

@@ -1,5 +1,5 @@
 //! Ambient occlusion: settings, the shared half-size targets and depth chain, the blurs and the
-//! composite, and one module per method under `method/` (its shader beside it in `Res/ao/`).
+//! composite (with the bilateral up-sampling of half-size AO), and one module per method under `method/` (its shader beside it in `Res/ao/`).
 
 pub mod blur;
 pub mod composite;
@@ -10,6 +10,7 @@ pub mod method_pass;
 pub mod pipeline;
 pub mod settings;
 pub mod targets;
+pub mod upsample;
 
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;

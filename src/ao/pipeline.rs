@@ -9,6 +9,7 @@ use super::method_pass::{method_defines, AoInputs, AoMethodPass};
 use super::settings::AoResolution;
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{ao_size, AoTargets, LazyAoTargets};
+use super::upsample::BilateralUpsample;
 use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::res::ResDirs;
@@ -26,6 +27,8 @@ pub struct AoPipeline {
     /// `simple.frag` (the lesson's composite) and `ao/composite_tint.frag`.
     pub composite_simple: ProgramObject,
     pub composite_tint: ProgramObject,
+    /// Half-size AO of the engine's methods → main size, depth-aware.
+    pub upsample: BilateralUpsample,
 }
 
 /// Builds `method`'s passes.
@@ -76,6 +79,7 @@ impl AoPipeline {
             )?),
             composite_simple: fullscreen("simple.frag", &[])?,
             composite_tint: fullscreen("ao/composite_tint.frag", &[])?,
+            upsample: BilateralUpsample::new(fullscreen(super::upsample::SHADER, &[])?),
         };
         p.prepare(AoMethod::SaoLesson, camera, settings)?;
         p.prepare(settings.method, camera, settings)?;
@@ -139,6 +143,7 @@ impl AoPipeline {
     pub fn release_targets(&mut self) {
         self.targets.release();
         self.separable_blur.release_targets();
+        self.upsample.release_targets();
         for m in self.methods.values_mut() {
             m.release_targets();
         }
@@ -153,6 +158,7 @@ impl AoPipeline {
             out.push(t.result_texture(true).clone());
         }
         out.extend(self.separable_blur.textures());
+        out.extend(self.upsample.textures());
         for m in self.methods.values() {
             out.extend(m.textures());
         }
@@ -164,6 +170,7 @@ impl AoPipeline {
         v.push(&mut self.separable_blur.program);
         v.push(&mut self.composite_simple);
         v.push(&mut self.composite_tint);
+        v.push(&mut self.upsample.program);
         for m in self.methods.values_mut() {
             v.extend(m.programs_mut());
         }

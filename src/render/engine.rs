@@ -9,6 +9,7 @@ use super::passes::{shadow::ShadowPass, transparent};
 use super::stats::{process_cpu_seconds, AoTextureInfo, PassStat};
 use super::view::View;
 use crate::ao::method_pass::AoInputs;
+use crate::ao::upsample::UpsampleInputs;
 use crate::ao::{composite, AoMethod, AoPipeline, AoSettings, AoTargets, CompositeMode};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::mesh::MeshData;
@@ -360,7 +361,8 @@ impl Engine {
         }
         if let Some(targets) = ao_targets {
             self.run_ao(&f, targets, view)?;
-            let occlusion = targets.result_texture(settings.blur);
+            let occlusion = self.full_size_occlusion(targets, view)?;
+            let occlusion = occlusion.as_ref();
             if ambient_only {
                 self.pass("opaque", "opaque", || {
                     self.lit.draw_ao_ambient(
@@ -472,6 +474,31 @@ impl Engine {
             self.pass(blur_name, "ao", || self.ao.blur(method, &inputs))?;
         }
         Ok(())
+    }
+
+    /// The occlusion at the main size for the composite and the AO view: the engine's methods at half
+    /// size are up-sampled depth-aware; the lesson's SAO keeps the course's linear filter, and
+    /// full-size AO needs nothing.
+    fn full_size_occlusion(&self, targets: &AoTargets, view: View) -> Result<Rc<Texture>> {
+        let result = targets.result_texture(self.ao_settings.blur);
+        let half = targets.size() != self.size();
+        if !half || self.ao_settings.method == AoMethod::SaoLesson || view == View::AoRaw {
+            return Ok(result.clone());
+        }
+        let main_depth = self
+            .fbo_main
+            .depth_texture()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let inputs = UpsampleInputs {
+            occlusion: result,
+            half_depth: &targets.tex_depth,
+            main_depth,
+            camera: &self.camera,
+            mode: self.depth_mode,
+        };
+        self.pass("bilateral upsample", "ao", || {
+            self.ao.upsample.run(&self.gl, &self.meshes, &inputs)
+        })
     }
 
     /// Blends the occlusion over the lit image: the lesson's swizzled blend (the engine's SAO leaves
