@@ -52,6 +52,14 @@ pub trait AoMethodPass {
     fn release_targets(&mut self) {}
 }
 
+/// The whole number of units (steps, directions' steps, pairs) whose `taps_per_unit` depth taps come
+/// nearest to the `samples` budget, at least 1: `--samples N` buys every method N taps per pixel, to
+/// within half a unit, so the bench compares equal budgets (truncating gave `gtao` 8 taps for 11).
+pub fn units_for_budget(samples: u32, taps_per_unit: u32) -> i32 {
+    let unit = taps_per_unit.max(1);
+    ((samples + unit / 2) / unit).max(1) as i32
+}
+
 /// `ao/sao.frag` reads level floor(log2(distance in pixels)) − LOG_MAX_OFFSET (McGuire's
 /// LOG_MAX_OFFSET): 2^3 = 8 samples share a texel of the level they read.
 pub const LOG_MAX_OFFSET: u32 = 3;

@@ -2,7 +2,7 @@
 //! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
 //! `Res/ao/gtao.frag`; quality presets in `settings::GtaoQuality`.
 
-use crate::ao::method_pass::ShaderMethod;
+use crate::ao::method_pass::{units_for_budget, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, ProgramError};
 use crate::math::Camera;
@@ -20,7 +20,10 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
         let (slices, steps) = q.slices_steps();
         return [slices as i32, steps as i32];
     }
-    [DEFAULT_SLICES, (s.samples.max(1) as i32 / 4).max(1)]
+    [
+        DEFAULT_SLICES,
+        units_for_budget(s.samples, 2 * DEFAULT_SLICES as u32),
+    ]
 }
 
 pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {

@@ -1,7 +1,7 @@
 //! Horizon-based AO (seed 000): marches screen-space directions, keeps the highest horizon per
 //! direction. Shader: `Res/ao/hbao.frag`.
 
-use crate::ao::method_pass::ShaderMethod;
+use crate::ao::method_pass::{units_for_budget, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, ProgramError};
 use crate::math::Camera;
@@ -15,7 +15,7 @@ pub const DIRECTIONS: i32 = 4;
 
 /// `aoCounts` = (directions, steps per direction).
 pub fn counts(s: &AoSettings) -> [i32; 2] {
-    [DIRECTIONS, (s.samples.max(1) as i32 / DIRECTIONS).max(1)]
+    [DIRECTIONS, units_for_budget(s.samples, DIRECTIONS as u32)]
 }
 
 pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
