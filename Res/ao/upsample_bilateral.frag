@@ -39,29 +39,24 @@ void main()
     outColor = texture(texOcclusion, inTexcoord).x; // sky: nothing to keep apart
     return;
   }
-  ivec2 halfSize = textureSize(texOcclusion, 0);
-  // Position in half-size texels, relative to the texel centres.
-  vec2 h = inTexcoord * vec2(halfSize) - 0.5;
-  ivec2 base = ivec2(floor(h));
-  vec2 f = h - vec2(base);
-  float sum = 0;
-  float total = 0;
-  float nearestGap = 1e30;
-  float nearestValue = 0;
-  for (int i = 0; i < 4; ++i) {
-    ivec2 o = ivec2(i & 1, i >> 1);
-    ivec2 q = clamp(base + o, ivec2(0), halfSize - 1);
-    float value = texelFetch(texOcclusion, q, 0).x;
-    float gap = abs(texelFetch(texDepth, q, 0).x - z) / z;
-    float bilinear = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    float w = bilinear * max(0.0, 1.0 - gap / RELATIVE_TOLERANCE);
-    sum += value * w;
-    total += w;
-    if (gap < nearestGap) {
-      nearestGap = gap;
-      nearestValue = value;
-    }
-  }
+  vec2 halfSize = vec2(textureSize(texOcclusion, 0));
+  // Position in half-size texels, relative to the texel centres; the 2x2 texels around it are
+  // gathered in one fetch per texture (textureGather's order: (0,1), (1,1), (1,0), (0,0)).
+  vec2 h = inTexcoord * halfSize - 0.5;
+  vec2 base = floor(h);
+  vec2 f = h - base;
+  vec2 gatherUv = (base + 1.0) / halfSize;
+  vec4 values = textureGather(texOcclusion, gatherUv, 0);
+  vec4 depths = textureGather(texDepth, gatherUv, 0);
+  vec4 bilinear = vec4((1.0 - f.x) * f.y, f.x * f.y, f.x * (1.0 - f.y), (1.0 - f.x) * (1.0 - f.y));
+  vec4 gaps = abs(depths - z) / z;
+  vec4 w = bilinear * max(vec4(0.0), 1.0 - gaps / RELATIVE_TOLERANCE);
+  float total = dot(w, vec4(1.0));
+  float sum = dot(w, values);
+  float nearestGap = min(min(gaps.x, gaps.y), min(gaps.z, gaps.w));
+  float nearestValue = gaps.x == nearestGap ? values.x
+                     : gaps.y == nearestGap ? values.y
+                     : gaps.z == nearestGap ? values.z : values.w;
   // No texel on the pixel's surface (a feature thinner than a half-size texel): the closest in depth.
   outColor = total > 1e-4 ? sum / total : nearestValue;
 }
