@@ -30,7 +30,11 @@ void main()
     vec2 o = vec2(cos(ang), sin(ang)) * len * ssR;
     float pairOcclusion = 0;
     for (int side = -1; side <= 1; side += 2) {
-      vec3 D = TexelPos(pix + ivec2(round(o * float(side)))) - P;
+      ivec2 q = pix + ivec2(round(o * float(side)));
+      if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, ivec2(DepthSize())))) {
+        continue; // off screen: unknown, not the border texel repeated (which fakes occluders)
+      }
+      vec3 D = TexelPos(q) - P;
       float dist = length(D);
       if (dist < 1e-6) {
         continue;

@@ -70,6 +70,13 @@ float NoiseAngle(ivec2 p) {
   return (bayer[(p.y & 3) * 4 + (p.x & 3)] + 0.5) / 16.0 * 2.0 * PI;
 }
 
+// A step offset in [0, 1) independent of NoiseAngle's 4x4 tile (interleaved gradient noise, Jimenez
+// 2014): derived from the angle instead, the same rotation always comes with the same distances and
+// the blur is left with a pattern of rows.
+float StepNoise(ivec2 p) {
+  return fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))));
+}
+
 // Intensity 5 (the lesson's default) leaves occlusion as computed; larger darkens, smaller lightens.
 // pow(0, 0) is undefined in GLSL (it can come out NaN), so visibility is kept above 0 and an
 // intensity of 0 returns no occlusion outright.

@@ -12,12 +12,28 @@ layout(location=204) uniform float aoThickness; // metres behind each depth samp
 
 const int SECTORS = 32;
 
-// Cosine-weighted measure of the slice from angle 0 (the view vector) to h, signed, for the normal
-// at angle g: the integral of cos(t - g) * |sin t| (the |sin t| is the slice parametrisation's
-// Jacobian, as in GTAO's closed form).
-float SliceMeasure(float h, float g) {
-  float m = 0.25 * (-cos(2.0 * h - g) + cos(g) + 2.0 * h * sin(g));
-  return h >= 0.0 ? m : -m;
+// Cosine-weighted measure of the slice from angle 0 (the view vector) to g + b, signed, for the normal
+// at angle g from V and a direction at angle b from the normal: the integral of cos(t - g) * |sin t|
+// (the |sin t| is the slice parametrisation's Jacobian, as in GTAO's closed form), i.e.
+// 0.25 * (-cos(2t - g) + cos g + 2t sin g) with t = g + b. cos(2t - g) = cos(2b + g) comes from
+// cos 2b and sin 2b, which the caller has without trigonometry.
+float SliceMeasure(float b, float cos2b, float sin2b, float cosG, float sinG, float g) {
+  float t = g + b;
+  float m = 0.25 * (-(cos2b * cosG - sin2b * sinG) + cosG + 2.0 * t * sinG);
+  return t >= 0.0 ? m : -m;
+}
+
+// atan(y / x) for x > 0 (a direction above the tangent plane), within 1e-5 rad: a minimax polynomial
+// on [-1, 1] and the complement beyond. The sectors are pi/32 wide at most, so the error is 1/3000 of
+// one; the hardware atan costs several times more on a software rasteriser.
+float AtanRight(float y, float x) {
+  float ay = abs(y);
+  float r = min(ay, x) / max(max(ay, x), 1e-30);
+  float r2 = r * r;
+  float a = r * (0.99997726 + r2 * (-0.33262347 + r2 * (0.19354346 + r2 * (-0.11643287
+          + r2 * (0.05265332 + r2 * -0.01172120)))));
+  a = ay > x ? 0.5 * PI - a : a;
+  return y < 0.0 ? -a : a;
 }
 
 // Bits [first, last) set.
@@ -27,12 +43,6 @@ uint SectorBits(int first, int last) {
     return 0u;
   }
   return count >= SECTORS ? 0xffffffffu : ((1u << uint(count)) - 1u) << uint(first);
-}
-
-// Independent of NoiseAngle's 4x4 tile (interleaved gradient noise, Jimenez 2014): the step offset
-// must not correlate with the slice angle, or every slice of a pixel samples the same distances.
-float StepNoise(ivec2 p) {
-  return fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))));
 }
 
 void main()
@@ -76,13 +86,14 @@ void main()
     }
     // Angles in the slice are measured from V towards ortho.
     float g = atan(dot(projN, ortho), dot(projN, V));
-    float lo = g - 0.5 * PI;
-    float hi = g + 0.5 * PI;
-    float measureLo = SliceMeasure(lo, g);
-    float total = SliceMeasure(hi, g) - measureLo;
+    float cosG = cos(g);
+    float sinG = sin(g);
+    // The hemisphere: b from -pi/2 (cos 2b = -1, sin 2b = 0) to pi/2.
+    float measureLo = SliceMeasure(-0.5 * PI, -1.0, 0.0, cosG, sinG, g);
+    float total = SliceMeasure(0.5 * PI, -1.0, 0.0, cosG, sinG, g) - measureLo;
     float toSector = float(SECTORS) / max(total, 1e-6);
     // The slice's tangent: the projected normal turned a quarter towards ortho.
-    vec3 tSlice = cos(g) * ortho - sin(g) * V;
+    vec3 tSlice = cosG * ortho - sinG * V;
     uint mask = 0u;
     for (int side = 0; side < 2 && mask != 0xffffffffu; ++side) {
       vec2 sideDir = side == 0 ? -dir : dir;
@@ -127,21 +138,36 @@ void main()
         if (ua <= 0.0 && ub <= 0.0) {
           continue; // the whole slab is below the tangent plane (a segment between two points below it)
         }
-        float ba, bb;
-        if (ua > 0.0 && ub > 0.0) {
-          ba = atan(va, ua);
-          bb = atan(vb, ub);
-        } else {
-          // The slab crosses the tangent plane: it covers from its upper end down to the plane, on
-          // the side where it crosses.
-          float crossing = (ua * vb - ub * va) / (ua - ub);
-          ba = ua > 0.0 ? atan(va, ua) : atan(vb, ub);
-          bb = crossing >= 0.0 ? 0.5 * PI : -0.5 * PI;
+        // Each end as (angle from the normal, cos 2b, sin 2b); an end below the plane is replaced by
+        // the point where the slab crosses it, on the side where it crosses (b = +-pi/2).
+        vec3 endA = vec3(-0.5 * PI, -1.0, 0.0);
+        vec3 endB = endA;
+        if (ua > 0.0) {
+          float r2a = ua * ua + va * va;
+          endA = vec3(AtanRight(va, ua), (ua * ua - va * va) / r2a, 2.0 * ua * va / r2a);
         }
-        float from = g + min(ba, bb);
-        float to = g + max(ba, bb);
-        int first = int(round((SliceMeasure(from, g) - measureLo) * toSector));
-        int last = int(round((SliceMeasure(to, g) - measureLo) * toSector));
+        if (ub > 0.0) {
+          float r2b = ub * ub + vb * vb;
+          endB = vec3(AtanRight(vb, ub), (ub * ub - vb * vb) / r2b, 2.0 * ub * vb / r2b);
+        }
+        if (ua <= 0.0 || ub <= 0.0) {
+          float crossing = (ua * vb - ub * va) / (ua - ub);
+          vec3 edge = vec3(crossing >= 0.0 ? 0.5 * PI : -0.5 * PI, -1.0, 0.0);
+          if (ua <= 0.0) {
+            endA = edge;
+          } else {
+            endB = edge;
+          }
+        }
+        if (endA.x > endB.x) {
+          vec3 swap = endA;
+          endA = endB;
+          endB = swap;
+        }
+        float from = SliceMeasure(endA.x, endA.y, endA.z, cosG, sinG, g);
+        float to = SliceMeasure(endB.x, endB.y, endB.z, cosG, sinG, g);
+        int first = int(round((from - measureLo) * toSector));
+        int last = int(round((to - measureLo) * toSector));
         mask |= SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
       }
     }
