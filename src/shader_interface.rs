@@ -44,6 +44,8 @@ pub mod loc {
     pub const MAX_RADIUS_PIXELS: i32 = 203;
     /// ao/vbao.frag: how far (m) behind each depth sample the surface extends.
     pub const AO_THICKNESS: i32 = 204;
+    /// ao/vbao.frag: 1 = read each tap's thickness from the back-face depth (`texBackDepth`).
+    pub const AO_BACK_FACES: i32 = 205;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -51,6 +53,8 @@ pub mod loc {
     pub const BLUR_AXIS: i32 = 210;
     /// ao/upsample_bilateral.frag: (near, far, 1 for reversed-Z) to linearise the main depth.
     pub const UPSAMPLE_DEPTH_PLANES: i32 = 230;
+    /// ao/restore_back_depth.frag: main texels per AO texel along each axis (1 or 2).
+    pub const BACK_DEPTH_BLOCK: i32 = 231;
     /// ao/composite_tint.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -263,8 +267,17 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoCounts", AO_COUNTS),
             u("maxRadiusPixels", MAX_RADIUS_PIXELS),
             u("aoThickness", AO_THICKNESS),
+            u("aoBackFaces", AO_BACK_FACES),
         ],
-        AO_METHOD_SAMPLERS,
+        &[s("texDepth", INPUT), s("texBackDepth", SECOND_INPUT)],
+    ),
+    fullscreen(
+        "ao/restore_back_depth.frag",
+        &[
+            u("depthPlanes", UPSAMPLE_DEPTH_PLANES),
+            u("blockSize", BACK_DEPTH_BLOCK),
+        ],
+        &[s("texDepth", INPUT), s("texFrontDepth", SECOND_INPUT)],
     ),
 ];
 

@@ -9,6 +9,8 @@
 #include "common.glsl"
 
 layout(location=204) uniform float aoThickness; // metres behind each depth sample
+layout(location=205) uniform int aoBackFaces;   // 1: each tap's thickness from texBackDepth
+layout(binding=1) uniform sampler2D texBackDepth; // linear depth of the back faces (m), AO size
 
 const int SECTORS = 32;
 
@@ -120,7 +122,13 @@ void main()
         }
         float root = sqrt(disc);
         float d0 = max(zq, (eo - root) / ee);
-        float d1 = min(zq + aoThickness, (eo + root) / ee);
+        float thickness = aoThickness;
+        if (aoBackFaces != 0) {
+          // The back face behind the tap, where there is one ('far' where none: open planes, sky).
+          float back = texelFetch(texBackDepth, q, 0).x;
+          thickness = back > zq && back < CAMERA_FAR ? back - zq : aoThickness;
+        }
+        float d1 = min(zq + thickness, (eo + root) / ee);
         if (d1 <= d0) {
           continue;
         }

@@ -21,6 +21,8 @@ pub struct AoInputs<'a> {
     pub targets: &'a AoTargets,
     pub camera: &'a Camera,
     pub settings: &'a AoSettings,
+    /// Linear depth of the back faces at the AO size, when the settings ask for it.
+    pub back_depth: Option<&'a Texture>,
 }
 
 /// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
@@ -96,6 +98,9 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     if program.has_location(loc::AO_THICKNESS) {
         program.set_f32(loc::AO_THICKNESS, s.thickness_metres());
     }
+    if program.has_location(loc::AO_BACK_FACES) {
+        program.set_i32(loc::AO_BACK_FACES, inputs.back_depth.is_some() as i32);
+    }
 }
 
 /// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion.
@@ -146,6 +151,9 @@ impl AoMethodPass for ShaderMethod {
         self.program.use_program();
         inputs.targets.fbo_sao.bind();
         inputs.targets.tex_depth.bind(binding::INPUT);
+        if let Some(back) = inputs.back_depth {
+            back.bind(binding::SECOND_INPUT);
+        }
         inputs.meshes.draw_plane_xy();
         Ok(())
     }

@@ -14,5 +14,5 @@ pub mod upsample;
 
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
-pub use settings::{AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality};
+pub use settings::{AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, Thickness};
 pub use targets::AoTargets;

@@ -180,11 +180,63 @@ pub struct AoSettings {
     pub power: f32,
     /// GTAO/VBAO preset (slices × steps); when set it decides their sample counts instead of `samples`.
     pub quality: Option<GtaoQuality>,
-    /// How far (m) behind each depth sample `vbao` takes the surface to extend; unset: a fraction of
-    /// the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
-    pub thickness: Option<f32>,
+    /// How far behind each depth sample `vbao` takes the surface to extend: metres, or the back
+    /// faces' depth; unset: a fraction of the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
+    pub thickness: Option<Thickness>,
     /// Size the engine's methods run at (`sao-lesson` ignores it: see `effective_resolution`).
     pub resolution: AoResolution,
+}
+
+/// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
+/// `--thickness 0.3|backface`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize, Deserialize)]
+#[serde(try_from = "ThicknessValue", into = "ThicknessValue")]
+pub enum Thickness {
+    /// The same thickness (m) everywhere.
+    Metres(f32),
+    /// Each pixel's own: a depth pass of the back faces (front faces culled) gives where the
+    /// object ends; `Metres` of the default where no back face lies behind (open planes, sky).
+    Backface,
+}
+
+/// How a thickness is written in a scene file: a number or the word `backface`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+enum ThicknessValue {
+    Metres(f32),
+    Word(String),
+}
+
+impl TryFrom<ThicknessValue> for Thickness {
+    type Error = String;
+    fn try_from(v: ThicknessValue) -> Result<Thickness, String> {
+        match v {
+            ThicknessValue::Metres(m) => Ok(Thickness::Metres(m)),
+            ThicknessValue::Word(w) => Thickness::parse(&w),
+        }
+    }
+}
+
+impl From<Thickness> for ThicknessValue {
+    fn from(t: Thickness) -> ThicknessValue {
+        match t {
+            Thickness::Metres(m) => ThicknessValue::Metres(m),
+            Thickness::Backface => ThicknessValue::Word("backface".into()),
+        }
+    }
+}
+
+impl Thickness {
+    /// "backface" or metres.
+    pub fn parse(s: &str) -> Result<Thickness, String> {
+        let s = s.trim();
+        if s == "backface" {
+            return Ok(Thickness::Backface);
+        }
+        s.parse::<f32>()
+            .map(Thickness::Metres)
+            .map_err(|_| format!("'{s}' is neither a thickness in metres nor 'backface'"))
+    }
 }
 
 /// `vbao`'s default thickness as a fraction of the radius, chosen on the bench's training cameras
@@ -234,10 +286,18 @@ impl AoSettings {
         }
     }
 
-    /// The thickness `vbao` uses (m).
+    /// The thickness `vbao` uses (m): the set one, else the default fraction of the radius (also
+    /// where back faces are asked for but none lies behind a pixel).
     pub fn thickness_metres(&self) -> f32 {
-        self.thickness
-            .unwrap_or(DEFAULT_THICKNESS_OF_RADIUS * self.radius)
+        match self.thickness {
+            Some(Thickness::Metres(m)) => m,
+            _ => DEFAULT_THICKNESS_OF_RADIUS * self.radius,
+        }
+    }
+
+    /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
+    pub fn uses_back_faces(&self) -> bool {
+        self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
     }
 
     /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
@@ -259,7 +319,7 @@ impl AoSettings {
         fix("bias", &mut self.bias, BIAS_RANGE);
         fix("intensity", &mut self.intensity, INTENSITY_RANGE);
         fix("power", &mut self.power, POWER_RANGE);
-        if let Some(t) = &mut self.thickness {
+        if let Some(Thickness::Metres(t)) = &mut self.thickness {
             fix("thickness", t, THICKNESS_RANGE);
         }
         for c in &mut self.tint {
@@ -306,6 +366,9 @@ mod tests {
         for c in CompositeMode::ALL {
             assert_eq!(CompositeMode::from_name(c.name()), Some(c));
         }
+        assert_eq!(Thickness::parse("backface"), Ok(Thickness::Backface));
+        assert_eq!(Thickness::parse(" 0.25"), Ok(Thickness::Metres(0.25)));
+        assert!(Thickness::parse("thick").is_err());
         for r in AoResolution::ALL {
             assert_eq!(AoResolution::from_name(r.name()), Some(r));
         }

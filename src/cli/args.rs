@@ -3,7 +3,7 @@
 //! Numeric flags accept a leading minus so `--fov -30` reaches the range check (with a message naming
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
-use crate::ao::{AoMethod, AoResolution, CompositeMode, GtaoQuality};
+use crate::ao::{AoMethod, AoResolution, CompositeMode, GtaoQuality, Thickness};
 use crate::i18n::Lang;
 use crate::math::DepthMode;
 use crate::render::View;
@@ -126,9 +126,10 @@ pub struct SceneArgs {
     /// Size the engine's AO methods run at: half (the course's) or full (`sao-lesson` stays at half).
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
-    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: the radius).
-    #[arg(long, allow_negative_numbers = true)]
-    pub thickness: Option<f32>,
+    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: the radius),
+    /// or `backface`: each pixel's own, from a depth pass of the back faces.
+    #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
+    pub thickness: Option<Thickness>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
     #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
     pub composite: Option<CompositeMode>,

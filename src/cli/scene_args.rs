@@ -183,8 +183,12 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     }
     if let Some(t) = args.thickness {
         let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
-        if !(t.is_finite() && (lo..=hi).contains(&t)) {
-            bail!("--thickness {t}: use a thickness in metres between {lo} and {hi}");
+        if let crate::ao::Thickness::Metres(m) = t {
+            if !(m.is_finite() && (lo..=hi).contains(&m)) {
+                bail!(
+                    "--thickness {m}: use a thickness in metres between {lo} and {hi}, or backface"
+                );
+            }
         }
         desc.ao.thickness = Some(t);
         keys.push(("ao.thickness", "--thickness"));

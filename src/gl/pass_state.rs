@@ -33,6 +33,15 @@ impl Blend {
     };
 }
 
+/// Face culling (counter-clockwise faces are front faces, GL's default).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Cull {
+    None,
+    Back,
+    /// Draws only back faces: the back-face depth pass (`vbao`'s per-pixel thickness).
+    Front,
+}
+
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PassState {
     pub depth: Depth,
@@ -42,8 +51,8 @@ pub struct PassState {
     /// Clip-space depth [0, 1] (reversed-Z) instead of OpenGL's [-1, 1]; applied when the engine
     /// loaded `glClipControl`.
     pub clip_zero_to_one: bool,
-    /// Back faces culled when true; the demo meshes include open planes, so most passes draw both.
-    pub cull_back_faces: bool,
+    /// Which faces are culled; the demo meshes include open planes, so most passes draw both.
+    pub cull: Cull,
     pub blend: Option<Blend>,
     /// Colour writes (off for a depth pre-pass).
     pub color_write: bool,
@@ -57,7 +66,7 @@ impl PassState {
         depth: Depth::Off,
         depth_range: (0.0, 1.0),
         clip_zero_to_one: false,
-        cull_back_faces: false,
+        cull: Cull::None,
         blend: None,
         color_write: true,
         polygon_offset: None,
@@ -90,11 +99,16 @@ impl PassState {
                 }
             }
             gl.depth_range_f32(self.depth_range.0, self.depth_range.1);
-            if self.cull_back_faces {
-                gl.enable(glow::CULL_FACE);
-                gl.cull_face(glow::BACK);
-            } else {
-                gl.disable(glow::CULL_FACE);
+            match self.cull {
+                Cull::None => gl.disable(glow::CULL_FACE),
+                Cull::Back | Cull::Front => {
+                    gl.enable(glow::CULL_FACE);
+                    gl.cull_face(if self.cull == Cull::Back {
+                        glow::BACK
+                    } else {
+                        glow::FRONT
+                    });
+                }
             }
             match self.blend {
                 Some(b) => {

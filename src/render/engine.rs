@@ -4,8 +4,8 @@
 //! output a frame does not use are skipped.
 
 use super::frame::Frame;
+use super::passes::{back_faces::BackFacePass, shadow::ShadowPass, transparent};
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
-use super::passes::{shadow::ShadowPass, transparent};
 use super::stats::{process_cpu_seconds, AoTextureInfo, PassStat};
 use super::view::View;
 use crate::ao::method_pass::AoInputs;
@@ -38,6 +38,8 @@ pub struct Engine {
     pub ao_settings: AoSettings,
     pub view: View,
     shadow: ShadowPass,
+    /// `vbao`'s back-face depth, run only for `thickness = "backface"`.
+    back_faces: BackFacePass,
     lit: LitPass,
     sky: SkyPass,
     bloom_pass: BloomPass,
@@ -126,6 +128,7 @@ impl Engine {
             ao_settings,
             view: View::Composite,
             shadow: ShadowPass::new(gl, &res)?,
+            back_faces: BackFacePass::new(gl, &res)?,
             lit: LitPass::new(gl, &res)?,
             sky: SkyPass::new(gl, &res)?,
             bloom_pass: BloomPass::new(gl, &res, (width, height))?,
@@ -197,6 +200,7 @@ impl Engine {
         // needs them creates them.
         if !self.needs_ao(self.view) {
             self.ao.release_targets();
+            self.back_faces.release_targets();
         }
         self.configure_ao_targets()
     }
@@ -231,12 +235,19 @@ impl Engine {
         self.ao.targets()
     }
 
+    /// Linear depth (m) of the back faces at the AO size, from the last frame that needed it
+    /// (`vbao` with `thickness = "backface"`); rows bottom-up.
+    pub fn back_face_depth(&self) -> Option<Rc<Texture>> {
+        self.back_faces.linear_depth()
+    }
+
     /// Every GL texture the engine owns for AO now: empty until a frame runs AO, and after a resize
     /// while AO is off.
     pub fn ao_textures(&self) -> Vec<AoTextureInfo> {
         self.ao
             .textures()
             .iter()
+            .chain(self.back_faces.textures().iter())
             .map(|t| AoTextureInfo::of(t))
             .collect()
     }
@@ -259,6 +270,7 @@ impl Engine {
         for p in [
             &mut self.lit.standard,
             &mut self.shadow.program,
+            self.back_faces.program_mut(),
             &mut self.sky.program,
             &mut self.post.image,
             &mut self.post.debug,
@@ -458,12 +470,21 @@ impl Engine {
             return Ok(());
         }
         let method = self.ao_settings.method;
+        let back_depth = if self.ao_settings.uses_back_faces() {
+            Some(self.pass("back-face depth", "ao", || {
+                self.back_faces
+                    .draw(f, &self.shadow.program, depth, targets.size())
+            })?)
+        } else {
+            None
+        };
         let inputs = AoInputs {
             gl: f.gl,
             meshes: f.meshes,
             targets,
             camera: f.camera,
             settings: &self.ao_settings,
+            back_depth: back_depth.as_deref(),
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),

@@ -5,8 +5,9 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoSettings, GtaoQuality};
+use opengl3d::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality, Thickness};
 use opengl3d::gl::mesh::MeshData;
+use opengl3d::math::DepthMode;
 use opengl3d::render::{Engine, View};
 use opengl3d::scene::shapes;
 use opengl3d::scene::SceneDesc;
@@ -105,12 +106,9 @@ fn vbao_follows_the_closed_form_of_a_right_angle_crease() {
     eprintln!("{}", report.join(", "));
 }
 
-#[test]
-fn thickness_decides_whether_a_thin_plate_shadows_the_wall_behind_it() {
-    let ctx = common::context();
-    let dir = common::temp_dir("vbao-plate");
-    // A 2 cm plate 1.5 m in front of a wall, seen from the front: the wall beside the plate's
-    // silhouette is more than R = 1 m from any part of the plate, so nothing occludes it.
+/// A 2 cm plate 1.5 m in front of a wall, seen from the front, and points on the wall beside the
+/// plate's silhouette: more than R = 1 m from any part of the plate, so nothing occludes them.
+fn plate_scene(dir: &std::path::Path) -> (SceneDesc, Vec<Vec3>) {
     let mut wall = MeshData::default();
     shapes::add_box(
         &mut wall,
@@ -123,32 +121,40 @@ fn thickness_decides_whether_a_thin_plate_shadows_the_wall_behind_it() {
         Vec3::new(-0.5, 0.0, -0.51),
         Vec3::new(0.5, 2.0, -0.49),
     );
-    let base = {
-        let mut s = SceneDesc::default();
-        s.objects
-            .push(common::object(&dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
-        s.objects
-            .push(common::object(&dir, "plate", &plate, Vec3::ZERO, Vec3::ONE));
-        s.camera.eye = [0.3, 1.0, 3.0];
-        s.camera.target = [0.0, 1.0, -2.0];
-        s.output.width = W;
-        s.output.height = H;
-        s.ao.radius = 1.0;
-        s
-    };
+    let mut s = SceneDesc::default();
+    s.objects
+        .push(common::object(dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
+    s.objects
+        .push(common::object(dir, "plate", &plate, Vec3::ZERO, Vec3::ONE));
+    s.camera.eye = [0.3, 1.0, 3.0];
+    s.camera.target = [0.0, 1.0, -2.0];
+    s.output.width = W;
+    s.output.height = H;
+    s.ao.radius = 1.0;
     // The plate's right edge (x = 0.5 at z = -0.5) hides the wall up to x = 0.586.
-    let beside: Vec<Vec3> = (-4..=4)
+    let beside = (-4..=4)
         .map(|i| Vec3::new(0.65, 1.0 + i as f32 * 0.05, -2.0))
         .collect();
-    let at = |thickness: f32| {
+    (s, beside)
+}
+
+#[test]
+fn thickness_decides_whether_a_thin_plate_shadows_the_wall_behind_it() {
+    let ctx = common::context();
+    let dir = common::temp_dir("vbao-plate");
+    let (base, beside) = plate_scene(&dir);
+    let at = |thickness: Thickness| {
         let mut s = base.clone();
         s.ao.thickness = Some(thickness);
         let (eng, vis) = raw_vbao(&ctx, &mut s);
         mean_at(&eng, &vis, &beside)
     };
-    let thin = at(0.05);
-    let solid = at(100.0);
-    eprintln!("wall beside the plate: thickness 0.05 m {thin:.3}, 100 m {solid:.3}");
+    let thin = at(Thickness::Metres(0.05));
+    let solid = at(Thickness::Metres(100.0));
+    let back = at(Thickness::Backface);
+    eprintln!(
+        "wall beside the plate: thickness 0.05 m {thin:.3}, 100 m {solid:.3}, back faces {back:.3}"
+    );
     assert!(
         thin > 0.97,
         "a 5 cm slab must not shadow a wall 1.5 m behind it: {thin}"
@@ -157,4 +163,57 @@ fn thickness_decides_whether_a_thin_plate_shadows_the_wall_behind_it() {
         solid < thin - 0.1,
         "a 100 m slab reaches the wall behind the plate's edge: {solid} vs {thin}"
     );
+    assert!(
+        back > 0.97,
+        "the plate's back faces make it 2 cm thick: {back}"
+    );
+}
+
+#[test]
+fn back_face_depth_of_a_box_is_its_depth_extent() {
+    let ctx = common::context();
+    let dir = common::temp_dir("vbao-backface");
+    // A box 0.7 m deep, its front face 3 m from the camera and filling the view's centre.
+    let mut boxed = MeshData::default();
+    shapes::add_box(
+        &mut boxed,
+        Vec3::new(-2.0, -2.0, -3.7),
+        Vec3::new(2.0, 2.0, -3.0),
+    );
+    for mode in [DepthMode::D32, DepthMode::D32fReversed] {
+        for resolution in [AoResolution::Half, AoResolution::Full] {
+            let mut s = SceneDesc::default();
+            s.objects
+                .push(common::object(&dir, "box", &boxed, Vec3::ZERO, Vec3::ONE));
+            s.camera.eye = [0.0, 0.0, 0.0];
+            s.camera.target = [0.0, 0.0, -1.0];
+            s.output.width = 64;
+            s.output.height = 48;
+            s.output.depth = mode;
+            s.ao.method = AoMethod::Vbao;
+            s.ao.thickness = Some(Thickness::Backface);
+            s.ao.resolution = resolution;
+            let mut eng = common::engine(&ctx, &s);
+            eng.render_values(View::Ao).unwrap();
+            let back = eng.back_face_depth().expect("the back-face pass ran");
+            let (w, h) = (back.width() as usize, back.height() as usize);
+            let values = back.read_f32(0, 1);
+            // The central quarter sees the box's front face at 3 m and its back face at 3.7 m.
+            for y in h / 4..3 * h / 4 {
+                for x in w / 4..3 * w / 4 {
+                    let v = values[y * w + x];
+                    assert!(
+                        (v - 3.7).abs() < 1e-3,
+                        "{mode:?} {resolution:?}: back depth {v} at ({x}, {y})"
+                    );
+                }
+            }
+        }
+    }
+    // Without `backface` the pass does not run.
+    let (mut s, _) = plate_scene(&dir);
+    s.ao.method = AoMethod::Vbao;
+    let mut eng = common::engine(&ctx, &s);
+    eng.render_values(View::Ao).unwrap();
+    assert!(eng.back_face_depth().is_none());
 }

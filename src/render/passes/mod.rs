@@ -1,5 +1,6 @@
 //! The engine's passes, each owning its programs and stating its render state.
 
+pub mod back_faces;
 pub mod bloom;
 pub mod opaque;
 pub mod post;

@@ -1,0 +1,47 @@
+#version 450
+
+// Linear depth of the back faces (a depth pass with front faces culled) at the AO buffers' size, for
+// vbao's per-pixel thickness. At half size, the back face behind the texel of the 2x2 block whose
+// FRONT is nearest: the texel the front restore keeps, so front and back belong to one ray. (The
+// farthest back face of the block would give a plate's silhouette the thickness of the wall behind.)
+
+layout(binding=0) uniform sampler2D texDepth;      // back-face depth buffer (window depth)
+layout(binding=1) uniform sampler2D texFrontDepth; // main depth buffer (window depth)
+
+layout(location=230) uniform vec3 depthPlanes; // near, far, 1 for reversed-Z (else 0)
+layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1 or 2
+
+out float outColor;
+
+float LinearDepth(float d) {
+  float n = depthPlanes.x, f = depthPlanes.y;
+  if (depthPlanes.z > 0.5) {
+    return d <= 0.0 ? f : min(n * f / (d * (f - n) + n), f);
+  }
+  if (d >= 1.0) {
+    return f;
+  }
+  float a = -2.0 * f * n / (f - n);
+  float b = (f + n) / (f - n);
+  return min(a / (2.0 * d - 1.0 - b), f);
+}
+
+void main()
+{
+  ivec2 maxUV = textureSize(texDepth, 0) - 1;
+  ivec2 base = ivec2(gl_FragCoord.xy) * blockSize;
+  float nearestFront = 1e30;
+  float back = depthPlanes.y;
+  for (int y = 0; y < blockSize; ++y) {
+    for (int x = 0; x < blockSize; ++x) {
+      ivec2 p = min(base + ivec2(x, y), maxUV);
+      float front = LinearDepth(texelFetch(texFrontDepth, p, 0).x);
+      if (front < nearestFront) {
+        nearestFront = front;
+        back = LinearDepth(texelFetch(texDepth, p, 0).x);
+      }
+    }
+  }
+  // No back face behind it: 'far', which vbao reads as "use the set thickness".
+  outColor = back;
+}
