@@ -62,3 +62,9 @@ pub const BLUR_SKY_ABS: f64 = 0.02;
 /// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
 /// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
 pub const BLUR_RMSE: f64 = 0.07;
+/// simple.frag: the largest difference allowed in any channel of the copy and of the composite,
+/// against the project's `simple.frag` on the same inputs. The listing and the rewrite
+/// (`textureLod`, channels rebuilt from `.rgb` and `.a`) run the same sampler and give exactly 0;
+/// the mistakes differ by whole channels (≥ 0.1 on these patterns: a broadcast, alpha 1, a swap,
+/// a flip, nearest texels on a 2× magnification).
+pub const SIMPLE_ABS: f64 = 1e-3;
