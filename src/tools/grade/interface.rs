@@ -113,7 +113,12 @@ fn interface_of(file: &str) -> Option<&'static ProgramInterface> {
 
 /// The first way `program` (built from the student's `file`) departs from the lesson's interface, as
 /// the step's failing message; `None` when it keeps it.
-pub fn check(gl: &glow::Context, program: glow::Program, file: &str, written: Written) -> Option<Text> {
+pub fn check(
+    gl: &glow::Context,
+    program: glow::Program,
+    file: &str,
+    written: Written,
+) -> Option<Text> {
     let interface = interface_of(file)?;
     let active = active_uniforms(gl, program);
     for u in interface.uniforms {

@@ -3,9 +3,9 @@
 
 use super::picture::Panel;
 use super::say::say;
-use crate::i18n::Text;
 use crate::ao::{AoSettings, SaoLesson};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, Texture, TextureDesc};
+use crate::i18n::Text;
 use crate::math::Camera;
 use crate::platform::headless::{DevicePreference, HeadlessContext};
 use crate::res::ResDirs;
@@ -134,7 +134,11 @@ pub fn build_rig(
 ) -> std::result::Result<Rig, Verdict> {
     let internal = |what: &str, e: anyhow::Error| {
         let error = format!("{e:#}");
-        Verdict::fail(say!("grade.verdict.grader_error_in", what = what, error = error))
+        Verdict::fail(say!(
+            "grade.verdict.grader_error_in",
+            what = what,
+            error = error
+        ))
     };
     let context = context().map_err(|e| internal("no OpenGL 4.5 context", e))?;
     let gl = context.gl.clone();

@@ -125,7 +125,10 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
         Err(e) => {
             // Already names the student's file and what is wrong with it (size, encoding, include).
             let error = format!("{e:#}");
-            set_message(&mut report, say!("grade.verdict.build_refused", error = error));
+            set_message(
+                &mut report,
+                say!("grade.verdict.build_refused", error = error),
+            );
         }
         Ok(_) => {
             let shown = file.parent().unwrap_or(Path::new("")).to_path_buf();

@@ -3,8 +3,8 @@
 //! (`message_localised`). Numbers are formatted before they are passed, so both languages show the
 //! same digits.
 
-/// `say!("grade.verdict.KEY", name = value, …)`: the `crate::i18n::Text` of that key with those
-/// values (each `Display`) in English and the chosen language.
+/// `say!(KEY, name = value, …)`, KEY a literal `grade.verdict.*` key: the `crate::i18n::Text` of that
+/// key with those values (each `Display`) in English and the chosen language.
 macro_rules! say {
     ($key:tt $(, $name:ident = $value:expr)* $(,)?) => {
         $crate::i18n::Text::new(|locale| {

@@ -4,10 +4,10 @@
 //! `sao_blur.frag` is bounded (loosely: the lesson's listing has wider weights).
 
 use crate::ao::AoSettings;
+use crate::i18n::Text;
 use crate::tools::grade::measure::{as_r8, mean_and_std};
 use crate::tools::grade::passes::{run_blur, run_sao, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
-use crate::i18n::Text;
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
 use crate::tools::grade::scene::sao_scenes;
@@ -187,9 +187,17 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         return verdict(
             false,
             if raw_mean > in_mean {
-                say!("grade.verdict.blur_mean_high", got = got, expected = expected)
+                say!(
+                    "grade.verdict.blur_mean_high",
+                    got = got,
+                    expected = expected
+                )
             } else {
-                say!("grade.verdict.blur_mean_low", got = got, expected = expected)
+                say!(
+                    "grade.verdict.blur_mean_low",
+                    got = got,
+                    expected = expected
+                )
             },
         );
     }
@@ -237,13 +245,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
             ),
         );
     }
-    let (near, far, input, output, rmse) = (
-        f2(near_min),
-        f2(far_max),
-        f3(in_std),
-        f3(out_std),
-        f3(rmse),
-    );
+    let (near, far, input, output, rmse) =
+        (f2(near_min), f2(far_max), f3(in_std), f3(out_std), f3(rmse));
     verdict(
         true,
         say!(

@@ -150,7 +150,11 @@ pub fn down_sampling(rig: &Rig) -> Verdict {
     } else if made_by(&parent.reduce(w, h, 1, &min4)) {
         say!("grade.verdict.down_no_x2", level = level)
     } else if level >= 2 && made_by(&base.reduce(w, h, 2, &min4)) {
-        say!("grade.verdict.down_level_0", level = level, parent = level - 1)
+        say!(
+            "grade.verdict.down_level_0",
+            level = level,
+            parent = level - 1
+        )
     } else if made_by(&parent.reduce(w, h, 2, &|q| (q[0] + q[1] + q[2] + q[3]) / 4.0)) {
         say!("grade.verdict.down_average", level = level)
     } else if made_by(&parent.reduce(w, h, 2, &|q| q[0])) {

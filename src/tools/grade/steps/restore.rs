@@ -6,11 +6,11 @@
 //! texel) to name the mistake.
 
 use crate::gl::{Texture, TextureDesc};
+use crate::i18n::Text;
 use crate::math::depth::{delinearize, linearize};
 use crate::math::{Camera, DepthMode};
 use crate::tools::grade::measure::matches;
 use crate::tools::grade::picture::{Panel, Shade};
-use crate::i18n::Text;
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
 use crate::tools::grade::tol;
@@ -147,7 +147,10 @@ pub fn restore(rig: &Rig, cam: &Camera) -> Verdict {
     }
     let p10 = got[probe];
     if got.iter().all(|v| *v == got[0]) {
-        return verdict(false, say!("grade.verdict.restore_constant", value = got[0]));
+        return verdict(
+            false,
+            say!("grade.verdict.restore_constant", value = got[0]),
+        );
     }
     // Recognise common mistakes by predicting what they would output.
     let mut hypotheses: Vec<(&str, Vec<f64>)> = Vec::new();

@@ -9,10 +9,10 @@
 //! when those levels are emptied, about as much as the project's does).
 
 use crate::ao::AoSettings;
+use crate::i18n::Text;
 use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
 use crate::tools::grade::passes::{run_sao, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
-use crate::i18n::Text;
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
 use crate::tools::grade::scene::{sao_scenes, ProbeKind, SynthScene};
@@ -512,7 +512,11 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         let reference = format!("{:.4}", mip_r / scenes.len() as f64);
         return verdict(
             false,
-            say!("grade.verdict.sao_no_mips", got = got, reference = reference),
+            say!(
+                "grade.verdict.sao_no_mips",
+                got = got,
+                reference = reference
+            ),
         );
     }
     let creases = creases
@@ -539,8 +543,12 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             .collect::<Vec<_>>()
             .join(", ");
         let note = if overflow {
-            rust_i18n::t!("grade.verdict.sao_pass_overflow_note", locale = l, max = max)
-                .into_owned()
+            rust_i18n::t!(
+                "grade.verdict.sao_pass_overflow_note",
+                locale = l,
+                max = max
+            )
+            .into_owned()
         } else {
             String::new()
         };

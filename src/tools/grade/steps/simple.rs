@@ -190,7 +190,11 @@ fn flipped(v: &[f32], w: usize, h: usize, flip_y: bool) -> Vec<f32> {
     let mut out = Vec::with_capacity(v.len());
     for y in 0..h {
         for x in 0..w {
-            let (sx, sy) = if flip_y { (x, h - 1 - y) } else { (w - 1 - x, y) };
+            let (sx, sy) = if flip_y {
+                (x, h - 1 - y)
+            } else {
+                (w - 1 - x, y)
+            };
             out.extend_from_slice(&v[(sy * w + sx) * 4..(sy * w + sx) * 4 + 4]);
         }
     }
