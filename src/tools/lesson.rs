@@ -48,14 +48,27 @@ pub fn shaders_for_step(n: u32) -> &'static [&'static str] {
     }
 }
 
-/// The files of `shaders_for_step(n)` that step `n` has only begun: they can be checked for building
-/// and keeping their interface, not for their output.
-pub fn begun_at_step(n: u32) -> &'static [&'static str] {
-    if (6..SAO_COMPLETE_STEP).contains(&n) {
-        &["sao.frag"]
-    } else {
-        &[]
-    }
+/// A shader a lesson step has only begun, and the uniforms and samplers its start already reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Begun {
+    pub file: &'static str,
+    pub reads: &'static [&'static str],
+}
+
+/// The file of `shaders_for_step(n)` that step `n` has only begun, if any: it can be checked for
+/// building, keeping its interface and reading what its start reads, not for its output. Step 6
+/// rebuilds positions and normals (`texDepth`, `ndcToView`); step 7 adds the disc's radius
+/// (`saoInfo`).
+pub fn begun_at_step(n: u32) -> Option<Begun> {
+    let reads: &'static [&'static str] = match n {
+        6 => &["texDepth", "ndcToView"],
+        7 => &["texDepth", "ndcToView", "saoInfo"],
+        _ => return None,
+    };
+    Some(Begun {
+        file: "sao.frag",
+        reads,
+    })
 }
 
 /// Writes the starting folder: every shader and scene of `Res/`, with the lesson's five shaders

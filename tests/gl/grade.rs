@@ -414,12 +414,16 @@ fn lesson_6_folder(name: &str, sao: &str) -> PathBuf {
 
 #[test]
 fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
-    let dir = lesson_6_folder("grade-lesson-6", "sao-lesson-6");
-    for n in ["6", "7"] {
+    for (n, sao) in [
+        ("6", "sao-lesson-6"),
+        ("7", "sao-lesson-7"),
+        ("6", "sao-lesson-7"),
+    ] {
+        let dir = lesson_6_folder(&format!("grade-lesson-{n}-{sao}"), sao);
         let run = grade(Some(&dir), &["--json", "--lesson", n]);
         let v = run.json();
         check_shape(&v);
-        assert_eq!(run.code, Some(0), "lesson {n}: {v}");
+        assert_eq!(run.code, Some(0), "lesson {n}, {sao}: {v}");
         let steps = v["steps"].as_array().unwrap();
         assert_eq!(steps.len(), 4, "{v}");
         assert_eq!(steps[3]["step"], "sao");
@@ -430,7 +434,7 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
             "{message}"
         );
     }
-    // What lesson 6 asks is still checked: the interface it declares.
+    // What each lesson asks is still checked: the interface it declares...
     let broken = lesson_6_folder("grade-lesson-6-no-layout", "sao-lesson-6-no-layout");
     let run = grade(Some(&broken), &["--json", "--lesson", "6"]);
     let v = run.json();
@@ -441,6 +445,28 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
             && message.contains("`layout(location=201) uniform vec2 ndcToView`"),
         "{message}"
     );
+    // ...and what it reads: lesson 7 sizes the disc with saoInfo, which lesson 6's start never reads,
+    // and lesson 6's start reads ndcToView, which the untouched stub does not.
+    let dir = lesson_6_folder("grade-lesson-7-with-6", "sao-lesson-6");
+    let run = grade(Some(&dir), &["--json", "--lesson", "7"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    let message = v["steps"][3]["message"].as_str().unwrap();
+    assert!(
+        message.contains("never reads the uniform at location 200") && message.contains("saoInfo"),
+        "{message}"
+    );
+    let stub = lesson_6_folder("grade-lesson-6-stub", "sao-lesson-6");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/lesson-stubs/sao.frag"),
+        stub.join("sao.frag"),
+    )
+    .unwrap();
+    let run = grade(Some(&stub), &["--json", "--lesson", "6"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    let message = v["steps"][3]["message"].as_str().unwrap();
+    assert!(message.contains("ndcToView"), "{message}");
     // From lesson 8 on, the debug view is graded as SAO, and fails.
     let run = grade(Some(&dir), &["--json", "--lesson", "8"]);
     let v = run.json();

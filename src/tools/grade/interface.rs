@@ -14,9 +14,19 @@ use glow::HasContext;
 pub enum Written {
     /// The whole shader: every uniform and sampler of the interface must be read.
     Complete,
-    /// Its start (`sao.frag` in lessons 6–7): what it declares must be where the engine sets it, but
-    /// a uniform the later lessons use may still be unread.
-    Begun,
+    /// Its start (`sao.frag` in lessons 6–7): what it declares must be where the engine sets it, and
+    /// these uniforms and samplers must be read; those the later lessons use may still be unread.
+    Begun(&'static [&'static str]),
+}
+
+impl Written {
+    /// Whether the shader must already read the uniform or sampler `name`.
+    fn must_read(self, name: &str) -> bool {
+        match self {
+            Written::Complete => true,
+            Written::Begun(reads) => reads.contains(&name),
+        }
+    }
 }
 
 /// One active uniform of a linked program.
@@ -155,7 +165,7 @@ pub fn check(
                         decl = decl
                     ));
                 }
-                if written == Written::Complete {
+                if written.must_read(u.name) {
                     return Some(if u.name == "mipLevel" {
                         say!("grade.verdict.interface_unused_mip_level", decl = decl)
                     } else {
@@ -202,7 +212,7 @@ pub fn check(
                         decl = decl
                     ));
                 }
-                if written == Written::Complete {
+                if written.must_read(s.name) {
                     return Some(say!(
                         "grade.verdict.interface_unused_sampler",
                         name = s.name,

@@ -32,10 +32,15 @@ fn program_of(rig: &Rig, step: Step) -> &ProgramObject {
     }
 }
 
-/// Grades one step; `subject.work_dir` holds a copy of the graded file. `begun`: the lesson has
-/// written only the start of the file (`sao.frag` in lessons 6–7), so it is checked for building and
-/// keeping its interface, not for its output.
-fn grade(step: Step, subject: &Subject, project_res: &Path, begun: Option<u32>) -> Verdict {
+/// Grades one step; `subject.work_dir` holds a copy of the graded file. `begun`: the lesson step that
+/// has written only the start of the file (`sao.frag` in lessons 6–7) and what that start reads, so
+/// it is checked for building, keeping its interface and reading those, not for its output.
+fn grade(
+    step: Step,
+    subject: &Subject,
+    project_res: &Path,
+    begun: Option<(u32, lesson::Begun)>,
+) -> Verdict {
     let camera = Camera::default();
     let params = AoSettings::default();
     let main_size = match step {
@@ -49,7 +54,7 @@ fn grade(step: Step, subject: &Subject, project_res: &Path, begun: Option<u32>) 
         Err(v) => return v,
     };
     let written = match begun {
-        Some(_) => Written::Begun,
+        Some((_, b)) => Written::Begun(b.reads),
         None => Written::Complete,
     };
     if let Some(problem) =
@@ -58,11 +63,10 @@ fn grade(step: Step, subject: &Subject, project_res: &Path, begun: Option<u32>) 
         return Verdict::fail(problem);
     }
     let mut v = match (step, begun) {
-        (_, Some(lesson)) => Verdict {
+        (_, Some((lesson, _))) => Verdict {
             passed: true,
             message: say!(
                 "grade.verdict.begun",
-                file = step.file(),
                 lesson = lesson,
                 complete = lesson::SAO_COMPLETE_STEP
             ),
@@ -136,9 +140,11 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
                 work_dir: &args.work,
                 shown_dir: &shown,
             };
-            let begun = args
-                .lesson
-                .filter(|n| lesson::begun_at_step(*n).contains(&step.file()));
+            let begun = args.lesson.and_then(|n| {
+                lesson::begun_at_step(n)
+                    .filter(|b| b.file == step.file())
+                    .map(|b| (n, b))
+            });
             let v = grade(step, &subject, &project, begun);
             report.passed = v.passed;
             report.metrics = v.metrics;

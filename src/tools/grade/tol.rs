@@ -65,6 +65,6 @@ pub const BLUR_RMSE: f64 = 0.07;
 /// simple.frag: the largest difference allowed in any channel of the copy and of the composite,
 /// against the project's `simple.frag` on the same inputs. The listing and the rewrite
 /// (`textureLod`, channels rebuilt from `.rgb` and `.a`) run the same sampler and give exactly 0;
-/// the mistakes differ by whole channels (≥ 0.1 on these patterns: a broadcast, alpha 1, a swap,
-/// a flip, nearest texels on a 2× magnification).
+/// the mistakes differ by whole channels: red broadcast 0.98, alpha 1 0.76, `.bgra` 0.98, upside
+/// down 0.76, nearest texels on the 2× magnification 0.39.
 pub const SIMPLE_ABS: f64 = 1e-3;
