@@ -253,6 +253,25 @@ fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(
     Ok((mip_s, mip_r))
 }
 
+/// A probe's or scene's name (`scene.rs`) in the language `l`.
+fn place(l: &str, name: &str) -> String {
+    use rust_i18n::t;
+    match name {
+        "corner" => t!("grade.verdict.place_corner", locale = l),
+        "facing wall" => t!("grade.verdict.place_facing_wall", locale = l),
+        "relief" => t!("grade.verdict.place_relief", locale = l),
+        "open floor" => t!("grade.verdict.place_open_floor", locale = l),
+        "wall-floor crease" => t!("grade.verdict.place_wall_floor_crease", locale = l),
+        "crate-floor crease" => t!("grade.verdict.place_crate_floor_crease", locale = l),
+        "open wall" => t!("grade.verdict.place_open_wall", locale = l),
+        "step-floor crease" => t!("grade.verdict.place_step_floor_crease", locale = l),
+        "wall beside the panel" => t!("grade.verdict.place_wall_beside_panel", locale = l),
+        "open panel" => t!("grade.verdict.place_open_panel", locale = l),
+        other => return other.to_string(),
+    }
+    .into_owned()
+}
+
 /// Grades the student's SAO pass of `rig`.
 pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     let scenes = sao_scenes(SAO_SIZE);
@@ -337,10 +356,10 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         return verdict(
             false,
             say!(
-                "grade.verdict.sao_reference_off",
+                l => "grade.verdict.sao_reference_off",
                 got = got,
-                probe = p.name,
-                scene = p.scene
+                probe = place(l, p.name),
+                scene = place(l, p.scene)
             ),
         );
     }
@@ -370,10 +389,10 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         return verdict(
             false,
             say!(
-                "grade.verdict.sao_not_normalised",
+                l => "grade.verdict.sao_not_normalised",
                 got = got,
-                probe = worst.name,
-                scene = worst.scene,
+                probe = place(l, worst.name),
+                scene = place(l, worst.scene),
                 expected = expected,
                 max = max
             ),
@@ -397,8 +416,8 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             rust_i18n::t!(
                 "grade.verdict.sao_crease",
                 locale = l,
-                probe = p.name,
-                scene = p.scene,
+                probe = place(l, p.name),
+                scene = place(l, p.scene),
                 got = got,
                 expected = expected,
                 hint = hint
@@ -414,9 +433,9 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         return verdict(
             false,
             say!(
-                "grade.verdict.sao_open_occluded",
-                probe = p.name,
-                scene = p.scene,
+                l => "grade.verdict.sao_open_occluded",
+                probe = place(l, p.name),
+                scene = place(l, p.scene),
                 got = got,
                 expected = expected
             ),
@@ -431,18 +450,18 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
                 false,
                 if ratio > 1.0 {
                     say!(
-                        "grade.verdict.sao_falloff_slow",
-                        probe = p.name,
-                        scene = p.scene,
+                        l => "grade.verdict.sao_falloff_slow",
+                        probe = place(l, p.name),
+                        scene = place(l, p.scene),
                         got = got,
                         expected = expected,
                         percent = percent
                     )
                 } else {
                     say!(
-                        "grade.verdict.sao_falloff_fast",
-                        probe = p.name,
-                        scene = p.scene,
+                        l => "grade.verdict.sao_falloff_fast",
+                        probe = place(l, p.name),
+                        scene = place(l, p.scene),
                         got = got,
                         expected = expected,
                         percent = percent
@@ -478,11 +497,11 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         return verdict(
             false,
             say!(
-                "grade.verdict.sao_rmse",
+                l => "grade.verdict.sao_rmse",
                 rmse = rmse,
                 tolerance = tol::SAO_BLOCK_RMSE,
                 diff = diff,
-                scene = worst_block.1,
+                scene = place(l, worst_block.1),
                 x = worst_block.2,
                 y = worst_block.3
             ),
