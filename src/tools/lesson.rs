@@ -56,7 +56,8 @@ pub struct Begun {
 }
 
 /// The file of `shaders_for_step(n)` that step `n` has only begun, if any: it can be checked for
-/// building, keeping its interface and reading what its start reads, not for its output. Step 6
+/// building, keeping its interface, reading what its start reads and the step's debug output, not
+/// for the occlusion. Step 6
 /// rebuilds positions and normals (`texDepth`, `ndcToView`); step 7 adds the disc's radius
 /// (`saoInfo`).
 pub fn begun_at_step(n: u32) -> Option<Begun> {

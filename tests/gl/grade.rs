@@ -416,8 +416,8 @@ fn lesson_6_folder(name: &str, sao: &str) -> PathBuf {
 fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
     for (n, sao) in [
         ("6", "sao-lesson-6"),
+        ("6", "rewrite-sao-lesson-6"),
         ("7", "sao-lesson-7"),
-        ("6", "sao-lesson-7"),
     ] {
         let dir = lesson_6_folder(&format!("grade-lesson-{n}-{sao}"), sao);
         let run = grade(Some(&dir), &["--json", "--lesson", n]);
@@ -429,10 +429,48 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
         assert_eq!(steps[3]["step"], "sao");
         let message = steps[3]["message"].as_str().unwrap();
         assert!(
-            message.contains(&format!("lesson {n} writes only its start"))
+            message.contains(&format!("lesson {n}'s checkpoint matches"))
                 && message.contains("graded from lesson 8 on"),
             "{message}"
         );
+    }
+    // The lessons' typical mistakes in their debug views are named.
+    for (n, sao, needles) in [
+        (
+            "6",
+            "sao-lesson-6-flipped-normal",
+            ["points away from the camera", "cross(dpdx, dpdy)"],
+        ),
+        (
+            "7",
+            "sao-lesson-7-log-mip-offset-4",
+            ["one mip level finer", "logMipOffset is 3"],
+        ),
+        (
+            "6",
+            "sao-lesson-6-no-debug-line",
+            [
+                "writes 0 at every pixel",
+                "put the checkpoint's outColor line back",
+            ],
+        ),
+        (
+            "6",
+            "sao-lesson-7",
+            ["lesson 6's checkpoint differs", "expected"],
+        ),
+    ] {
+        let dir = lesson_6_folder(&format!("grade-lesson-{n}-{sao}"), sao);
+        let run = grade(Some(&dir), &["--json", "--lesson", n]);
+        let v = run.json();
+        assert_eq!(run.code, Some(1), "lesson {n}, {sao}: {v}");
+        let message = v["steps"][3]["message"].as_str().unwrap();
+        for needle in needles {
+            assert!(
+                message.contains(needle),
+                "{sao}: '{message}' should mention '{needle}'"
+            );
+        }
     }
     // What each lesson asks is still checked: the interface it declares...
     let broken = lesson_6_folder("grade-lesson-6-no-layout", "sao-lesson-6-no-layout");
@@ -445,8 +483,8 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
             && message.contains("`layout(location=201) uniform vec2 ndcToView`"),
         "{message}"
     );
-    // ...and what it reads: lesson 7 sizes the disc with saoInfo, which lesson 6's start never reads,
-    // and lesson 6's start reads ndcToView, which the untouched stub does not.
+    // ...and what it reads: lesson 7 sizes the disc with saoInfo, which lesson 6's start never reads;
+    // the untouched stub writes 0.
     let dir = lesson_6_folder("grade-lesson-7-with-6", "sao-lesson-6");
     let run = grade(Some(&dir), &["--json", "--lesson", "7"]);
     let v = run.json();
@@ -466,7 +504,7 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
     let v = run.json();
     assert_eq!(run.code, Some(1), "{v}");
     let message = v["steps"][3]["message"].as_str().unwrap();
-    assert!(message.contains("ndcToView"), "{message}");
+    assert!(message.contains("still the stub"), "{message}");
     // From lesson 8 on, the debug view is graded as SAO, and fails.
     let run = grade(Some(&dir), &["--json", "--lesson", "8"]);
     let v = run.json();

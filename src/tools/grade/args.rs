@@ -51,8 +51,8 @@ impl Step {
 #[derive(Args, Debug, Clone)]
 pub struct GradeArgs {
     /// Grade the shaders lesson step N needs (1-3: restore; 4: and down-sampling; 5: and simple;
-    /// 6-10: and SAO, whose occlusion is graded from step 8 on, 6-7 checking that it builds, keeps
-    /// its interface and reads what the step uses; 11-12: all five).
+    /// 6-10: and SAO, whose occlusion is graded from step 8 on, 6-7 grading the step's debug output
+    /// instead; 11-12: all five).
     #[arg(long, value_name = "N")]
     pub lesson: Option<u32>,
     /// Grade only these steps (comma-separated or repeated); overrides --lesson.

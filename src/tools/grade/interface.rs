@@ -15,7 +15,8 @@ pub enum Written {
     /// The whole shader: every uniform and sampler of the interface must be read.
     Complete,
     /// Its start (`sao.frag` in lessons 6–7): what it declares must be where the engine sets it, and
-    /// these uniforms and samplers must be read; those the later lessons use may still be unread.
+    /// these uniforms and samplers must be read (none, to check declarations only); those the later
+    /// lessons use may still be unread.
     Begun(&'static [&'static str]),
 }
 

@@ -15,9 +15,10 @@
 //! never graded on the project's file. Without `--res` the project grades its own files.
 //! `--lesson N` grades the files lesson step N needs (the same as `opengl3d lesson N`: steps 1–3
 //! the restore pass, 4 also down-sampling, 5 also `simple.frag`, 6–10 also SAO, 11–12 all five);
-//! `--step` picks steps by name. Lessons 6 and 7 write only the start of `sao.frag`: there it is
-//! checked for building and keeping its interface, and the verdict says that its occlusion is graded
-//! from lesson 8 on.
+//! `--step` picks steps by name. Lessons 6 and 7 write only the start of `sao.frag` and show it
+//! through a debug output (the normal's y; the last tap's mip level ÷ 3): there that output is graded
+//! against the project's checkpoint (`Res/lesson-checkpoints/N/sao.frag`, `steps/sao_checkpoint`),
+//! and the verdict says that the occlusion is graded from lesson 8 on.
 //!
 //! Before rendering, the student's program is checked against the lesson's interface
 //! (`shader_interface::PROGRAMS`, in `interface`): a uniform without its `layout(location=N)`, of

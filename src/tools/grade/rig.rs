@@ -75,7 +75,7 @@ fn context() -> Result<HeadlessContext> {
 
 /// Replaces the R8 SAO and blur targets by R32F ones of the same size, so that an output that is
 /// not normalised shows its real size instead of being clamped to 1.
-fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
+pub fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
     let (w, h) = lesson.targets.tex_depth.size_at(0);
     let make = |name: &str| -> Result<FramebufferObject> {
         let t = Rc::new(Texture::new(

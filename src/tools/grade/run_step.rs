@@ -34,7 +34,8 @@ fn program_of(rig: &Rig, step: Step) -> &ProgramObject {
 
 /// Grades one step; `subject.work_dir` holds a copy of the graded file. `begun`: the lesson step that
 /// has written only the start of the file (`sao.frag` in lessons 6–7) and what that start reads, so
-/// it is checked for building, keeping its interface and reading those, not for its output.
+/// it is checked for building, keeping its interface and reading those, and for that lesson's debug
+/// output instead of the occlusion.
 fn grade(
     step: Step,
     subject: &Subject,
@@ -53,8 +54,10 @@ fn grade(
         Ok(r) => r,
         Err(v) => return v,
     };
+    // A begun file's unread uniforms are told only when its debug output is wrong: a checkpoint
+    // line left out makes the whole start unread, and then that is the message.
     let written = match begun {
-        Some((_, b)) => Written::Begun(b.reads),
+        Some(_) => Written::Begun(&[]),
         None => Written::Complete,
     };
     if let Some(problem) =
@@ -63,16 +66,11 @@ fn grade(
         return Verdict::fail(problem);
     }
     let mut v = match (step, begun) {
-        (_, Some((lesson, _))) => Verdict {
-            passed: true,
-            message: say!(
-                "grade.verdict.begun",
-                lesson = lesson,
-                complete = lesson::SAO_COMPLETE_STEP
-            ),
-            metrics: Default::default(),
-            panels: Vec::new(),
-        },
+        (_, Some((lesson, b))) => {
+            let program = program_of(&rig, step).id();
+            let unread = interface::check(&rig.gl, program, step.file(), Written::Begun(b.reads));
+            steps::sao_checkpoint(&rig, lesson, project_res, &params, unread)
+        }
         (Step::Restore, None) => steps::restore(&rig, &camera),
         (Step::DownSampling, None) => steps::down_sampling(&rig),
         (Step::Simple, None) => steps::simple(&rig),

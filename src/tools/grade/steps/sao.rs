@@ -254,7 +254,7 @@ fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(
 }
 
 /// A probe's or scene's name (`scene.rs`) in the language `l`.
-fn place(l: &str, name: &str) -> String {
+pub(super) fn place(l: &str, name: &str) -> String {
     use rust_i18n::t;
     match name {
         "corner" => t!("grade.verdict.place_corner", locale = l),
