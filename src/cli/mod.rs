@@ -216,7 +216,9 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .collect();
         match stubs.len() {
             0 => println!("{}", t!("lesson.start_kept_all", dir = shown)),
-            4 => println!("{}", t!("lesson.start_all_stubs")),
+            n if n == crate::tools::lesson::LESSON_SHADERS.len() => {
+                println!("{}", t!("lesson.start_all_stubs", count = n))
+            }
             _ => println!(
                 "{}",
                 t!("lesson.start_some_stubs", stubs = stubs.join(", "))

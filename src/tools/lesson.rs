@@ -10,13 +10,19 @@ use std::path::{Path, PathBuf};
 /// Number of steps (lessons/01-… to 12-…).
 pub const STEPS: u32 = 12;
 
-/// The four shaders the lesson has students write.
-pub const LESSON_SHADERS: [&str; 4] = [
+/// The five shaders the lesson has students write, in the order they are written: `simple.frag`
+/// (course section 1.6, the texture display the composite uses too) comes with step 5.
+pub const LESSON_SHADERS: [&str; 5] = [
     "sao_restore_depth.frag",
     "sao_down_sampling.frag",
+    "simple.frag",
     "sao.frag",
     "sao_blur.frag",
 ];
+
+/// The step from which `sao.frag`, begun in step 6, computes the occlusion (steps 6 and 7 write its
+/// start and show debug views).
+pub const SAO_COMPLETE_STEP: u32 = 8;
 
 /// What step `n` shows: steps 1–5 the linear depth (restore + down-sampling only), 6–10 the raw SAO
 /// buffer, 11 the blurred buffer, 12 the composite.
@@ -30,17 +36,43 @@ pub fn view_for_step(n: u32) -> Result<View> {
     })
 }
 
-/// The shader files step `n` needs the student to have written.
+/// The shader files step `n` needs the student to have written (begun, for those in
+/// `begun_at_step`).
 pub fn shaders_for_step(n: u32) -> &'static [&'static str] {
     match n {
         1..=3 => &LESSON_SHADERS[..1],
-        4..=5 => &LESSON_SHADERS[..2],
-        6..=10 => &LESSON_SHADERS[..3],
+        4 => &LESSON_SHADERS[..2],
+        5 => &LESSON_SHADERS[..3],
+        6..=10 => &LESSON_SHADERS[..4],
         _ => &LESSON_SHADERS[..],
     }
 }
 
-/// Writes the starting folder: every shader and scene of `Res/`, with the lesson's four shaders
+/// A shader a lesson step has only begun, and the uniforms and samplers its start already reads.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Begun {
+    pub file: &'static str,
+    pub reads: &'static [&'static str],
+}
+
+/// The file of `shaders_for_step(n)` that step `n` has only begun, if any: it can be checked for
+/// building, keeping its interface, reading what its start reads and the step's debug output, not
+/// for the occlusion. Step 6
+/// rebuilds positions and normals (`texDepth`, `ndcToView`); step 7 adds the disc's radius
+/// (`saoInfo`).
+pub fn begun_at_step(n: u32) -> Option<Begun> {
+    let reads: &'static [&'static str] = match n {
+        6 => &["texDepth", "ndcToView"],
+        7 => &["texDepth", "ndcToView", "saoInfo"],
+        _ => return None,
+    };
+    Some(Begun {
+        file: "sao.frag",
+        reads,
+    })
+}
+
+/// Writes the starting folder: every shader and scene of `Res/`, with the lesson's five shaders
 /// replaced by stubs that compile. Existing files are never overwritten. Returns the files written.
 pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
     let res = project_res_dir();

@@ -413,7 +413,7 @@ fn lesson_without_a_step_lists_them_and_start_keeps_written_shaders() {
     let dir_s = dir.to_str().unwrap();
     let first = run(&["lesson", "start", dir_s]);
     assert!(first.status.success(), "{}", stderr(&first));
-    assert!(String::from_utf8_lossy(&first.stdout).contains("the four lesson shaders are stubs"));
+    assert!(String::from_utf8_lossy(&first.stdout).contains("the 5 lesson shaders are stubs"));
     std::fs::write(
         dir.join("sao.frag"),
         "#version 450\n// the student's work\n",

@@ -38,9 +38,15 @@ fn vertex_for(frag: &str) -> &'static str {
 fn every_shader_in_res_compiles_and_links() {
     let ctx = common::context();
     let res = ResDirs::default();
-    // Top level, the AO methods' folder and the lesson stubs.
+    // Top level, the AO methods' folder, the lesson stubs and the grader's lesson checkpoints.
     let mut frags: Vec<String> = Vec::new();
-    for sub in ["", "ao", "lesson-stubs"] {
+    for sub in [
+        "",
+        "ao",
+        "lesson-stubs",
+        "lesson-checkpoints/6",
+        "lesson-checkpoints/7",
+    ] {
         for e in std::fs::read_dir(project_res_dir().join(sub)).unwrap() {
             let name = e.unwrap().file_name().into_string().unwrap();
             if name.ends_with(".frag") {
@@ -60,6 +66,9 @@ fn every_shader_in_res_compiles_and_links() {
         "sao.frag",
         "sao_blur.frag",
         "simple.frag",
+        "lesson-stubs/simple.frag",
+        "lesson-checkpoints/6/sao.frag",
+        "lesson-checkpoints/7/sao.frag",
     ] {
         assert!(frags.iter().any(|f| f == needed), "Res/{needed} is missing");
     }

@@ -85,6 +85,7 @@ fn step_of(dir: &Path) -> &'static str {
     match file.as_str() {
         "sao_restore_depth.frag" => "restore",
         "sao_down_sampling.frag" => "down-sampling",
+        "simple.frag" => "simple",
         "sao.frag" => "sao",
         "sao_blur.frag" => "blur",
         f => panic!("{f} is not a lesson shader"),
@@ -144,6 +145,8 @@ passes! {
     listing_sao_passes: "listing-sao",
     listing_sao_with_normal_guard_passes: "listing-sao-guarded",
     listing_blur_passes: "listing-blur",
+    listing_simple_passes: "listing-simple",
+    rewritten_simple_passes: "rewrite-simple",
     rewritten_restore_passes: "rewrite-restore",
     rewritten_down_sampling_passes: "rewrite-down-sampling",
     rewritten_sao_passes: "rewrite-sao",
@@ -161,7 +164,14 @@ fails! {
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
     down_sampling_reading_level_0_fails: "down-sampling-level-0" => ["pass mipLevel"],
-    down_sampling_with_a_float_mip_level_names_the_gl_error: "down-sampling-float-mip-level" => ["pass mipLevel", "OpenGL reported GL_INVALID_OPERATION"],
+    down_sampling_with_a_float_mip_level_names_the_declaration: "down-sampling-float-mip-level" => ["location 200 (mipLevel) is declared as float", "type int", "`layout(location=200) uniform int mipLevel`"],
+    down_sampling_without_the_layout_names_it: "down-sampling-no-layout" => ["mipLevel is at location", "not 200", "`layout(location=200) uniform int mipLevel`"],
+    simple_broadcasting_red_fails: "simple-wrong-channel" => ["(r, r, r, r)", "reads the occlusion from alpha", "outColor = texture(texColor, inTexcoord)"],
+    simple_with_alpha_one_fails: "simple-alpha-one" => ["(r, g, b, 1)", "alpha must be copied too"],
+    simple_with_swapped_channels_fails: "simple-swapped" => ["(b, g, r, a)", "swapped"],
+    simple_upside_down_fails: "simple-flipped" => ["upside down"],
+    simple_reading_single_texels_fails: "simple-texel-fetch" => ["reads single texels instead of filtering"],
+    simple_on_the_wrong_unit_names_the_binding: "simple-binding-1" => ["texColor reads texture unit 1", "`layout(binding=0) uniform sampler2D texColor`"],
     sao_writing_inside_the_loop_fails: "sao-output-in-loop" => ["not normalised", "expected about 0."],
     sao_with_a_flipped_normal_fails: "sao-flipped-normal" => ["normal flipped"],
     sao_without_the_clamp_fails: "sao-no-clamp" => ["max(…, 0)"],
@@ -185,7 +195,7 @@ fn the_projects_own_shaders_pass() {
         .iter()
         .map(|s| s["step"].as_str().unwrap())
         .collect();
-    assert_eq!(steps, ["restore", "down-sampling", "sao", "blur"]);
+    assert_eq!(steps, ["restore", "down-sampling", "simple", "sao", "blur"]);
     assert_eq!(v["passed"], true, "{v}");
     assert_eq!(run.code, Some(0));
 }
@@ -196,6 +206,7 @@ fn a_student_with_every_listing_passes_and_gets_pictures() {
     for (m, f) in [
         ("listing-restore", "sao_restore_depth.frag"),
         ("listing-down-sampling", "sao_down_sampling.frag"),
+        ("listing-simple", "simple.frag"),
         ("listing-sao", "sao.frag"),
         ("listing-blur", "sao_blur.frag"),
     ] {
@@ -206,14 +217,14 @@ fn a_student_with_every_listing_passes_and_gets_pictures() {
     let v = run.json();
     check_shape(&v);
     assert_eq!(v["passed"], true, "{v}");
-    assert_eq!(v["steps"].as_array().unwrap().len(), 4);
+    assert_eq!(v["steps"].as_array().unwrap().len(), 5);
     for s in v["steps"].as_array().unwrap() {
         assert!(
             !s["message"].as_str().unwrap().contains("project's file"),
             "{s}"
         );
     }
-    for step in ["restore", "down-sampling", "sao", "blur"] {
+    for step in ["restore", "down-sampling", "simple", "sao", "blur"] {
         for kind in ["expected", "actual", "difference"] {
             let p = out.join(format!("{step}-{kind}.png"));
             let img = image::open(&p).unwrap_or_else(|e| panic!("{}: {e}", p.display()));
@@ -231,7 +242,7 @@ fn an_empty_folder_passes_nothing() {
     assert_eq!(run.code, Some(1), "{v}");
     assert_eq!(v["passed"], false);
     let steps = v["steps"].as_array().unwrap();
-    assert_eq!(steps.len(), 4);
+    assert_eq!(steps.len(), 5);
     for s in steps {
         let file = s["file"].as_str().unwrap();
         assert_eq!(s["passed"], false, "{s}");
@@ -246,7 +257,7 @@ fn an_empty_folder_passes_nothing() {
     let run = grade(Some(&dir), &[]);
     assert_eq!(run.code, Some(1));
     assert!(!run.stdout.contains("PASS"), "{}", run.stdout);
-    assert_eq!(run.stdout.matches("FAIL").count(), 4, "{}", run.stdout);
+    assert_eq!(run.stdout.matches("FAIL").count(), 5, "{}", run.stdout);
 }
 
 #[test]
@@ -326,27 +337,182 @@ fn a_shader_over_one_mib_is_refused_by_name_and_size() {
 
 #[test]
 fn an_endless_loop_times_out_and_grading_goes_on() {
-    // Lesson step 6: the restore and down-sampling listings, and an SAO that never ends.
+    // Lesson step 8: the restore, down-sampling and simple listings, and an SAO that never ends.
     let dir = temp_dir("grade-endless");
     for (m, f) in [
         ("listing-restore", "sao_restore_depth.frag"),
         ("listing-down-sampling", "sao_down_sampling.frag"),
+        ("listing-simple", "simple.frag"),
         ("sao-endless-loop", "sao.frag"),
     ] {
         std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
     }
-    let run = grade(Some(&dir), &["--json", "--lesson", "6", "--timeout", "6"]);
+    let run = grade(Some(&dir), &["--json", "--lesson", "8", "--timeout", "6"]);
     let v = run.json();
     check_shape(&v);
     assert_eq!(v["passed"], false);
     assert_eq!(run.code, Some(1));
     let steps = v["steps"].as_array().unwrap();
-    assert_eq!(steps.len(), 3);
-    assert_eq!(steps[0]["passed"], true, "{v}");
-    assert_eq!(steps[1]["passed"], true, "{v}");
-    assert_eq!(steps[2]["step"], "sao");
-    let message = steps[2]["message"].as_str().unwrap();
+    assert_eq!(steps.len(), 4);
+    for s in &steps[..3] {
+        assert_eq!(s["passed"], true, "{v}");
+    }
+    assert_eq!(steps[3]["step"], "sao");
+    let message = steps[3]["message"].as_str().unwrap();
     assert!(message.contains("timed out after 6 s"), "{message}");
+}
+
+/// The step names `--lesson N` grades (on an empty folder: all "not submitted").
+fn lesson_steps(n: &str) -> Vec<String> {
+    let dir = temp_dir(&format!("grade-lesson-{n}-steps"));
+    let v = grade(Some(&dir), &["--json", "--lesson", n]).json();
+    v["steps"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|s| s["step"].as_str().unwrap().to_string())
+        .collect()
+}
+
+#[test]
+fn simple_frag_is_graded_from_lesson_step_5_on() {
+    assert_eq!(lesson_steps("4"), ["restore", "down-sampling"]);
+    assert_eq!(lesson_steps("5"), ["restore", "down-sampling", "simple"]);
+    assert_eq!(lesson_steps("12").len(), 5);
+    // Missing, it is not submitted (not graded on the project's file).
+    let dir = temp_dir("grade-no-simple");
+    std::fs::copy(mutant("listing-sao").join("sao.frag"), dir.join("sao.frag")).unwrap();
+    let run = grade(Some(&dir), &["--json", "--step", "simple"]);
+    let v = run.json();
+    check_shape(&v);
+    assert_eq!(run.code, Some(1));
+    let s = &v["steps"][0];
+    assert_eq!(
+        (&s["passed"], &s["submitted"]),
+        (&false.into(), &false.into())
+    );
+    assert_eq!(
+        s["message"],
+        format!("not submitted: no simple.frag in {}", dir.display())
+    );
+}
+
+/// A student at lesson 6 or 7: restore, down-sampling and simple written, and the start of sao.frag
+/// with lesson 6's debug output.
+fn lesson_6_folder(name: &str, sao: &str) -> PathBuf {
+    let dir = temp_dir(name);
+    for (m, f) in [
+        ("listing-restore", "sao_restore_depth.frag"),
+        ("listing-down-sampling", "sao_down_sampling.frag"),
+        ("listing-simple", "simple.frag"),
+        (sao, "sao.frag"),
+    ] {
+        std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
+    }
+    dir
+}
+
+#[test]
+fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
+    for (n, sao) in [
+        ("6", "sao-lesson-6"),
+        ("6", "rewrite-sao-lesson-6"),
+        ("7", "sao-lesson-7"),
+    ] {
+        let dir = lesson_6_folder(&format!("grade-lesson-{n}-{sao}"), sao);
+        let run = grade(Some(&dir), &["--json", "--lesson", n]);
+        let v = run.json();
+        check_shape(&v);
+        assert_eq!(run.code, Some(0), "lesson {n}, {sao}: {v}");
+        let steps = v["steps"].as_array().unwrap();
+        assert_eq!(steps.len(), 4, "{v}");
+        assert_eq!(steps[3]["step"], "sao");
+        let message = steps[3]["message"].as_str().unwrap();
+        assert!(
+            message.contains(&format!("lesson {n}'s checkpoint matches"))
+                && message.contains("graded from lesson 8 on"),
+            "{message}"
+        );
+    }
+    // The lessons' typical mistakes in their debug views are named.
+    for (n, sao, needles) in [
+        (
+            "6",
+            "sao-lesson-6-flipped-normal",
+            ["points away from the camera", "cross(dpdx, dpdy)"],
+        ),
+        (
+            "7",
+            "sao-lesson-7-log-mip-offset-4",
+            ["one mip level finer", "logMipOffset is 3"],
+        ),
+        (
+            "6",
+            "sao-lesson-6-no-debug-line",
+            [
+                "writes 0 at every pixel",
+                "put the checkpoint's outColor line back",
+            ],
+        ),
+        (
+            "6",
+            "sao-lesson-7",
+            ["lesson 6's checkpoint differs", "expected"],
+        ),
+    ] {
+        let dir = lesson_6_folder(&format!("grade-lesson-{n}-{sao}"), sao);
+        let run = grade(Some(&dir), &["--json", "--lesson", n]);
+        let v = run.json();
+        assert_eq!(run.code, Some(1), "lesson {n}, {sao}: {v}");
+        let message = v["steps"][3]["message"].as_str().unwrap();
+        for needle in needles {
+            assert!(
+                message.contains(needle),
+                "{sao}: '{message}' should mention '{needle}'"
+            );
+        }
+    }
+    // What each lesson asks is still checked: the interface it declares...
+    let broken = lesson_6_folder("grade-lesson-6-no-layout", "sao-lesson-6-no-layout");
+    let run = grade(Some(&broken), &["--json", "--lesson", "6"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    let message = v["steps"][3]["message"].as_str().unwrap();
+    assert!(
+        message.contains("ndcToView is at location")
+            && message.contains("`layout(location=201) uniform vec2 ndcToView`"),
+        "{message}"
+    );
+    // ...and what it reads: lesson 7 sizes the disc with saoInfo, which lesson 6's start never reads;
+    // the untouched stub writes 0.
+    let dir = lesson_6_folder("grade-lesson-7-with-6", "sao-lesson-6");
+    let run = grade(Some(&dir), &["--json", "--lesson", "7"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    let message = v["steps"][3]["message"].as_str().unwrap();
+    assert!(
+        message.contains("never reads the uniform at location 200") && message.contains("saoInfo"),
+        "{message}"
+    );
+    let stub = lesson_6_folder("grade-lesson-6-stub", "sao-lesson-6");
+    std::fs::copy(
+        Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/lesson-stubs/sao.frag"),
+        stub.join("sao.frag"),
+    )
+    .unwrap();
+    let run = grade(Some(&stub), &["--json", "--lesson", "6"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    let message = v["steps"][3]["message"].as_str().unwrap();
+    assert!(message.contains("still the stub"), "{message}");
+    // From lesson 8 on, the debug view is graded as SAO, and fails.
+    let run = grade(Some(&dir), &["--json", "--lesson", "8"]);
+    let v = run.json();
+    assert_eq!(run.code, Some(1), "{v}");
+    assert_eq!(v["steps"][3]["passed"], false, "{v}");
+    // --step grades the file in full, whatever --lesson says.
+    let run = grade(Some(&dir), &["--json", "--lesson", "6", "--step", "sao"]);
+    assert_eq!(run.code, Some(1), "{}", run.stdout);
 }
 
 #[test]

@@ -34,15 +34,17 @@ fn student(class: &Path, name: &str, from: &[&str]) {
     }
 }
 
-const CORRECT: [&str; 4] = [
+const CORRECT: [&str; 5] = [
     "listing-restore",
     "listing-down-sampling",
+    "listing-simple",
     "rewrite-sao",
     "listing-blur",
 ];
-const BROKEN_SAO: [&str; 4] = [
+const BROKEN_SAO: [&str; 5] = [
     "listing-restore",
     "listing-down-sampling",
+    "listing-simple",
     "sao-flipped-normal",
     "listing-blur",
 ];
@@ -161,14 +163,16 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "student",
             "restore",
             "down-sampling",
+            "simple",
             "sao",
             "blur",
             "passed",
         ],
-        vec!["ada", "PASS", "PASS", "PASS", "PASS", "4"],
-        vec![ODD_NAME, "PASS", "PASS", "FAIL", "PASS", "3"],
+        vec!["ada", "PASS", "PASS", "PASS", "PASS", "PASS", "5"],
+        vec![ODD_NAME, "PASS", "PASS", "PASS", "FAIL", "PASS", "4"],
         vec![
             "cleo",
+            "not submitted",
             "not submitted",
             "not submitted",
             "not submitted",
@@ -177,6 +181,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
         ],
         vec![
             "dan",
+            "not submitted",
             "not submitted",
             "not submitted",
             "FAIL",
@@ -190,9 +195,9 @@ fn a_class_is_graded_into_csv_html_and_junit() {
     let (counts, suites) = parse_junit(&junit);
     assert_eq!(counts.get("testsuites"), Some(&1), "{junit}");
     assert_eq!(counts.get("testsuite"), Some(&4), "{junit}");
-    assert_eq!(counts.get("testcase"), Some(&16), "{junit}");
-    // bob's SAO, cleo's four, dan's four (three not submitted, SAO timed out).
-    assert_eq!(counts.get("failure"), Some(&9), "{junit}");
+    assert_eq!(counts.get("testcase"), Some(&20), "{junit}");
+    // bob's SAO, cleo's five, dan's five (four not submitted, SAO timed out).
+    assert_eq!(counts.get("failure"), Some(&11), "{junit}");
     assert_eq!(suites, ["ada", ODD_NAME, "cleo", "dan"], "{junit}");
     assert!(junit.contains("timed out after 6 s"), "{junit}");
 
@@ -223,7 +228,7 @@ fn a_class_that_passes_exits_0() {
     let names: Vec<String> = parse_csv(&csv).into_iter().map(|r| r[0].clone()).collect();
     assert_eq!(names, ["student", "'=1+1", "ada"], "{csv}");
     let (counts, _) = parse_junit(&std::fs::read_to_string(report.join("junit.xml")).unwrap());
-    assert_eq!(counts.get("testcase"), Some(&8));
+    assert_eq!(counts.get("testcase"), Some(&10));
     assert_eq!(counts.get("failure"), None);
 }
 

@@ -77,7 +77,7 @@ fn lesson_start_speaks_japanese() {
     assert!(o.status.success(), "{}", err(&o));
     let s = out(&o);
     assert!(s.contains("個のファイルを書き出しました"), "{s}");
-    assert!(s.contains("4 つの課題シェーダーはスタブです"), "{s}");
+    assert!(s.contains("5 つの課題シェーダーはスタブです"), "{s}");
     let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
     assert!(out(&o).contains("そのまま残しました"), "{}", out(&o));
 }
@@ -89,12 +89,12 @@ fn grading_an_empty_folder_says_not_submitted_in_japanese() {
     let o = run(&[C], &["grade", "--lang", "ja", "--res", res]);
     assert_eq!(o.status.code(), Some(1), "{}", err(&o));
     let s = out(&o);
-    assert_eq!(s.matches("不合格 ").count(), 4, "{s}");
+    assert_eq!(s.matches("不合格 ").count(), 5, "{s}");
     assert!(
         s.contains(&format!("未提出: {res} に sao.frag がありません")),
         "{s}"
     );
-    assert!(s.contains("4 ステップ中 4 ステップが不合格です"), "{s}");
+    assert!(s.contains("5 ステップ中 5 ステップが不合格です"), "{s}");
     assert!(!s.contains("FAIL") && !s.contains("not submitted"), "{s}");
 }
 
@@ -165,4 +165,108 @@ fn common_command_line_errors_in_japanese() {
     // The same error in English with --lang en.
     let o = run(&[JA], &["--lang", "en", "lesson", "x"]);
     assert!(err(&o).contains("'x' is not a step"), "{}", err(&o));
+}
+
+/// A failing mutant with `--lang ja`: the verdict and its hint in Japanese in the text report; with
+/// `--json`, `message` stays the English verdict and `message_localised` carries the Japanese one.
+#[test]
+fn verdicts_and_hints_in_japanese_and_json_keeps_english() {
+    let mutant = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mutants/restore-max");
+    let res = mutant.to_str().unwrap();
+    let o = run(
+        &[C],
+        &["--lang", "ja", "--res", res, "grade", "--step", "restore"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let s = out(&o);
+    assert!(
+        s.contains(
+            "不合格 sao_restore_depth.frag: 各 2×2 ブロックで最も遠いテクセルを残しています"
+        ),
+        "{s}"
+    );
+    assert!(s.contains("最も近い深度（min）を選んでください"), "{s}");
+    assert!(!s.contains("keeps the farthest"), "{s}");
+    let o = run(
+        &[JA],
+        &["--res", res, "grade", "--json", "--step", "restore"],
+    );
+    let v: Value = serde_json::from_str(out(&o).trim()).expect("JSON");
+    let step = &v["steps"][0];
+    assert_eq!(
+        step["message"],
+        "keeps the farthest texel of each 2×2 block (max instead of min?): the nearest depth \
+         (min) must win"
+    );
+    let ja = step["message_localised"]
+        .as_str()
+        .expect("a localised message");
+    assert!(ja.starts_with("各 2×2 ブロックで最も遠いテクセル"), "{ja}");
+    // A passing step's summary is translated too.
+    let listing =
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/mutants/listing-simple");
+    let o = run(
+        &[JA],
+        &[
+            "--res",
+            listing.to_str().unwrap(),
+            "grade",
+            "--json",
+            "--step",
+            "simple",
+        ],
+    );
+    let v: Value = serde_json::from_str(out(&o).trim()).expect("JSON");
+    let step = &v["steps"][0];
+    assert_eq!(step["passed"], true, "{v}");
+    assert!(
+        step["message"]
+            .as_str()
+            .unwrap()
+            .starts_with("copies every channel"),
+        "{v}"
+    );
+    assert!(
+        step["message_localised"]
+            .as_str()
+            .unwrap()
+            .contains("全チャンネル"),
+        "{v}"
+    );
+}
+
+/// Every `grade.verdict.*` key the grader's sources use is in both locale files, and every one the
+/// files hold is used (a missing key would print the key itself instead of a message).
+#[test]
+fn every_verdict_key_is_in_both_languages_and_used() {
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut used = std::collections::BTreeSet::new();
+    let mut dirs = vec![root.join("src/tools/grade")];
+    while let Some(d) = dirs.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                dirs.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                let text = std::fs::read_to_string(&p).unwrap();
+                for (i, _) in text.match_indices("\"grade.verdict.") {
+                    let key: String = text[i + 1..].chars().take_while(|c| *c != '"').collect();
+                    used.insert(key);
+                }
+            }
+        }
+    }
+    assert!(used.len() > 60, "{used:?}");
+    for lang in ["en", "ja"] {
+        let file = std::fs::read_to_string(root.join(format!("locales/{lang}.yml"))).unwrap();
+        let keys: std::collections::BTreeSet<String> = file
+            .lines()
+            .filter(|l| l.starts_with("grade.verdict."))
+            .map(|l| l.split(':').next().unwrap().to_string())
+            .collect();
+        let missing: Vec<_> = used.difference(&keys).collect();
+        let unused: Vec<_> = keys.difference(&used).collect();
+        assert!(missing.is_empty(), "{lang}.yml lacks {missing:?}");
+        assert!(unused.is_empty(), "{lang}.yml has unused {unused:?}");
+    }
 }

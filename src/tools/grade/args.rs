@@ -9,18 +9,27 @@ use std::path::PathBuf;
 pub enum Step {
     Restore,
     DownSampling,
+    Simple,
     Sao,
     Blur,
 }
 
 impl Step {
-    pub const ALL: [Step; 4] = [Step::Restore, Step::DownSampling, Step::Sao, Step::Blur];
+    /// In the order the lesson has them written.
+    pub const ALL: [Step; 5] = [
+        Step::Restore,
+        Step::DownSampling,
+        Step::Simple,
+        Step::Sao,
+        Step::Blur,
+    ];
 
     /// The shader file the step grades.
     pub fn file(self) -> &'static str {
         match self {
             Step::Restore => "sao_restore_depth.frag",
             Step::DownSampling => "sao_down_sampling.frag",
+            Step::Simple => "simple.frag",
             Step::Sao => "sao.frag",
             Step::Blur => "sao_blur.frag",
         }
@@ -29,6 +38,7 @@ impl Step {
         match self {
             Step::Restore => "restore",
             Step::DownSampling => "down-sampling",
+            Step::Simple => "simple",
             Step::Sao => "sao",
             Step::Blur => "blur",
         }
@@ -40,8 +50,9 @@ impl Step {
 
 #[derive(Args, Debug, Clone)]
 pub struct GradeArgs {
-    /// Grade the shaders lesson step N needs (1-3: restore; 4-5: + down-sampling; 6-10: + SAO;
-    /// 11-12: all four).
+    /// Grade the shaders lesson step N needs (1-3: restore; 4: and down-sampling; 5: and simple;
+    /// 6-10: and SAO, whose occlusion is graded from step 8 on, 6-7 grading the step's debug output
+    /// instead; 11-12: all five).
     #[arg(long, value_name = "N")]
     pub lesson: Option<u32>,
     /// Grade only these steps (comma-separated or repeated); overrides --lesson.
@@ -81,9 +92,19 @@ pub struct GradeStepArgs {
     /// Folder for the step's PNGs.
     #[arg(long)]
     pub out: Option<PathBuf>,
+    /// The lesson step the student is at (`grade --lesson N`): a file the lesson has only begun
+    /// (`sao.frag` at steps 6–7) is checked as far as it is written.
+    #[arg(long)]
+    pub lesson: Option<u32>,
 }
 
-/// The steps `args` select, in pipeline order.
+/// The lesson step the children are told about: `--lesson N`, unless `--step` chose the steps (then
+/// each is graded in full).
+pub fn lesson_of(args: &GradeArgs) -> Option<u32> {
+    args.lesson.filter(|_| args.step.is_empty())
+}
+
+/// The steps `args` select, in the lesson's order.
 pub fn selected_steps(args: &GradeArgs) -> Result<Vec<Step>> {
     let mut steps: Vec<Step> = if !args.step.is_empty() {
         args.step.clone()

@@ -3,6 +3,8 @@
 
 use super::args::Step;
 use super::report::StepReport;
+use super::say::say;
+use crate::i18n::Text;
 use std::io::Read;
 use std::os::unix::process::CommandExt as _;
 use std::process::{Command, ExitStatus, Stdio};
@@ -134,27 +136,25 @@ impl Child {
     /// into a report.
     pub fn finish(mut self, timeout: Duration) -> StepReport {
         let step = self.step;
-        let fail = |message: String| StepReport::failed(step, message);
+        let fail = |message: Text| StepReport::failed_with(step, message);
+        let grader_error = |error: String| fail(say!("grade.verdict.grader_error", error = error));
         let status = match self.wait(timeout) {
             Ok(Some(status)) => status,
             Ok(None) => {
-                return fail(format!(
-                    "timed out after {} s: the shader never finishes (an endless loop?); grading \
-                     went on",
-                    timeout.as_secs_f64()
-                ))
+                let seconds = timeout.as_secs_f64();
+                return fail(say!("grade.verdict.timed_out", seconds = seconds));
             }
-            Err(e) => return fail(format!("grader error: {e}")),
+            Err(e) => return grader_error(e),
         };
         let out = match collect(self.stdout.take(), "output") {
             Ok(out) => out,
-            Err(e) => return fail(format!("grader error: {e}")),
+            Err(e) => return grader_error(e),
         };
         // Only shown when there is no verdict: a reading error then takes the place of the text.
         let err = collect(self.stderr.take(), "error output").unwrap_or_else(|e| e);
         match printed_verdict(&out) {
             Some(Ok(report)) => return report,
-            Some(Err(e)) => return fail(format!("grader error: {e}")),
+            Some(Err(e)) => return grader_error(e),
             None => {}
         }
         fail(no_verdict_message(status, &err))
@@ -189,21 +189,16 @@ impl Child {
 }
 
 /// Why a child that ended without printing a verdict failed: a crash (a signal) or another exit.
-fn no_verdict_message(status: ExitStatus, err: &str) -> String {
+fn no_verdict_message(status: ExitStatus, err: &str) -> Text {
+    let tail = stderr_tail(err);
     #[cfg(unix)]
     {
         use std::os::unix::process::ExitStatusExt;
-        if let Some(sig) = status.signal() {
-            return format!(
-                "the renderer crashed (signal {sig}) while running this shader{}",
-                stderr_tail(err)
-            );
+        if let Some(signal) = status.signal() {
+            return say!("grade.verdict.crashed", signal = signal, tail = tail);
         }
     }
-    format!(
-        "grader error: the step's process ended ({status}) without a verdict{}",
-        stderr_tail(err)
-    )
+    say!("grade.verdict.no_verdict", status = status, tail = tail)
 }
 
 #[cfg(test)]

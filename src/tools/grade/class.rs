@@ -130,6 +130,7 @@ pub fn run(
         exe,
         pictures: None,
         timeout,
+        lesson: super::args::lesson_of(args),
     };
     let bar = progress_bar(students.len());
     let start = Instant::now();

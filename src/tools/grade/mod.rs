@@ -1,10 +1,11 @@
 //! The grader: `opengl3d grade` renders fixed test inputs with a student's shaders and checks each of
-//! the lesson's four passes, one verdict per step.
+//! the lesson's five shaders, one verdict per step.
 //!
 //! | step | file | checked against |
 //! |---|---|---|
 //! | `restore` | `sao_restore_depth.frag` | the exact (f64) inverse of the projection of the nearest of each 2×2 block, within float precision |
 //! | `down-sampling` | `sao_down_sampling.frag` | the exact min of each 2×2 block, level by level |
+//! | `simple` | `simple.frag` | the project's `Res/simple.frag`: an RGBA texture drawn at twice its size, every channel as `texture()` gives it, and the lesson's composite over an image |
 //! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain: mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, far samples read from mip levels 1–3 |
 //! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input: RMSE, edges kept, flat surfaces smoothed, mean kept |
 //!
@@ -13,8 +14,16 @@
 //! link out of DIR, unreadable) fails as "not submitted" (`submitted: false` in `--json`): it is
 //! never graded on the project's file. Without `--res` the project grades its own files.
 //! `--lesson N` grades the files lesson step N needs (the same as `opengl3d lesson N`: steps 1–3
-//! the restore pass, 4–5 also down-sampling, 6–10 also SAO, 11–12 all four); `--step` picks steps
-//! by name.
+//! the restore pass, 4 also down-sampling, 5 also `simple.frag`, 6–10 also SAO, 11–12 all five);
+//! `--step` picks steps by name. Lessons 6 and 7 write only the start of `sao.frag` and show it
+//! through a debug output (the normal's y; the last tap's mip level ÷ 3): there that output is graded
+//! against the project's checkpoint (`Res/lesson-checkpoints/N/sao.frag`, `steps/sao_checkpoint`),
+//! and the verdict says that the occlusion is graded from lesson 8 on.
+//!
+//! Before rendering, the student's program is checked against the lesson's interface
+//! (`shader_interface::PROGRAMS`, in `interface`): a uniform without its `layout(location=N)`, of
+//! another type, unread, or a sampler on another unit fails with the declaration to write. Every
+//! message is a `grade.verdict.*` key of `locales/*.yml` (`say!`), in English and the chosen language.
 //!
 //! Every step runs in a child process (`opengl3d grade-step STEP`, hidden) with a time limit, so a
 //! shader that never ends, or a driver crash, fails that step and grading goes on. The child has
@@ -29,14 +38,16 @@
 //! Files: `args` (command line, `Step`), `run` (the grader) with `student` (one folder's steps),
 //! `child` (one step's process) and `report`; `class` (a whole class) with `class_report` (its CSV,
 //! HTML and JUnit); `submission` (finding the student's file); `run_step` (the child) with `staging` (the
-//! private copy), `rig` (GL context and both sides' passes), `passes` (running them), `steps/` (one
-//! file per step), `measure` (shared statistics), `tol` (every tolerance, with what it was measured
-//! against); `scene` and `picture` (the SAO scenes and the PNGs).
+//! private copy), `rig` (GL context and both sides' passes), `interface` (the program against the
+//! lesson's interface), `passes` (running them), `steps/` (one file per step), `say` (messages),
+//! `measure` (shared statistics), `tol` (every tolerance, with what it was measured against);
+//! `scene` and `picture` (the SAO scenes and the PNGs).
 
 mod args;
 mod child;
 mod class;
 mod class_report;
+mod interface;
 mod measure;
 mod passes;
 pub mod picture;
@@ -44,6 +55,7 @@ mod report;
 mod rig;
 mod run;
 mod run_step;
+mod say;
 pub mod scene;
 mod staging;
 mod steps;

@@ -38,6 +38,14 @@ impl StepReport {
         }
     }
 
+    /// A failing verdict for `step` with a message in English and the chosen language.
+    pub fn failed_with(step: Step, message: Text) -> StepReport {
+        StepReport {
+            message_localised: message.localised,
+            ..StepReport::failed(step, message.en)
+        }
+    }
+
     /// The failing verdict of a step whose file is not in the student's folder, and why.
     pub fn not_submitted(step: Step, reason: &Text) -> StepReport {
         let said = |locale: &str, reason: &str| {

@@ -2,8 +2,10 @@
 //! side, the student's built from a private copy of the graded file, and what a step hands back.
 
 use super::picture::Panel;
+use super::say::say;
 use crate::ao::{AoSettings, SaoLesson};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramError, Texture, TextureDesc};
+use crate::i18n::Text;
 use crate::math::Camera;
 use crate::platform::headless::{DevicePreference, HeadlessContext};
 use crate::res::ResDirs;
@@ -15,23 +17,25 @@ use std::rc::Rc;
 /// The outcome of one step.
 pub struct Verdict {
     pub passed: bool,
-    pub message: String,
+    /// What the student reads, in English and the chosen language (`grade.verdict.*` keys).
+    pub message: Text,
     pub metrics: BTreeMap<String, f64>,
     pub panels: Vec<Panel>,
 }
 
 impl Verdict {
-    pub fn fail(message: impl Into<String>) -> Verdict {
+    pub fn fail(message: Text) -> Verdict {
         Verdict {
             passed: false,
-            message: message.into(),
+            message,
             metrics: BTreeMap::new(),
             panels: Vec::new(),
         }
     }
     /// A failure of the grader itself (not of the student's shader).
     pub fn grader_error(e: &anyhow::Error) -> Verdict {
-        Verdict::fail(format!("grader error: {e:#}"))
+        let error = format!("{e:#}");
+        Verdict::fail(say!("grade.verdict.grader_error", error = error))
     }
 }
 
@@ -71,7 +75,7 @@ fn context() -> Result<HeadlessContext> {
 
 /// Replaces the R8 SAO and blur targets by R32F ones of the same size, so that an output that is
 /// not normalised shows its real size instead of being clamped to 1.
-fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
+pub fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
     let (w, h) = lesson.targets.tex_depth.size_at(0);
     let make = |name: &str| -> Result<FramebufferObject> {
         let t = Rc::new(Texture::new(
@@ -86,26 +90,36 @@ fn float_targets(gl: &Gl, lesson: &mut SaoLesson) -> Result<()> {
 }
 
 /// A one-line message for a shader that does not build, naming the student's file (not the copy).
-fn build_error_message(e: &anyhow::Error, subject: &Subject) -> String {
-    let text = match e.downcast_ref::<ProgramError>() {
+fn build_error_message(e: &anyhow::Error, subject: &Subject) -> Text {
+    match e.downcast_ref::<ProgramError>() {
         Some(ProgramError::Compile { messages, .. }) => {
-            let mut m = format!("does not compile: {}", messages.join(" | "));
+            // The compiler's own lines stay as they are (file:line: message); only ours is translated.
+            let mut errors = messages
+                .iter()
+                .take(3)
+                .cloned()
+                .collect::<Vec<_>>()
+                .join(" | ");
             if messages.len() > 3 {
-                m = format!(
-                    "does not compile: {} | … ({} more)",
-                    messages[..3].join(" | "),
-                    messages.len() - 3
-                );
+                errors = format!("{errors} | … ({} more)", messages.len() - 3);
             }
-            m
+            let errors = subject.rewrite(&errors);
+            say!("grade.verdict.does_not_compile", errors = errors)
         }
         Some(ProgramError::Link { log, .. }) => {
-            format!("does not link: {}", log.replace('\n', " | "))
+            let log = subject.rewrite(&log.replace('\n', " | "));
+            say!("grade.verdict.does_not_link", log = log)
         }
-        Some(other) => other.to_string(),
-        None => format!("cannot be built: {e:#}"),
-    };
-    subject.rewrite(&text)
+        Some(other) => {
+            // Already a sentence naming the file and line (an #include refused, a file too big).
+            let error = subject.rewrite(&other.to_string());
+            say!("grade.verdict.build_refused", error = error)
+        }
+        None => {
+            let error = subject.rewrite(&format!("{e:#}"));
+            say!("grade.verdict.cannot_build", error = error)
+        }
+    }
 }
 
 /// Builds the project's passes from `project_res` and the student's from `subject.work_dir` (falling
@@ -118,8 +132,14 @@ pub fn build_rig(
     camera: &Camera,
     params: &AoSettings,
 ) -> std::result::Result<Rig, Verdict> {
-    let internal =
-        |what: &str, e: anyhow::Error| Verdict::fail(format!("grader error ({what}): {e:#}"));
+    let internal = |what: &str, e: anyhow::Error| {
+        let error = format!("{e:#}");
+        Verdict::fail(say!(
+            "grade.verdict.grader_error_in",
+            what = what,
+            error = error
+        ))
+    };
     let context = context().map_err(|e| internal("no OpenGL 4.5 context", e))?;
     let gl = context.gl.clone();
     let reference_res = ResDirs::only(vec![project_res.to_path_buf()]);

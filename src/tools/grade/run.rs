@@ -57,6 +57,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         exe: &exe,
         pictures: args.out.as_deref(),
         timeout,
+        lesson: super::args::lesson_of(args),
     };
     let reports = student::grade(&grading, student, &steps)?;
     let passed = reports.iter().all(|r| r.passed);

@@ -3,24 +3,50 @@
 //! for everything but the graded file.
 
 use super::args::{GradeStepArgs, Step};
+use super::interface::{self, Written};
 use super::picture;
 use super::report::StepReport;
-use super::rig::{build_rig, Subject, Verdict};
+use super::rig::{build_rig, Rig, Subject, Verdict};
+use super::say::say;
 use super::staging::stage;
 use super::steps;
 use super::submission;
 use crate::ao::AoSettings;
+use crate::gl::ProgramObject;
+use crate::i18n::Text;
 use crate::math::Camera;
 use crate::res::project_res_dir;
+use crate::tools::lesson;
 use anyhow::Result;
 use std::path::Path;
 
-/// Grades one step; `subject.work_dir` holds a copy of the graded file.
-fn grade(step: Step, subject: &Subject, project_res: &Path) -> Verdict {
+/// The student's program that `step` grades.
+fn program_of(rig: &Rig, step: Step) -> &ProgramObject {
+    let s = &rig.student;
+    match step {
+        Step::Restore => &s.prog_restore_depth,
+        Step::DownSampling => &s.prog_down_sampling,
+        Step::Simple => &s.prog_simple,
+        Step::Sao => &s.prog_sao,
+        Step::Blur => &s.prog_blur,
+    }
+}
+
+/// Grades one step; `subject.work_dir` holds a copy of the graded file. `begun`: the lesson step that
+/// has written only the start of the file (`sao.frag` in lessons 6–7) and what that start reads, so
+/// it is checked for building, keeping its interface and reading those, and for that lesson's debug
+/// output instead of the occlusion.
+fn grade(
+    step: Step,
+    subject: &Subject,
+    project_res: &Path,
+    begun: Option<(u32, lesson::Begun)>,
+) -> Verdict {
     let camera = Camera::default();
     let params = AoSettings::default();
     let main_size = match step {
         Step::Restore | Step::DownSampling => steps::MAIN_SIZE,
+        Step::Simple => (2 * steps::SIMPLE_SIZE.0, 2 * steps::SIMPLE_SIZE.1),
         Step::Sao => (2 * steps::SAO_SIZE, 2 * steps::SAO_SIZE),
         Step::Blur => (2 * steps::BLUR_SIZE, 2 * steps::BLUR_SIZE),
     };
@@ -28,18 +54,54 @@ fn grade(step: Step, subject: &Subject, project_res: &Path) -> Verdict {
         Ok(r) => r,
         Err(v) => return v,
     };
-    let mut v = match step {
-        Step::Restore => steps::restore(&rig, &camera),
-        Step::DownSampling => steps::down_sampling(&rig),
-        Step::Sao => steps::sao(&rig, &params),
-        Step::Blur => steps::blur(&rig, &params),
+    // A begun file's unread uniforms are told only when its debug output is wrong: a checkpoint
+    // line left out makes the whole start unread, and then that is the message.
+    let written = match begun {
+        Some(_) => Written::Begun(&[]),
+        None => Written::Complete,
+    };
+    if let Some(problem) =
+        interface::check(&rig.gl, program_of(&rig, step).id(), step.file(), written)
+    {
+        return Verdict::fail(problem);
+    }
+    let mut v = match (step, begun) {
+        (_, Some((lesson, b))) => {
+            let program = program_of(&rig, step).id();
+            let unread = interface::check(&rig.gl, program, step.file(), Written::Begun(b.reads));
+            steps::sao_checkpoint(&rig, lesson, project_res, &params, unread)
+        }
+        (Step::Restore, None) => steps::restore(&rig, &camera),
+        (Step::DownSampling, None) => steps::down_sampling(&rig),
+        (Step::Simple, None) => steps::simple(&rig),
+        (Step::Sao, None) => steps::sao(&rig, &params),
+        (Step::Blur, None) => steps::blur(&rig, &params),
     };
     // A GL error means some call of the step did nothing, so its measurements may not be what they
     // claim: say so with the verdict.
     if let Some(e) = crate::gl::take_error(&rig.gl) {
-        v.message = format!("{} (note: OpenGL reported {e} while grading)", v.message);
+        let note = say!("grade.verdict.gl_error_note", error = e);
+        v.message = joined(&v.message, &note);
     }
     v
+}
+
+/// `message` followed by `note` (" (note: …)"), in each language.
+fn joined(message: &Text, note: &Text) -> Text {
+    Text {
+        en: format!("{}{}", message.en, note.en),
+        localised: message
+            .localised
+            .as_ref()
+            .zip(note.localised.as_ref())
+            .map(|(m, n)| format!("{m}{n}")),
+    }
+}
+
+/// Puts `message` into `report`: English in `message`, the chosen language in `message_localised`.
+fn set_message(report: &mut StepReport, message: Text) {
+    report.message = message.en;
+    report.message_localised = message.localised;
 }
 
 /// The child: grades one step and prints its report as one JSON line on stdout.
@@ -62,27 +124,41 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
     };
     let mut report = StepReport::failed(step, String::new());
     match stage(&file, &args.work) {
-        Err(e) => report.message = format!("{e:#}"),
+        Err(e) => {
+            // Already names the student's file and what is wrong with it (size, encoding, include).
+            let error = format!("{e:#}");
+            set_message(
+                &mut report,
+                say!("grade.verdict.build_refused", error = error),
+            );
+        }
         Ok(_) => {
             let shown = file.parent().unwrap_or(Path::new("")).to_path_buf();
             let subject = Subject {
                 work_dir: &args.work,
                 shown_dir: &shown,
             };
-            let v = grade(step, &subject, &project);
+            let begun = args.lesson.and_then(|n| {
+                lesson::begun_at_step(n)
+                    .filter(|b| b.file == step.file())
+                    .map(|b| (n, b))
+            });
+            let v = grade(step, &subject, &project, begun);
             report.passed = v.passed;
-            report.message = v.message;
             report.metrics = v.metrics;
+            let mut message = v.message;
             if let Some(out) = &args.out {
                 if !v.panels.is_empty() {
                     // The verdict is the shader's; pictures that cannot be written are the
                     // grader's problem, said with the verdict (the child's stderr is not shown).
                     if let Err(e) = picture::write(out, step.name(), &v.panels) {
-                        report.message =
-                            format!("{} (pictures not written: {e:#})", report.message);
+                        let error = format!("{e:#}");
+                        let note = say!("grade.verdict.pictures_not_written", error = error);
+                        message = joined(&message, &note);
                     }
                 }
             }
+            set_message(&mut report, message);
         }
     }
     // The verdict stands whatever happens to the copy: a folder left behind is only reported.

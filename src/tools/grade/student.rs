@@ -4,6 +4,7 @@
 use super::args::Step;
 use super::child::Child;
 use super::report::StepReport;
+use super::say::say;
 use super::submission;
 use anyhow::{Context as _, Result};
 use std::path::{Path, PathBuf};
@@ -44,11 +45,14 @@ fn work_dir() -> Result<WorkDir> {
     Ok(WorkDir(work))
 }
 
-/// How to grade: the executable the children run, where pictures go, the time limit of a step.
+/// How to grade: the executable the children run, where pictures go, the time limit of a step, and
+/// the lesson step the student is at (`--lesson N`: a file it has only begun is checked as far as it
+/// is written).
 pub struct Grading<'a> {
     pub exe: &'a Path,
     pub pictures: Option<&'a Path>,
     pub timeout: Duration,
+    pub lesson: Option<u32>,
 }
 
 /// Grades `steps` of the shaders in `student` (the project's own files when `None`): one verdict
@@ -78,15 +82,19 @@ pub fn grade(g: &Grading, student: Option<&Path>, steps: &[Step]) -> Result<Vec<
         if let Some(out) = g.pictures {
             cmd.arg("--out").arg(out);
         }
+        if let Some(n) = g.lesson {
+            cmd.arg("--lesson").arg(n.to_string());
+        }
         match Child::spawn(cmd, s) {
             Ok(child) => {
                 children.push((reports.len(), child));
                 reports.push(None);
             }
-            Err(e) => reports.push(Some(StepReport::failed(
-                s,
-                format!("grader error: cannot start {}: {e}", g.exe.display()),
-            ))),
+            Err(e) => {
+                let (exe, error) = (g.exe.display(), e);
+                let message = say!("grade.verdict.cannot_start", exe = exe, error = error);
+                reports.push(Some(StepReport::failed_with(s, message)))
+            }
         }
     }
     for (i, c) in children {

@@ -62,3 +62,18 @@ pub const BLUR_SKY_ABS: f64 = 0.02;
 /// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
 /// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
 pub const BLUR_RMSE: f64 = 0.07;
+/// sao.frag at lesson 6: the normal's y may differ from the checkpoint's by this much at a pixel...
+pub const CHECKPOINT_NORMAL_ABS: f64 = 0.02;
+/// ...and at lesson 7 the last tap's level ÷ 3 by this (levels are 1/3 apart: any other level is a
+/// difference of 0.33 or more).
+pub const CHECKPOINT_LEVEL_ABS: f64 = 0.01;
+/// Lessons 6 and 7: the fraction of the pixels (of the three SAO scenes) that may differ by more.
+/// The listings and the rewrite: 0; the normal flipped 0.38 (walls facing the camera have y = 0
+/// either way), `logMipOffset = 4` 0.85, the other lesson's debug view 0.88.
+pub const CHECKPOINT_BAD_FRACTION: f64 = 0.01;
+/// simple.frag: the largest difference allowed in any channel of the copy and of the composite,
+/// against the project's `simple.frag` on the same inputs. The listing and the rewrite
+/// (`textureLod`, channels rebuilt from `.rgb` and `.a`) run the same sampler and give exactly 0;
+/// the mistakes differ by whole channels: red broadcast 0.98, alpha 1 0.76, `.bgra` 0.98, upside
+/// down 0.76, nearest texels on the 2× magnification 0.39.
+pub const SIMPLE_ABS: f64 = 1e-3;

@@ -4,10 +4,12 @@
 //! `sao_blur.frag` is bounded (loosely: the lesson's listing has wider weights).
 
 use crate::ao::AoSettings;
+use crate::i18n::Text;
 use crate::tools::grade::measure::{as_r8, mean_and_std};
 use crate::tools::grade::passes::{run_blur, run_sao, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::say::say;
 use crate::tools::grade::scene::sao_scenes;
 use crate::tools::grade::tol;
 use anyhow::Result;
@@ -169,84 +171,91 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
         Panel::absolute(w, h, r_b, s_b, Shade::Occlusion, 0.25),
     ];
-    let verdict = |passed: bool, message: String| Verdict {
+    let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
     };
+    let f2 = |v: f64| format!("{v:.2}");
+    let f3 = |v: f64| format!("{v:.3}");
     if nan > 0 {
-        return verdict(false, format!("writes NaN or Inf at {nan} pixels"));
+        return verdict(false, say!("grade.verdict.blur_nan", count = nan));
     }
     if (raw_mean - in_mean).abs() > tol::BLUR_MEAN_ABS {
-        let hint = if raw_mean > in_mean {
-            "the output is not normalised: divide the weighted sum by totalWeight (the sum of the weights used)"
-        } else {
-            "the weighted sum must be divided by the sum of the weights actually used (totalWeight)"
-        };
+        let (got, expected) = (f2(raw_mean), f2(in_mean));
         return verdict(
             false,
-            format!(
-                "a blurred flat surface must keep its mean occlusion: got {raw_mean:.2}, expected \
-                 {in_mean:.2}; {hint}"
-            ),
+            if raw_mean > in_mean {
+                say!(
+                    "grade.verdict.blur_mean_high",
+                    got = got,
+                    expected = expected
+                )
+            } else {
+                say!(
+                    "grade.verdict.blur_mean_low",
+                    got = got,
+                    expected = expected
+                )
+            },
         );
     }
     if far_max > tol::BLUR_EDGE_ABS {
+        let (far, near) = (f2(far_max), f2(near_min));
         return verdict(
             false,
-            format!(
-                "blurs across a depth edge: next to the edge the far, open side is {far_max:.2} \
-                 (expected 0.00) and the near, occluded side {near_min:.2} (expected 1.00); weight \
-                 each sample by max(0, 1 − edgeSharpness·|sampleDepth − depth|)"
-            ),
+            say!("grade.verdict.blur_across_edge", far = far, near = near),
         );
     }
     if near_min < 1.0 - tol::BLUR_EDGE_ABS {
-        return verdict(
-            false,
-            format!(
-                "next to a depth edge a fully occluded surface drops to {near_min:.2} (expected \
-                 1.00): divide the weighted sum by totalWeight, the sum of the weights actually \
-                 used (samples across the edge get weight 0)"
-            ),
-        );
+        let near = f2(near_min);
+        return verdict(false, say!("grade.verdict.blur_edge_drop", near = near));
     }
     if out_std > tol::BLUR_SMOOTHING * in_std {
+        let (input, output, reference) = (f3(in_std), f3(out_std), f3(ref_std));
+        let allowed = f3(tol::BLUR_SMOOTHING * in_std);
         return verdict(
             false,
-            format!(
-                "does not smooth a flat surface: noise std {in_std:.3} → {out_std:.3} (the reference \
-                 leaves {ref_std:.3}; at most {:.3} allowed)",
-                tol::BLUR_SMOOTHING * in_std
+            say!(
+                "grade.verdict.blur_no_smoothing",
+                input = input,
+                output = output,
+                reference = reference,
+                allowed = allowed
             ),
         );
     }
     if sky_max > tol::BLUR_SKY_ABS {
-        return verdict(
-            false,
-            format!(
-                "occlusion leaks into the sky ({sky_max:.2}): sky pixels must be kept as they are"
-            ),
-        );
+        let sky = f2(sky_max);
+        return verdict(false, say!("grade.verdict.blur_sky", sky = sky));
     }
     if rmse > tol::BLUR_RMSE {
         let (x, y) = (worst.1 % w, worst.1 / w);
+        let (rmse, diff) = (f3(rmse), format!("{:+.2}", worst.0));
         return verdict(
             false,
-            format!(
-                "differs from the reference blur: RMSE {rmse:.3} (tolerance {}); largest difference \
-                 {:+.2} at texel ({x}, {y})",
-                tol::BLUR_RMSE,
-                worst.0
+            say!(
+                "grade.verdict.blur_rmse",
+                rmse = rmse,
+                tolerance = tol::BLUR_RMSE,
+                diff = diff,
+                x = x,
+                y = y
             ),
         );
     }
+    let (near, far, input, output, rmse) =
+        (f2(near_min), f2(far_max), f3(in_std), f3(out_std), f3(rmse));
     verdict(
         true,
-        format!(
-            "keeps depth edges ({near_min:.2} | {far_max:.2}), smooths flat surfaces (noise std \
-             {in_std:.3} → {out_std:.3}, mean kept), RMSE {rmse:.3} against the reference"
+        say!(
+            "grade.verdict.blur_pass",
+            near = near,
+            far = far,
+            input = input,
+            output = output,
+            rmse = rmse
         ),
     )
 }

@@ -5,6 +5,7 @@
 use crate::tools::grade::measure::matches;
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::say::say;
 use crate::tools::grade::tol;
 use std::collections::BTreeMap;
 
@@ -125,12 +126,10 @@ pub fn down_sampling(rig: &Rig) -> Verdict {
         });
     }
     let Some((level, i, count)) = first_bad else {
+        let last = levels - 1;
         return Verdict {
             passed: true,
-            message: format!(
-                "levels 1–{} are exactly the min of their 2×2 parent texels ({total} texels checked)",
-                levels - 1
-            ),
+            message: say!("grade.verdict.down_pass", last = last, total = total),
             metrics,
             panels,
         };
@@ -145,38 +144,33 @@ pub fn down_sampling(rig: &Rig) -> Verdict {
         matches(g, &p)
     };
     let message = if g.iter().all(|v| *v == g[0]) {
-        format!(
-            "level {level} is {} at every texel: outColor must be the min of the 2×2 texels of \
-             level mipLevel",
-            g[0]
-        )
+        say!("grade.verdict.down_constant", level = level, value = g[0])
     } else if made_by(&parent.reduce(w, h, 2, &max4)) {
-        format!("level {level} keeps the farthest of each 2×2 block (max instead of min?): the nearest (min) must win")
+        say!("grade.verdict.down_max", level = level)
     } else if made_by(&parent.reduce(w, h, 1, &min4)) {
-        format!(
-            "level {level} reads the wrong texels: the source level is twice the size of the target, \
-             so the texel coordinate is ivec2(gl_FragCoord.xy) * 2"
-        )
+        say!("grade.verdict.down_no_x2", level = level)
     } else if level >= 2 && made_by(&base.reduce(w, h, 2, &min4)) {
-        format!(
-            "level {level} is made from level 0, not level {}: pass mipLevel to texelFetch",
-            level - 1
+        say!(
+            "grade.verdict.down_level_0",
+            level = level,
+            parent = level - 1
         )
     } else if made_by(&parent.reduce(w, h, 2, &|q| (q[0] + q[1] + q[2] + q[3]) / 4.0)) {
-        format!("level {level} averages each 2×2 block: take the nearest (min) of the four")
+        say!("grade.verdict.down_average", level = level)
     } else if made_by(&parent.reduce(w, h, 2, &|q| q[0])) {
-        format!(
-            "level {level} copies one texel of each 2×2 block: take the nearest (min) of the four"
-        )
+        say!("grade.verdict.down_one_texel", level = level)
     } else {
         let (x, y) = (i % w, i / w);
-        format!(
-            "level {level} texel ({x},{y}) is {}, expected {} (the min of its 2×2 parent texels in \
-             level {}); {count} of {} texels of level {level} are wrong",
-            g[i],
-            expected[k][i],
-            level - 1,
-            g.len()
+        say!(
+            "grade.verdict.down_wrong",
+            level = level,
+            x = x,
+            y = y,
+            got = g[i],
+            expected = expected[k][i],
+            parent = level - 1,
+            count = count,
+            texels = g.len()
         )
     };
     Verdict {

@@ -1,12 +1,16 @@
-//! The grader's four steps, one file each: each grades the student's pass of a built rig and returns
-//! its verdict.
+//! The grader's five steps, one file each (and `sao_checkpoint` for the start of `sao.frag` that
+//! lessons 6 and 7 write): each grades the student's pass of a built rig and returns its verdict.
 
 mod blur;
 mod down_sampling;
 mod restore;
 mod sao;
+mod sao_checkpoint;
+mod simple;
 
 pub use blur::{blur, BLUR_SIZE};
 pub use down_sampling::down_sampling;
 pub use restore::{restore, MAIN_SIZE};
 pub use sao::{sao, SAO_SIZE};
+pub use sao_checkpoint::sao_checkpoint;
+pub use simple::{simple, SIMPLE_SIZE};

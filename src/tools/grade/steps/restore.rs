@@ -6,11 +6,13 @@
 //! texel) to name the mistake.
 
 use crate::gl::{Texture, TextureDesc};
+use crate::i18n::Text;
 use crate::math::depth::{delinearize, linearize};
 use crate::math::{Camera, DepthMode};
 use crate::tools::grade::measure::matches;
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::say::say;
 use crate::tools::grade::tol;
 use std::collections::BTreeMap;
 
@@ -130,30 +132,24 @@ pub fn restore(rig: &Rig, cam: &Camera) -> Verdict {
         },
         diff: ratio.iter().map(|r| (r / 2.0).min(1.0)).collect(),
     }];
-    let verdict = |passed: bool, message: String| Verdict {
+    let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
     };
     if bad == 0 {
+        let worst = format!("{:.2}", worst.0);
         return verdict(
             true,
-            format!(
-                "restored distances match the exact inverse of the projection at all {nb} texels, \
-                 sky included (worst error {:.2} of the float-precision tolerance)",
-                worst.0
-            ),
+            say!("grade.verdict.restore_pass", texels = nb, worst = worst),
         );
     }
     let p10 = got[probe];
     if got.iter().all(|v| *v == got[0]) {
         return verdict(
             false,
-            format!(
-                "writes {} at every texel: outColor must be the restored distance in metres",
-                got[0]
-            ),
+            say!("grade.verdict.restore_constant", value = got[0]),
         );
     }
     // Recognise common mistakes by predicting what they would output.
@@ -191,57 +187,57 @@ pub fn restore(rig: &Rig, cam: &Camera) -> Verdict {
         .iter()
         .find(|(_, p)| matches(&got, p))
         .map(|(name, _)| *name);
+    let (got4, got3) = (format!("{p10:.4}"), format!("{p10:.3}"));
     let message = match found {
-        Some("max") => "keeps the farthest texel of each 2×2 block (max instead of min?): \
-                        the nearest depth (min) must win"
-            .to_string(),
-        Some("no-x2") => "reads the wrong texels: the depth buffer is twice the size of the output, \
-                          so the texel coordinate is ivec2(gl_FragCoord.xy) * 2"
-            .to_string(),
-        Some("raw") => format!(
-            "writes the raw depth-buffer value instead of a distance: at z=10 m got {p10:.4}; \
-             invert the projection, A / (D' − B)"
-        ),
-        Some("negative") => format!(
-            "restored distance has the wrong sign at z=10 m: got {p10:.3}; the distance in front of \
-             the camera is positive, A / (D' − B) with D' = 2D − 1"
-        ),
-        Some("2D+1") => format!(
-            "uses D' = 2D + 1 (a typo in the lesson's text): at z=10 m got {p10:.3}; it must be D' = 2D − 1"
-        ),
-        Some("x0.01") => format!(
-            "is still multiplied by 0.01 (the lesson's temporary debug scale): at z=10 m got {p10:.3}; remove it"
-        ),
-        Some("average") => "averages the depths of each 2×2 block: depth is not linear, take the \
-                            nearest (min) of the four"
-            .to_string(),
-        Some("one-texel") => "reads one texel of each 2×2 block: take the nearest (min) of the four"
-            .to_string(),
+        Some("max") => say!("grade.verdict.restore_max"),
+        Some("no-x2") => say!("grade.verdict.restore_no_x2"),
+        Some("raw") => say!("grade.verdict.restore_raw", got = got4),
+        Some("negative") => say!("grade.verdict.restore_negative", got = got3),
+        Some("2D+1") => say!("grade.verdict.restore_2d_plus_1", got = got3),
+        Some("x0.01") => say!("grade.verdict.restore_debug_scale", got = got3),
+        Some("average") => say!("grade.verdict.restore_average"),
+        Some("one-texel") => say!("grade.verdict.restore_one_texel"),
         _ => {
             let i = worst.1;
             let (bx, by) = (i % bw, i / bw);
+            let expected_i = format!("{:.3}", expected[i]);
             if nonfinite > 0 {
-                format!(
-                    "writes NaN or Inf at {nonfinite} of {nb} texels (e.g. texel ({bx},{by}), \
-                     expected {:.3} m)",
-                    expected[i]
+                say!(
+                    "grade.verdict.restore_nan",
+                    count = nonfinite,
+                    texels = nb,
+                    x = bx,
+                    y = by,
+                    expected = expected_i
                 )
             } else if bad == bad_sky {
-                format!(
-                    "sky (depth 1.0) must restore to the far plane, {} m: got {} at texel ({bx},{by})",
-                    f, got[i]
+                say!(
+                    "grade.verdict.restore_sky",
+                    far = f,
+                    got = got[i],
+                    x = bx,
+                    y = by
                 )
             } else if (p10 as f64 - 10.0).abs() > 10.0 * bound(depth_of(10.0, n, f)) * 10.0 {
-                format!(
-                    "restored distance is wrong at z=10 m: got {p10:.4}; {bad} of {nb} texels are \
-                     out of tolerance (worst at z={:.3} m: got {})",
-                    expected[i], got[i]
+                say!(
+                    "grade.verdict.restore_wrong_at_10m",
+                    got = got4,
+                    bad = bad,
+                    texels = nb,
+                    at = expected_i,
+                    worst = got[i]
                 )
             } else {
-                format!(
-                    "{bad} of {nb} texels are out of tolerance; worst at z={:.3} m (texel ({bx},{by})): \
-                     got {}, error {:.1}× the float-precision tolerance",
-                    expected[i], got[i], worst.0
+                let ratio = format!("{:.1}", worst.0);
+                say!(
+                    "grade.verdict.restore_out_of_tolerance",
+                    bad = bad,
+                    texels = nb,
+                    at = expected_i,
+                    x = bx,
+                    y = by,
+                    got = got[i],
+                    ratio = ratio
                 )
             }
         }

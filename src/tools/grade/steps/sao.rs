@@ -9,10 +9,12 @@
 //! when those levels are emptied, about as much as the project's does).
 
 use crate::ao::AoSettings;
+use crate::i18n::Text;
 use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
 use crate::tools::grade::passes::{run_sao, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
+use crate::tools::grade::say::say;
 use crate::tools::grade::scene::{sao_scenes, ProbeKind, SynthScene};
 use crate::tools::grade::tol;
 use anyhow::Result;
@@ -251,6 +253,25 @@ fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(
     Ok((mip_s, mip_r))
 }
 
+/// A probe's or scene's name (`scene.rs`) in the language `l`.
+pub(super) fn place(l: &str, name: &str) -> String {
+    use rust_i18n::t;
+    match name {
+        "corner" => t!("grade.verdict.place_corner", locale = l),
+        "facing wall" => t!("grade.verdict.place_facing_wall", locale = l),
+        "relief" => t!("grade.verdict.place_relief", locale = l),
+        "open floor" => t!("grade.verdict.place_open_floor", locale = l),
+        "wall-floor crease" => t!("grade.verdict.place_wall_floor_crease", locale = l),
+        "crate-floor crease" => t!("grade.verdict.place_crate_floor_crease", locale = l),
+        "open wall" => t!("grade.verdict.place_open_wall", locale = l),
+        "step-floor crease" => t!("grade.verdict.place_step_floor_crease", locale = l),
+        "wall beside the panel" => t!("grade.verdict.place_wall_beside_panel", locale = l),
+        "open panel" => t!("grade.verdict.place_open_panel", locale = l),
+        other => return other.to_string(),
+    }
+    .into_owned()
+}
+
 /// Grades the student's SAO pass of `rig`.
 pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     let scenes = sao_scenes(SAO_SIZE);
@@ -317,46 +338,41 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             p.expected,
         );
     }
-    let verdict = |passed: bool, message: String| Verdict {
+    let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
     };
+    let f2 = |v: f64| format!("{v:.2}");
+    let f3 = |v: f64| format!("{v:.3}");
     // The reference must itself meet the probes, or every verdict below is meaningless.
     if let Some(p) = probes.iter().find(|p| match p.kind {
         ProbeKind::Crease => p.expected < 0.3,
         ProbeKind::Open => p.expected > tol::SAO_OPEN_ABS,
         ProbeKind::Falloff => p.expected < 0.05,
     }) {
+        let got = f2(p.expected);
         return verdict(
             false,
-            format!(
-                "grader error: the project's own sao.frag gives {:.2} on the {} ({}), outside what \
-                 the grader expects of it",
-                p.expected, p.name, p.scene
+            say!(
+                l => "grade.verdict.sao_reference_off",
+                got = got,
+                probe = place(l, p.name),
+                scene = place(l, p.scene)
             ),
         );
     }
     if nan as f64 > tol::SAO_BAD_PIXEL_FRACTION * n {
-        return verdict(
-            false,
-            format!(
-                "writes NaN at {:.1}% of the pixels: guard normalize() where the cross product is zero",
-                100.0 * nan as f64 / n
-            ),
-        );
+        let percent = format!("{:.1}", 100.0 * nan as f64 / n);
+        return verdict(false, say!("grade.verdict.sao_nan", percent = percent));
     }
     let creases: Vec<&ProbeResult> = probes
         .iter()
         .filter(|p| p.kind == ProbeKind::Crease)
         .collect();
     if max_raw.abs() < 1e-3 && negative == 0 {
-        return verdict(
-            false,
-            "writes 0 at every pixel: the occlusion is never summed, or never written to outColor"
-                .to_string(),
-        );
+        return verdict(false, say!("grade.verdict.sao_zero"));
     }
     // Values above 1 are clamped by the engine's R8 target: they are a mistake when what is left
     // after clamping still differs (a sum that was never averaged), a detail when it does not.
@@ -365,14 +381,20 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     // The scenes always hold creases, so one is found to quote.
     let worst_crease = creases.iter().max_by(|a, b| a.raw.total_cmp(&b.raw));
     if let (true, Some(worst)) = (overflow && distorted, worst_crease) {
+        let (got, expected, max) = (
+            format!("{:.1}", worst.raw),
+            f2(worst.expected),
+            format!("{max_raw:.1}"),
+        );
         return verdict(
             false,
-            format!(
-                "output is not normalised: mean occlusion {:.1} in the {} ({}), expected about {:.2} \
-                 (values up to {max_raw:.1}, and occlusion must stay within 0–1); after the loop \
-                 divide the sum by samplingCount, multiply by INTENSITY, clamp with min(1.0, …), \
-                 then write outColor once",
-                worst.raw, worst.name, worst.scene, worst.expected
+            say!(
+                l => "grade.verdict.sao_not_normalised",
+                got = got,
+                probe = place(l, worst.name),
+                scene = place(l, worst.scene),
+                expected = expected,
+                max = max
             ),
         );
     }
@@ -381,86 +403,107 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         .find(|p| p.got < (tol::SAO_CREASE_FRACTION * p.expected).max(tol::SAO_CREASE_MIN))
     {
         let all_dark = creases.iter().all(|p| p.got < 0.25 * p.expected);
-        let hint = if negative as f64 > 0.05 * n {
-            "the output is negative in many places: clamp each sample's term with max(…, 0) \
-             before adding it (negative terms must not cancel positive ones)"
-        } else if all_dark {
-            "no crease is occluded: is the normal flipped? cross(dFdx(p), dFdy(p)) must point \
-             towards the camera (+z in view space), and vn = dot(v, normal) with v = sample − pixel"
-        } else {
-            "occlusion is too weak where surfaces meet: check the sign of vn and the bias, that \
-             the average is multiplied by INTENSITY, and that each sample's term is clamped with \
-             max(…, 0) (negative terms must not cancel positive ones)"
-        };
-        return verdict(
-            false,
-            format!(
-                "{} ({}): occlusion {:.2}, expected about {:.2}; {hint}",
-                p.name, p.scene, p.got, p.expected
-            ),
-        );
+        let negative_terms = negative as f64 > 0.05 * n;
+        let (got, expected) = (f2(p.got), f2(p.expected));
+        let message = Text::new(|l| {
+            let hint = if negative_terms {
+                rust_i18n::t!("grade.verdict.sao_hint_negative", locale = l)
+            } else if all_dark {
+                rust_i18n::t!("grade.verdict.sao_hint_flipped_normal", locale = l)
+            } else {
+                rust_i18n::t!("grade.verdict.sao_hint_weak_crease", locale = l)
+            };
+            rust_i18n::t!(
+                "grade.verdict.sao_crease",
+                locale = l,
+                probe = place(l, p.name),
+                scene = place(l, p.scene),
+                got = got,
+                expected = expected,
+                hint = hint
+            )
+            .into_owned()
+        });
+        return verdict(false, message);
     }
     if let Some(p) = probes.iter().find(|p| {
         p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
     }) {
+        let (got, expected) = (f2(p.got), f2(p.expected));
         return verdict(
             false,
-            format!(
-                "the {} ({}) is flat and open but occluded: {:.2}, expected about {:.2}; \
-                 check the bias (vn − BIAS) and the normal",
-                p.name, p.scene, p.got, p.expected
+            say!(
+                l => "grade.verdict.sao_open_occluded",
+                probe = place(l, p.name),
+                scene = place(l, p.scene),
+                got = got,
+                expected = expected
             ),
         );
     }
     for p in probes.iter().filter(|p| p.kind == ProbeKind::Falloff) {
         let ratio = p.got / p.expected.max(1e-6);
         if (ratio - 1.0).abs() > tol::SAO_FALLOFF_REL {
-            let hint = if ratio > 1.0 {
-                "it fades too slowly: the falloff is f·f·f with f = max(RADIUS2 − vv, 0)"
-            } else {
-                "it fades too fast: the falloff is f·f·f with f = max(RADIUS2 − vv, 0), divided by (vv + 0.001)"
-            };
+            let (got, expected) = (f3(p.got), f3(p.expected));
+            let percent = format!("{:.0}", tol::SAO_FALLOFF_REL * 100.0);
             return verdict(
                 false,
-                format!(
-                    "occlusion of the {} ({}) is {:.3}, expected about {:.3} (±{:.0}%): {hint}",
-                    p.name,
-                    p.scene,
-                    p.got,
-                    p.expected,
-                    tol::SAO_FALLOFF_REL * 100.0
-                ),
+                if ratio > 1.0 {
+                    say!(
+                        l => "grade.verdict.sao_falloff_slow",
+                        probe = place(l, p.name),
+                        scene = place(l, p.scene),
+                        got = got,
+                        expected = expected,
+                        percent = percent
+                    )
+                } else {
+                    say!(
+                        l => "grade.verdict.sao_falloff_fast",
+                        probe = place(l, p.name),
+                        scene = place(l, p.scene),
+                        got = got,
+                        expected = expected,
+                        percent = percent
+                    )
+                },
             );
         }
     }
     if mean_err.abs() > tol::SAO_MEAN_REL {
-        let hint = if mean_err > 0.0 {
-            "too strong: the falloff is f·f·f with f = max(RADIUS2 − vv, 0), divided by \
-             (vv + 0.001), averaged over samplingCount and scaled by INTENSITY once"
-        } else {
-            "too weak: clamp each sample's term with max(…, 0) before adding it (negative terms \
-             must not cancel positive ones); the falloff is f·f·f"
-        };
+        let (got, expected) = (f3(fmean_s), f3(fmean_r));
+        let percent = format!("{:.0}", tol::SAO_MEAN_REL * 100.0);
         return verdict(
             false,
-            format!(
-                "mean occlusion {fmean_s:.3}, expected about {fmean_r:.3} (±{:.0}%; surfaces facing \
-                 the camera, away from depth edges): {hint}",
-                tol::SAO_MEAN_REL * 100.0
-            ),
+            if mean_err > 0.0 {
+                say!(
+                    "grade.verdict.sao_mean_strong",
+                    got = got,
+                    expected = expected,
+                    percent = percent
+                )
+            } else {
+                say!(
+                    "grade.verdict.sao_mean_weak",
+                    got = got,
+                    expected = expected,
+                    percent = percent
+                )
+            },
         );
     }
     if rmse > tol::SAO_BLOCK_RMSE {
+        let (rmse, diff) = (f3(rmse), format!("{:+.2}", worst_block.0));
         return verdict(
             false,
-            format!(
-                "occlusion differs from the reference: RMSE of 8×8 block means {rmse:.3} (tolerance {}); \
-                 largest difference {:+.2} in the {} scene around texel ({}, {})",
-                tol::SAO_BLOCK_RMSE,
-                worst_block.0,
-                worst_block.1,
-                worst_block.2,
-                worst_block.3
+            say!(
+                l => "grade.verdict.sao_rmse",
+                rmse = rmse,
+                tolerance = tol::SAO_BLOCK_RMSE,
+                diff = diff,
+                scene = place(l, worst_block.1),
+                x = worst_block.2,
+                y = worst_block.3
             ),
         );
     }
@@ -477,49 +520,68 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
-    let verdict = |passed: bool, message: String| Verdict {
+    let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
     };
     if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use < tol::SAO_MIP_USE {
+        let got = format!("{:.4}", mip_s / scenes.len() as f64);
+        let reference = format!("{:.4}", mip_r / scenes.len() as f64);
         return verdict(
             false,
-            format!(
-                "never reads the mip levels 1–3: emptying them changes the output by {:.4} on \
-                 average, the project's sao.frag by {:.4}; read each sample with \
-                 textureLod(texDepth, uv, mipLevel) where mipLevel = clamp(findMSB(int(ssR)) − \
-                 logMipOffset, 0, maxMipLevel) grows with the sample's distance in pixels",
-                mip_s / scenes.len() as f64,
-                mip_r / scenes.len() as f64
+            say!(
+                "grade.verdict.sao_no_mips",
+                got = got,
+                reference = reference
             ),
         );
     }
-    let falloff = probes
-        .iter()
-        .filter(|p| p.kind == ProbeKind::Falloff)
-        .map(|p| format!("{:.3} (reference {:.3})", p.got, p.expected))
-        .collect::<Vec<_>>()
-        .join(", ");
-    let crease_txt = creases
+    let creases = creases
         .iter()
         .map(|p| format!("{:.2}", p.got))
         .collect::<Vec<_>>()
         .join("/");
-    let note = if overflow {
-        format!(
-            " (note: the output goes up to {max_raw:.1}; the engine's 8-bit target clamps it, but \
-             the lesson clamps with min(1.0, …))"
+    let (mean, reference, rmse) = (f3(fmean_s), f3(fmean_r), f3(rmse));
+    let max = format!("{max_raw:.1}");
+    let message = Text::new(|l| {
+        let falloff = probes
+            .iter()
+            .filter(|p| p.kind == ProbeKind::Falloff)
+            .map(|p| {
+                let (got, expected) = (f3(p.got), f3(p.expected));
+                rust_i18n::t!(
+                    "grade.verdict.sao_falloff_pair",
+                    locale = l,
+                    got = got,
+                    expected = expected
+                )
+                .into_owned()
+            })
+            .collect::<Vec<_>>()
+            .join(", ");
+        let note = if overflow {
+            rust_i18n::t!(
+                "grade.verdict.sao_pass_overflow_note",
+                locale = l,
+                max = max
+            )
+            .into_owned()
+        } else {
+            String::new()
+        };
+        rust_i18n::t!(
+            "grade.verdict.sao_pass",
+            locale = l,
+            mean = mean,
+            reference = reference,
+            rmse = rmse,
+            creases = creases,
+            falloff = falloff,
+            note = note
         )
-    } else {
-        String::new()
-    };
-    verdict(
-        true,
-        format!(
-            "mean occlusion {fmean_s:.3} (reference {fmean_r:.3}), block RMSE {rmse:.3}, creases \
-             {crease_txt}, falloff beside a step {falloff}, open surfaces ≈ 0{note}"
-        ),
-    )
+        .into_owned()
+    });
+    verdict(true, message)
 }
