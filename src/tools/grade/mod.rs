@@ -44,6 +44,7 @@ mod report;
 mod rig;
 mod run;
 mod run_step;
+mod scale_bar;
 pub mod scene;
 mod staging;
 mod steps;
