@@ -141,6 +141,17 @@ impl Drop for Unpacked {
     }
 }
 
+/// Removes a picture the report does not show; one that cannot be removed is only reported (the
+/// report does not link it).
+fn remove_picture(path: &Path) {
+    match std::fs::remove_file(path) {
+        Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
+            eprintln!("warning: cannot remove {}: {e}", path.display())
+        }
+        _ => {}
+    }
+}
+
 /// Every step failed with the same reason (an archive that cannot be unpacked, a grader error).
 fn all_failed(steps: &[Step], why: &Text) -> Vec<StepReport> {
     steps
@@ -166,7 +177,7 @@ fn grade_student(g: &Grading, report: &Path, s: &Student, steps: &[Step]) -> Stu
     // Pictures of an earlier run in the same report folder would show for a step that now has none.
     for step in steps {
         for kind in KINDS {
-            let _ = std::fs::remove_file(pictures.join(format!("{}-{kind}.png", step.name())));
+            remove_picture(&pictures.join(format!("{}-{kind}.png", step.name())));
         }
     }
     let grading = Grading {
@@ -210,14 +221,24 @@ fn grade_student(g: &Grading, report: &Path, s: &Student, steps: &[Step]) -> Stu
         let stem = r.step.clone();
         if r.passed {
             for kind in KINDS {
-                let _ = std::fs::remove_file(pictures.join(format!("{stem}-{kind}.png")));
+                remove_picture(&pictures.join(format!("{stem}-{kind}.png")));
             }
         }
         let shown = !r.passed && pictures.join(format!("{stem}-difference.png")).is_file();
         heat_maps.push(shown.then(|| format!("{}/{stem}", s.pictures)));
     }
-    // Only removes the folder when no picture is left in it.
-    let _ = std::fs::remove_dir(&pictures);
+    // Only removes the folder when no picture is left in it (a student without failing pictures).
+    match std::fs::remove_dir(&pictures) {
+        Err(e)
+            if !matches!(
+                e.kind(),
+                std::io::ErrorKind::NotFound | std::io::ErrorKind::DirectoryNotEmpty
+            ) =>
+        {
+            eprintln!("warning: cannot remove {}: {e}", pictures.display())
+        }
+        _ => {}
+    }
     StudentResult {
         name: s.name.clone(),
         reports,
