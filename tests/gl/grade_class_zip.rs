@@ -56,6 +56,17 @@ fn zips_are_graded_as_folders_and_unsafe_ones_refused_with_the_reason() {
         }
     });
     std::fs::write(class.join("pat.zip"), "PK not really").unwrap();
+    // No sao.frag: "not submitted", naming the archive and its folder, not the private copy.
+    let mut zip = zip::ZipWriter::new(std::fs::File::create(class.join("cid.zip")).unwrap());
+    for m in ["listing-restore", "listing-down-sampling", "listing-blur"] {
+        for f in std::fs::read_dir(mutant(m)).unwrap() {
+            let f = f.unwrap();
+            let name = format!("work/{}", f.file_name().to_string_lossy());
+            zip.start_file(name, deflated()).unwrap();
+            zip.write_all(&std::fs::read(f.path()).unwrap()).unwrap();
+        }
+    }
+    zip.finish().unwrap();
     assert!(std::fs::metadata(class.join("zed.zip")).unwrap().len() < 1 << 20);
 
     let report = temp_dir("grade-class-zip-report");
@@ -82,6 +93,7 @@ fn zips_are_graded_as_folders_and_unsafe_ones_refused_with_the_reason() {
             "student restore down-sampling sao blur passed".to_string(),
             "ada PASS PASS PASS PASS 4".into(),
             "bea PASS PASS PASS PASS 4".into(),
+            "cid PASS PASS not submitted PASS 3".into(),
             format!("eve {fails}"),
             format!("kim {fails}"),
             format!("pat {fails}"),
@@ -95,6 +107,7 @@ fn zips_are_graded_as_folders_and_unsafe_ones_refused_with_the_reason() {
         "entry &quot;notes.txt&quot; is a symbolic link",
         "zed.zip unpacks to more than 16 MiB",
         "pat.zip is not a readable .zip file",
+        "not submitted: no sao.frag in cid.zip/work",
     ] {
         assert!(junit.contains(reason), "{reason}\n{junit}");
     }

@@ -190,7 +190,7 @@ fn grade_student(g: &Grading, report: &Path, s: &Student, steps: &[Step]) -> Stu
     };
     let reports = match &s.source {
         Source::Folder(dir) => student::grade(&grading, Some(dir), steps)
-            .unwrap_or_else(|e| all_failed(steps, &grader_error(&format!("{e:#}")))),
+            .unwrap_or_else(|e| all_failed(steps, &grader_error(&e))),
         Source::Zip(archive) => match Unpacked::new() {
             Err(e) => all_failed(steps, &grader_error(&e)),
             Ok(private) => {
@@ -201,7 +201,7 @@ fn grade_student(g: &Grading, report: &Path, s: &Student, steps: &[Step]) -> Stu
                 match unzip::extract(archive, &private.0, unzip::LIMITS) {
                     Err(why) => all_failed(steps, &why),
                     Ok(dir) => student::grade(&grading, Some(&dir), steps)
-                        .unwrap_or_else(|e| all_failed(steps, &grader_error(&format!("{e:#}"))))
+                        .unwrap_or_else(|e| all_failed(steps, &grader_error(&e)))
                         .into_iter()
                         .map(|mut r| {
                             r.message = as_submitted(&r.message, &private.0, &shown);
