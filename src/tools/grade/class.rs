@@ -364,3 +364,45 @@ pub fn run(
     );
     Ok(if all == results.len() { 0 } else { 1 })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn folders_and_zips_are_students_named_apart() {
+        let d = std::env::temp_dir().join(format!("opengl3d-class-names-{}", std::process::id()));
+        for f in ["ada", "zoe", ".git"] {
+            std::fs::create_dir_all(d.join(f)).unwrap();
+        }
+        for f in ["ada.zip", "Bob.ZIP", "notes.txt", ".hidden.zip"] {
+            std::fs::write(d.join(f), "x").unwrap();
+        }
+        let found = students(&d).unwrap();
+        let names: Vec<(&str, &str, bool)> = found
+            .iter()
+            .map(|s| {
+                let zip = matches!(s.source, Source::Zip(_));
+                (s.name.as_str(), s.pictures.as_str(), zip)
+            })
+            .collect();
+        // Sorted by name (upper case first, as bytes); a zip named like a folder keeps ".zip".
+        assert_eq!(
+            names,
+            [
+                ("Bob", "pictures/001-Bob", true),
+                ("ada", "pictures/002-ada", false),
+                ("ada.zip", "pictures/003-ada_zip", true),
+                ("zoe", "pictures/004-zoe", false),
+            ]
+        );
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn picture_folders_are_plain_ascii() {
+        assert_eq!(file_safe("bob, \"<b>\" & 'co'"), "bob____b______co_");
+        assert_eq!(file_safe("山田 太郎"), "_____");
+        assert_eq!(file_safe(&"x".repeat(100)).len(), 40);
+    }
+}

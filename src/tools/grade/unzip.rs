@@ -177,4 +177,86 @@ mod tests {
             assert!(safe_path(bad).is_err(), "{bad}");
         }
     }
+
+    fn scratch(name: &str) -> PathBuf {
+        let d = std::env::temp_dir().join(format!("opengl3d-unzip-{name}-{}", std::process::id()));
+        if d.exists() {
+            std::fs::remove_dir_all(&d).unwrap();
+        }
+        std::fs::create_dir_all(d.join("out")).unwrap();
+        d
+    }
+
+    /// A zip at `path` with `entries` (name, bytes), deflated.
+    fn write_zip(path: &Path, entries: &[(&str, Vec<u8>)]) {
+        use std::io::Write as _;
+        let mut zip = zip::ZipWriter::new(std::fs::File::create(path).unwrap());
+        let options = zip::write::SimpleFileOptions::default()
+            .compression_method(zip::CompressionMethod::Deflated);
+        for (name, bytes) in entries {
+            zip.start_file(*name, options).unwrap();
+            zip.write_all(bytes).unwrap();
+        }
+        zip.finish().unwrap();
+    }
+
+    #[test]
+    fn the_limits_count_inflated_bytes_and_entries() {
+        let d = scratch("limits");
+        let archive = d.join("a.zip");
+        write_zip(
+            &archive,
+            &[("a.frag", vec![b'a'; 600]), ("b.frag", vec![b'b'; 400])],
+        );
+        let limits = |max_bytes, max_entries| Limits {
+            max_bytes,
+            max_entries,
+        };
+        // Exactly full is fine; one byte less is not.
+        let into = d.join("out");
+        assert_eq!(extract(&archive, &into, limits(1000, 2)).unwrap(), into);
+        assert_eq!(std::fs::read(into.join("b.frag")).unwrap().len(), 400);
+        for (l, says) in [
+            (limits(999, 2), "unpacks to more than"),
+            (limits(1000, 1), "holds 2 entries"),
+        ] {
+            let into = d.join(format!("out-{}-{}", l.max_bytes, l.max_entries));
+            std::fs::create_dir_all(&into).unwrap();
+            let why = extract(&archive, &into, l).unwrap_err().en;
+            assert!(why.contains(says), "{why}");
+        }
+        std::fs::remove_dir_all(&d).unwrap();
+    }
+
+    #[test]
+    fn a_zipped_folder_is_graded_from_inside_it() {
+        let d = scratch("top");
+        let archive = d.join("a.zip");
+        write_zip(
+            &archive,
+            &[
+                ("lesson/sao.frag", b"x".to_vec()),
+                ("__MACOSX/lesson/._sao.frag", b"fork".to_vec()),
+            ],
+        );
+        let into = d.join("out");
+        assert_eq!(
+            extract(&archive, &into, LIMITS).unwrap(),
+            into.join("lesson")
+        );
+        assert!(!into.join("__MACOSX").exists());
+        // A file beside the folder: the archive's top is the submission.
+        let archive = d.join("b.zip");
+        write_zip(
+            &archive,
+            &[
+                ("lesson/sao.frag", b"x".to_vec()),
+                ("blur.frag", b"y".to_vec()),
+            ],
+        );
+        let into = d.join("out-b");
+        std::fs::create_dir_all(&into).unwrap();
+        assert_eq!(extract(&archive, &into, LIMITS).unwrap(), into);
+        std::fs::remove_dir_all(&d).unwrap();
+    }
 }
