@@ -130,7 +130,7 @@ pub fn draw(img: &mut RgbImage, top: u32, max: f32, heat: impl Fn(f32) -> [u8; 3
     }
     let text = format!("max {}", label(max));
     let w = text_width(&text);
-    let lx = mx.saturating_sub(w / 2).min(width.saturating_sub(w));
+    let lx = mx.saturating_sub(w / 2).min(width.saturating_sub(w + ZOOM));
     draw_text(img, lx, label_y, &text);
 }
 
