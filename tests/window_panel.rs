@@ -342,3 +342,40 @@ fn shader_broken_while_running_stays_reported_until_fixed() {
     });
     assert!(out.len() > reported_at);
 }
+
+#[test]
+fn the_panel_follows_the_language_when_a_cjk_font_is_installed_else_stays_english() {
+    if !xvfb_available() {
+        return;
+    }
+    let dir = common::temp_dir("window-panel-lang");
+    let english = dir.join("en.png");
+    let o = window(&["--lang", "en"], &english, "on");
+    assert!(!stderr(&o).contains("fonts-noto-cjk"), "{}", stderr(&o));
+    let japanese = dir.join("ja.png");
+    let o = window(&["--lang", "ja"], &japanese, "on");
+    let (en, ja) = (
+        image::open(&english).unwrap().to_rgb8(),
+        image::open(&japanese).unwrap().to_rgb8(),
+    );
+    let (max, share) = compare(&ja, &en, 0..W / 2, 0..H);
+    let said = stderr(&o)
+        .matches("sudo apt-get install fonts-noto-cjk")
+        .count();
+    if opengl3d::platform::panel_fonts::cjk_font_installed() {
+        // Japanese labels: the panel's text differs from the English one.
+        assert_eq!(said, 0, "{}", stderr(&o));
+        assert!(
+            share > 0.01,
+            "the Japanese panel looks like the English one ({:.2} % of pixels differ)",
+            share * 100.0
+        );
+    } else {
+        // No font to draw Japanese: one line naming the package, and the English panel.
+        assert_eq!(said, 1, "{}", stderr(&o));
+        assert!(
+            max <= DRIVER_TOLERANCE,
+            "without a CJK font the panel must be the English one (max difference {max})"
+        );
+    }
+}

@@ -4,6 +4,7 @@ mod args;
 mod output;
 mod res_check;
 mod scene_args;
+mod usage_errors;
 
 pub use args::{
     parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs,
@@ -78,7 +79,8 @@ fn res_use(command: &Option<Command>) -> Option<ResUse> {
 }
 
 pub fn run() -> Result<()> {
-    let cli = Cli::parse();
+    let argv: Vec<std::ffi::OsString> = std::env::args_os().collect();
+    let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| usage_errors::exit(e, &argv));
     crate::i18n::set(crate::i18n::from_env(cli.lang.lang));
     if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
         check_res(dir, what)?;
@@ -151,13 +153,13 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     engine.view = args.view;
     engine.collect_stats = args.stats;
     write_view(&mut engine, args.view, &args.out)?;
-    let msg = format!(
-        "wrote {} ({}x{}, {}, {})",
-        args.out.display(),
-        scene.output.width,
-        scene.output.height,
-        args.view.label(),
-        ctx.renderer
+    let msg = t!(
+        "render.wrote",
+        path = args.out.display(),
+        width = scene.output.width,
+        height = scene.output.height,
+        view = args.view.label(),
+        renderer = ctx.renderer
     );
     if args.stats {
         eprintln!("{msg}");
@@ -264,7 +266,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
     if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
-        bail!("--radius must be > 0 and --rays between 1 and {}", 1 << 20);
+        bail!("{}", t!("reference.bad_params", max = 1 << 20));
     }
     let tris = scene.world_triangles(res)?;
     let bvh = Scene::new(tris)?;
@@ -295,15 +297,26 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         OutFormat::Png => crate::io::gray_to_png(&args.out, w, h, &img.ao, 1.0)?,
     }
     let sky = img.sky_mask().iter().filter(|s| **s).count();
+    let kind = if args.screen_space {
+        t!("reference.kind_screen")
+    } else {
+        t!("reference.kind_rays")
+    };
+    let error = format!("{:.4}", img.mean_std_error());
     println!(
-        "wrote {} ({}, {w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
-        args.out.display(),
-        if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
-        bvh.triangle_count(),
-        radius,
-        args.rays,
-        img.mean_std_error(),
-        sky
+        "{}",
+        t!(
+            "reference.wrote",
+            path = args.out.display(),
+            kind = kind,
+            width = w,
+            height = h,
+            triangles = bvh.triangle_count(),
+            radius = radius,
+            rays = args.rays,
+            error = error,
+            sky = sky
+        )
     );
     Ok(())
 }

@@ -7,6 +7,7 @@ use crate::res::ResDirs;
 use crate::scene::{Issue, SceneDesc, SceneFile};
 use anyhow::{bail, Context as _, Result};
 use glam::Vec3;
+use rust_i18n::t;
 
 /// Where the scene's values came from, for messages.
 enum Origin {
@@ -23,7 +24,7 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
     let (mut desc, origin, bounds) = if let Some(obj) = &args.obj {
         let path = obj
             .canonicalize()
-            .with_context(|| format!("{}: OBJ file not found", obj.display()))?;
+            .with_context(|| t!("render.obj_not_found", path = obj.display()))?;
         let data = crate::gl::mesh::MeshData::load_obj(&path)?;
         let desc = SceneDesc::single_obj(&path);
         (desc, Origin::Obj(path.display().to_string()), data.bounds())
@@ -42,7 +43,8 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         frame_bounds(&mut desc, lo, hi, args);
     }
     for w in desc.clamp_values() {
-        eprintln!("warning: {}", describe(&w, &origin, &flags));
+        let message = describe(&w, &origin, &flags);
+        eprintln!("{}", t!("render.warning", message = message));
     }
     let errors = desc.errors();
     if !errors.is_empty() {
@@ -145,7 +147,7 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     }
     if let Some(n) = args.samples {
         if n == 0 || n > 256 {
-            bail!("--samples {n}: use 1 to 256");
+            bail!("{}", t!("render.bad_samples", n = n));
         }
         desc.ao.samples = n;
         // An explicit count wins over a preset from the scene file.
@@ -159,21 +161,21 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     }
     if let Some(t) = args.tint {
         if t.min_element() < 0.0 || t.max_element() > 1.0 {
-            bail!("--tint {t}: each channel must be between 0 and 1");
+            bail!("{}", t!("render.bad_tint", tint = t));
         }
         desc.ao.tint = t.to_array();
         keys.push(("ao.tint", "--tint"));
     }
     if let Some(p) = args.power {
         if !(p.is_finite() && (0.05..=20.0).contains(&p)) {
-            bail!("--power {p}: use a power between 0.05 and 20");
+            bail!("{}", t!("render.bad_power", power = p));
         }
         desc.ao.power = p;
         keys.push(("ao.power", "--power"));
     }
     if let Some(r) = args.radius {
         if !(r.is_finite() && r > 0.0 && r <= 100.0) {
-            bail!("--radius {r}: use a radius in metres between 0 and 100");
+            bail!("{}", t!("render.bad_radius", radius = r));
         }
         desc.ao.radius = r;
         keys.push(("ao.radius", "--radius"));

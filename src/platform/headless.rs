@@ -40,7 +40,7 @@ impl HeadlessContext {
 
     pub fn with_preference(pref: DevicePreference) -> Result<HeadlessContext> {
         let devices: Vec<Device> = Device::query_devices()
-            .context("no EGL device found: install Mesa's EGL (Debian: libegl1 libegl-mesa0 libgl1-mesa-dri)")?
+            .with_context(|| rust_i18n::t!("render.no_egl"))?
             .collect();
         let is_soft = |d: &Device| d.extensions().contains("EGL_MESA_device_software");
         let mut ordered: Vec<&Device> = devices.iter().filter(|d| !is_soft(d)).collect();
@@ -55,14 +55,14 @@ impl HeadlessContext {
                 Err(e) => errors.push(format!("{}: {e:#}", dev.name().unwrap_or("EGL device"))),
             }
         }
+        let tried = if errors.is_empty() {
+            rust_i18n::t!("render.none_usable").into_owned()
+        } else {
+            errors.join("; ")
+        };
         Err(anyhow!(
-            "could not create a headless OpenGL 4.5 core context on any EGL device ({} found): {}",
-            devices.len(),
-            if errors.is_empty() {
-                "none usable".to_string()
-            } else {
-                errors.join("; ")
-            }
+            "{}",
+            rust_i18n::t!("render.no_context", count = devices.len(), errors = tried)
         ))
     }
 

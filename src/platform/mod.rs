@@ -3,6 +3,7 @@
 
 pub mod headless;
 pub mod panel;
+pub mod panel_fonts;
 pub mod shader_errors;
 pub mod window;
 

@@ -4,8 +4,10 @@
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
 use crate::ao::{AoMethod, CompositeMode};
+use crate::i18n::Lang;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
+use rust_i18n::t;
 use std::collections::HashMap;
 
 /// Width the panel opens at (points); the user may drag its edge.
@@ -32,16 +34,19 @@ pub struct Panel {
     pub visible: bool,
     /// "vendor / renderer / version" of the window's context, shown next to the times.
     renderer: String,
+    /// The language of the labels (English when no font can draw the chosen one).
+    lang: Lang,
     smoothed_ms: HashMap<&'static str, f64>,
     /// Sample count being dragged: applied on release, as each value costs a shader compile.
     pending_samples: Option<u32>,
 }
 
 impl Panel {
-    pub fn new(visible: bool, renderer: String) -> Panel {
+    pub fn new(visible: bool, renderer: String, lang: Lang) -> Panel {
         Panel {
             visible,
             renderer,
+            lang,
             smoothed_ms: HashMap::new(),
             pending_samples: None,
         }
@@ -59,7 +64,7 @@ impl Panel {
         // Before the side panel, so the overlay spans the whole width and stays visible when the
         // panel is hidden.
         if !shader_errors.is_empty() {
-            error_overlay(ui, shader_errors);
+            error_overlay(ui, shader_errors, self.lang);
         }
         if self.visible {
             let max_width = (ui.ctx().content_rect().width() * PANEL_MAX_SHARE).max(80.0);
@@ -77,7 +82,7 @@ impl Panel {
                 .interactable(false)
                 .show(ui.ctx(), |ui| {
                     egui::Frame::popup(ui.style()).show(ui, |ui| {
-                        ui.small("F1: parameters");
+                        ui.small(label(self.lang, "panel.hint"));
                     });
                 });
         }
@@ -90,13 +95,15 @@ impl Panel {
     }
 
     fn contents(&mut self, ui: &mut egui::Ui, engine: &mut Engine, actions: &mut PanelActions) {
-        ui.heading("Ambient occlusion");
-        ui.small("F1 hides this panel");
+        let lang = self.lang;
+        let tr = |key: &str| label(lang, key);
+        ui.heading(tr("panel.heading"));
+        ui.small(tr("panel.hide_hint"));
         let p = &mut engine.ao_settings;
-        ui.checkbox(&mut p.enabled, "AO on (Space)");
+        ui.checkbox(&mut p.enabled, tr("panel.ao_on"));
 
         let before = p.method;
-        egui::ComboBox::from_label("method (M)")
+        egui::ComboBox::from_label(tr("panel.method"))
             .selected_text(p.method.name())
             .show_ui(ui, |ui| {
                 for m in AoMethod::ALL {
@@ -105,7 +112,7 @@ impl Panel {
             });
         actions.sync_shader_constants |= p.method != before;
 
-        egui::ComboBox::from_label("composite")
+        egui::ComboBox::from_label(tr("panel.composite"))
             .selected_text(composite_name(p.composite))
             .show_ui(ui, |ui| {
                 for c in [
@@ -117,20 +124,16 @@ impl Panel {
                 }
             })
             .response
-            .on_hover_text(
-                "blend: colour × visibility over the lit image (the lesson's)\n\
-                 tinted: toward the tint by 1 − visibility^power\n\
-                 ambient-only: AO darkens the ambient light only",
-            );
+            .on_hover_text(tr("panel.composite_help"));
         if p.composite == CompositeMode::Tinted {
             ui.horizontal(|ui| {
                 ui.color_edit_button_rgb(&mut p.tint);
-                ui.label("tint");
+                ui.label(tr("panel.tint"));
             });
             ui.add(
                 egui::Slider::new(&mut p.power, 0.05..=20.0)
                     .logarithmic(true)
-                    .text("power"),
+                    .text(tr("panel.power")),
             );
         }
 
@@ -139,20 +142,18 @@ impl Panel {
             egui::Slider::new(&mut p.radius, 0.01..=10.0)
                 .logarithmic(true)
                 .suffix(" m")
-                .text("radius"),
+                .text(tr("panel.radius")),
         );
         ui.add(
             egui::Slider::new(&mut p.bias, 0.0..=0.2)
                 .suffix(" m")
-                .text("bias"),
+                .text(tr("panel.bias")),
         )
-        .on_hover_text(
-            "Samples closer than this along the normal do not occlude (no self-shadowing).",
-        );
+        .on_hover_text(tr("panel.bias_help"));
         ui.add(
             egui::Slider::new(&mut p.intensity, 0.0..=50.0)
                 .logarithmic(true)
-                .text("intensity"),
+                .text(tr("panel.intensity")),
         );
 
         // Compile-time constants: apply when the slider is released, not at every step of a drag.
@@ -161,12 +162,9 @@ impl Panel {
             .add(
                 egui::Slider::new(&mut samples, 1..=256)
                     .logarithmic(true)
-                    .text("samples"),
+                    .text(tr("panel.samples")),
             )
-            .on_hover_text(
-                "Sample budget. SAO, Crytek, hemisphere: samples; angle-based: pairs = N/2; \
-                 HBAO: 4 directions × N/4 steps; GTAO: 2 slices × N/4 steps per side.",
-            );
+            .on_hover_text(tr("panel.samples_help"));
         if r.dragged() {
             self.pending_samples = Some(samples);
         } else if samples != p.samples || self.pending_samples.is_some() {
@@ -177,30 +175,27 @@ impl Panel {
         let turns = p.spiral_turns;
         ui.add_enabled(
             matches!(p.method, AoMethod::SaoLesson | AoMethod::Sao),
-            egui::Slider::new(&mut p.spiral_turns, 1..=64).text("spiral turns"),
+            egui::Slider::new(&mut p.spiral_turns, 1..=64).text(tr("panel.spiral_turns")),
         )
-        .on_hover_text("Turns of the SAO sample spiral (SAO methods only).");
+        .on_hover_text(tr("panel.spiral_help"));
         actions.sync_shader_constants |= p.spiral_turns != turns;
-        ui.checkbox(&mut p.blur, "blur (B)");
+        ui.checkbox(&mut p.blur, tr("panel.blur"));
 
         ui.separator();
-        egui::ComboBox::from_label("view (V)")
+        egui::ComboBox::from_label(tr("panel.view"))
             .selected_text(engine.view.label())
             .show_ui(ui, |ui| {
                 for v in View::ALL {
                     ui.selectable_value(&mut engine.view, v, v.label());
                 }
             });
-        if ui.button("Rebuild shaders (R)").clicked() {
+        if ui.button(tr("panel.rebuild")).clicked() {
             actions.reload_shaders = true;
         }
 
         ui.separator();
-        ui.checkbox(&mut engine.collect_stats, "time each pass")
-            .on_hover_text(
-                "Brackets every pass with glFinish so its wall-clock time can be read: \
-                 the frame gets slower and passes no longer overlap.",
-            );
+        ui.checkbox(&mut engine.collect_stats, tr("panel.time_passes"))
+            .on_hover_text(tr("panel.time_passes_help"));
         if engine.collect_stats {
             self.timing_table(ui, &engine.last_stats());
         } else {
@@ -209,19 +204,22 @@ impl Panel {
     }
 
     fn timing_table(&mut self, ui: &mut egui::Ui, stats: &[PassStat]) {
-        ui.small(format!(
-            "Wall-clock ms (smoothed) on {}. On llvmpipe these are software-rendering times.",
-            self.renderer
+        let renderer = &self.renderer;
+        ui.small(t!(
+            "panel.times_caption",
+            locale = self.lang.code(),
+            renderer = renderer
         ));
+        let tr = |key: &str| label(self.lang, key);
         self.smoothed_ms
             .retain(|name, _| stats.iter().any(|s| s.name == *name));
         egui::Grid::new("pass times")
             .num_columns(3)
             .striped(true)
             .show(ui, |ui| {
-                ui.strong("pass");
-                ui.strong("group");
-                ui.strong("ms");
+                ui.strong(tr("panel.pass"));
+                ui.strong(tr("panel.group"));
+                ui.strong(tr("panel.ms"));
                 ui.end_row();
                 let mut total = 0.0;
                 for s in stats {
@@ -236,12 +234,17 @@ impl Panel {
                     ui.monospace(format!("{ms:7.2}"));
                     ui.end_row();
                 }
-                ui.strong("total");
+                ui.strong(tr("panel.total"));
                 ui.label("");
                 ui.monospace(format!("{total:7.2}"));
                 ui.end_row();
             });
     }
+}
+
+/// The panel's text `key` (a `panel.` key of locales/*.yml) in `lang`.
+fn label(lang: Lang, key: &str) -> String {
+    t!(key, locale = lang.code()).into_owned()
 }
 
 fn composite_name(c: CompositeMode) -> &'static str {
@@ -253,7 +256,7 @@ fn composite_name(c: CompositeMode) -> &'static str {
 }
 
 /// Red, monospaced `file:line: message` lines along the bottom of the window.
-fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String]) {
+fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String], lang: Lang) {
     let frame = egui::Frame::NONE
         .fill(ERROR_BACKGROUND)
         .inner_margin(egui::Margin::same(6));
@@ -263,8 +266,7 @@ fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String]) {
         .show(ui, |ui| {
             ui.add(
                 egui::Label::new(
-                    RichText::new("Shader error: the last working program keeps running (save a fix, or press R)")
-                        .color(Color32::WHITE),
+                    RichText::new(label(lang, "panel.error_title")).color(Color32::WHITE),
                 )
                 .truncate(),
             );
@@ -290,51 +292,44 @@ fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String]) {
         });
 }
 
-/// Fonts for the panel: egui's bundled fonts, with `OPENGL3D_FONT` (a TrueType file) tried first
-/// when set, and a system CJK font added as a fallback so Japanese file names and messages (the
-/// course's language) show. Returns a warning when `OPENGL3D_FONT` cannot be read.
-pub fn install_fonts(ctx: &egui::Context) -> Option<String> {
-    const CJK: [&str; 3] = [
-        "/usr/share/fonts/opentype/noto/NotoSansCJK-Regular.ttc",
-        "/usr/share/fonts/noto-cjk/NotoSansCJK-Regular.ttc",
-        "/usr/share/fonts/truetype/fonts-japanese-gothic.ttf",
-    ];
-    let mut fonts = egui::FontDefinitions::default();
-    let mut warning = None;
-    let add = |fonts: &mut egui::FontDefinitions, name: &str, bytes: Vec<u8>, first: bool| {
-        fonts.font_data.insert(
-            name.to_string(),
-            std::sync::Arc::new(egui::FontData::from_owned(bytes)),
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The keys of a locale file (`key: "value"` lines).
+    fn keys(text: &str) -> Vec<&str> {
+        text.lines()
+            .filter(|l| !l.starts_with(' ') && !l.starts_with('#'))
+            .filter_map(|l| l.split_once(':').map(|(k, _)| k))
+            .collect()
+    }
+
+    #[test]
+    fn every_label_of_the_panel_is_written_in_english_and_in_japanese() {
+        // The panel's code, without these tests.
+        let source = include_str!("panel.rs")
+            .split("#[cfg(test)]")
+            .next()
+            .unwrap();
+        let used: Vec<&str> = source
+            .split("\"panel.")
+            .skip(1)
+            .filter_map(|rest| rest.split_once('"').map(|(k, _)| k))
+            .filter(|k| !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
+            .collect();
+        assert!(used.len() >= 20, "{used:?}");
+        let (en, ja) = (
+            keys(include_str!("../../locales/en.yml")),
+            keys(include_str!("../../locales/ja.yml")),
         );
-        for family in [egui::FontFamily::Proportional, egui::FontFamily::Monospace] {
-            let list = fonts.families.entry(family).or_default();
-            if first {
-                list.insert(0, name.to_string());
-            } else {
-                list.push(name.to_string());
-            }
-        }
-    };
-    if let Some(path) = std::env::var_os("OPENGL3D_FONT") {
-        match std::fs::read(&path) {
-            // Only the proportional family: a user font is rarely monospaced.
-            Ok(bytes) => {
-                add(&mut fonts, "user", bytes, true);
-                if let Some(mono) = fonts.families.get_mut(&egui::FontFamily::Monospace) {
-                    mono.retain(|n| n != "user");
-                }
-            }
-            Err(e) => {
-                warning = Some(format!(
-                    "OPENGL3D_FONT={}: {e}; using the bundled font",
-                    std::path::Path::new(&path).display()
-                ))
-            }
+        for k in used {
+            let key = format!("panel.{k}");
+            assert!(en.contains(&key.as_str()), "{key} missing from en.yml");
+            assert!(ja.contains(&key.as_str()), "{key} missing from ja.yml");
+            let (e, j) = (label(Lang::En, &key), label(Lang::Ja, &key));
+            assert_ne!(e, j, "{key} is not translated");
+            assert!(!j.contains(&key), "{key}: {j}");
+            assert!(!j.is_ascii(), "{key}: {j} is not Japanese");
         }
     }
-    if let Some(bytes) = CJK.iter().find_map(|p| std::fs::read(p).ok()) {
-        add(&mut fonts, "cjk", bytes, false);
-    }
-    ctx.set_fonts(fonts);
-    warning
 }

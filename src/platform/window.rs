@@ -12,6 +12,7 @@
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
 
 use super::panel::{self, Panel};
+use super::panel_fonts;
 use super::shader_errors::{shader_stamps, ShaderErrorEntry, ShaderErrors};
 use crate::gl::ProgramError;
 use crate::render::{Engine, View};
@@ -239,7 +240,12 @@ impl App {
         let painter = egui_glow::Painter::new(gui_gl, "", None, false)
             .map_err(|e| anyhow!("cannot set up the parameter panel's painter: {e}"))?;
         let ctx = egui::Context::default();
-        if let Some(warning) = panel::install_fonts(&ctx) {
+        let fonts = panel_fonts::install_fonts(
+            &ctx,
+            crate::i18n::current(),
+            &panel_fonts::known_cjk_fonts(),
+        );
+        for warning in &fonts.warnings {
             eprintln!("{warning}");
         }
         let input = egui_winit::State::new(
@@ -262,7 +268,7 @@ impl App {
                 input,
                 painter,
             },
-            panel: Panel::new(self.options.panel_visible, renderer),
+            panel: Panel::new(self.options.panel_visible, renderer, fonts.lang),
             surface,
             context,
             window,

@@ -6,13 +6,13 @@ use quick_xml::events::Event;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-fn mutant(name: &str) -> PathBuf {
+pub(crate) fn mutant(name: &str) -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("tests/mutants")
         .join(name)
 }
 
-fn temp_dir(name: &str) -> PathBuf {
+pub(crate) fn temp_dir(name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{name}-{}", std::process::id()));
     match std::fs::remove_dir_all(&d) {
         Err(e) if e.kind() != std::io::ErrorKind::NotFound => panic!("{}: {e}", d.display()),
@@ -34,7 +34,7 @@ fn student(class: &Path, name: &str, from: &[&str]) {
     }
 }
 
-const CORRECT: [&str; 5] = [
+pub(crate) const CORRECT: [&str; 5] = [
     "listing-restore",
     "listing-down-sampling",
     "listing-simple",
@@ -50,7 +50,7 @@ const BROKEN_SAO: [&str; 5] = [
 ];
 const ODD_NAME: &str = "bob, \"<b>\" & 'co'";
 
-fn grade_class(class: &Path, args: &[&str]) -> Output {
+pub(crate) fn grade_class(class: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("grade")
         .arg("--class")
@@ -61,7 +61,7 @@ fn grade_class(class: &Path, args: &[&str]) -> Output {
 }
 
 /// The records of a CSV text (RFC 4180: quoted fields, doubled quotes, CRLF).
-fn parse_csv(text: &str) -> Vec<Vec<String>> {
+pub(crate) fn parse_csv(text: &str) -> Vec<Vec<String>> {
     let mut rows = Vec::new();
     let (mut row, mut field) = (Vec::new(), String::new());
     let (mut quoted, mut chars) = (false, text.chars().peekable());
@@ -135,7 +135,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
     student(&class, ODD_NAME, &BROKEN_SAO);
     student(&class, "cleo", &[]);
     student(&class, "dan", &["sao-endless-loop"]);
-    // A file beside the folders is no student (a .zip is not unpacked).
+    // A file beside the folders is no student.
     std::fs::write(class.join("notes.txt"), "not a student").unwrap();
     let report = temp_dir("grade-class-report");
     let o = grade_class(
@@ -212,6 +212,43 @@ fn a_class_is_graded_into_csv_html_and_junit() {
     assert!(!html.contains("\"<b>\""), "{html}");
     assert!(html.contains("not submitted: no sao.frag in"), "{html}");
     assert!(html.contains("timed out after 6 s"), "{html}");
+
+    // Only bob's failing SAO step has a heat map (dan's was killed before it drew one): a
+    // thumbnail linked to a picture in the report folder, at least 256 px wide.
+    let images = attribute_values(&html, "img src=\"");
+    assert_eq!(images.len(), 1, "{html}");
+    assert!(
+        images[0].starts_with("pictures/002-bob") && images[0].ends_with("/sao-difference.png"),
+        "{html}"
+    );
+    assert!(
+        html.contains(&format!("<a class=\"heat\" href=\"{}\">", images[0])),
+        "{html}"
+    );
+    let picture = image::open(report.join(&images[0])).unwrap();
+    assert!(picture.width() >= 256, "{}", picture.width());
+    for link in attribute_values(&html, "href=\"") {
+        assert!(report.join(&link).is_file(), "{link} is not in the report");
+    }
+    // Passing steps leave no pictures behind.
+    let folders: Vec<String> = std::fs::read_dir(report.join("pictures"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(folders.len(), 1, "{folders:?}");
+    // Nothing from outside the report folder: no scripts, no remote address.
+    assert!(
+        !html.contains("<script") && !html.contains("http"),
+        "{html}"
+    );
+}
+
+/// Every value of the attribute that `start` opens (`src="`), as written (no entities in them).
+fn attribute_values(html: &str, start: &str) -> Vec<String> {
+    html.split(start)
+        .skip(1)
+        .map(|rest| rest[..rest.find('"').unwrap()].to_string())
+        .collect()
 }
 
 #[test]
@@ -241,12 +278,12 @@ fn a_missing_or_empty_class_is_an_error_naming_it() {
     assert!(stderr.contains("no-such-class"), "{stderr}");
 
     let empty = temp_dir("grade-class-empty");
-    std::fs::write(empty.join("a.zip"), "PK").unwrap();
+    std::fs::write(empty.join("notes.txt"), "not a student").unwrap();
     let o = grade_class(&empty, &[]);
     let stderr = String::from_utf8_lossy(&o.stderr);
     assert_ne!(o.status.code(), Some(0));
     assert!(
-        stderr.contains(&*empty.to_string_lossy()) && stderr.contains("no student folder"),
+        stderr.contains(&*empty.to_string_lossy()) && stderr.contains("no student folder or .zip"),
         "{stderr}"
     );
 }

@@ -270,3 +270,141 @@ fn every_verdict_key_is_in_both_languages_and_used() {
         assert!(unused.is_empty(), "{lang}.yml has unused {unused:?}");
     }
 }
+
+#[test]
+fn render_and_reference_speak_japanese() {
+    let dir = common::temp_dir("i18n-render");
+    let frame = dir.join("f.png");
+    let size = ["--width", "64", "--height", "48"];
+    let mut args = vec!["render", "--out", frame.to_str().unwrap()];
+    args.extend(size);
+    let o = run(&[JA], &args);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(out(&o).contains("を書き出しました（64x48、"), "{}", out(&o));
+    let o = run(&[C], &args);
+    assert!(out(&o).starts_with("wrote "), "{}", out(&o));
+
+    let o = run(&[JA], &["render", "--samples", "0"]);
+    assert!(
+        err(&o).contains("--samples 0: 1 から 256 までの値を指定してください"),
+        "{}",
+        err(&o)
+    );
+    let o = run(&[JA], &["render", "--obj", "nowhere.obj"]);
+    assert!(
+        err(&o).contains("nowhere.obj: OBJ ファイルが見つかりません"),
+        "{}",
+        err(&o)
+    );
+
+    let pfm = dir.join("r.pfm");
+    let cache = dir.join("cache");
+    let mut args = vec![
+        "reference",
+        "--rays",
+        "2",
+        "--out",
+        pfm.to_str().unwrap(),
+        "--cache",
+        cache.to_str().unwrap(),
+    ];
+    args.extend(size);
+    let o = run(&[JA], &args);
+    assert!(o.status.success(), "{}", err(&o));
+    assert!(
+        out(&o).contains("を書き出しました（レイトレーシング、64x48、"),
+        "{}",
+        out(&o)
+    );
+    let o = run(&[JA], &["reference", "--rays", "0"]);
+    assert!(
+        err(&o).contains("--rays は 1 から 1048576 までの値を指定してください"),
+        "{}",
+        err(&o)
+    );
+}
+
+#[test]
+fn usage_errors_in_japanese_with_the_usage_line() {
+    // clap prints a usage line for an unknown name, not for a missing or wrong value.
+    for (args, says, usage) in [
+        (
+            vec!["rendr"],
+            "'rendr' というサブコマンドはありません",
+            true,
+        ),
+        (
+            vec!["render", "--bogus"],
+            "'--bogus' という引数はありません",
+            true,
+        ),
+        (
+            vec!["render", "--out"],
+            "'--out <OUT>' には値を指定してください",
+            false,
+        ),
+        (
+            vec!["render", "--view", "x"],
+            "'x' は '--view <VIEW>' に指定できる値ではありません",
+            false,
+        ),
+    ] {
+        let o = run(&[JA], &args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", err(&o));
+        let e = err(&o);
+        assert!(
+            e.starts_with("エラー: ") && e.contains(says),
+            "{args:?}: {e}"
+        );
+        assert_eq!(e.contains("使い方: opengl3d"), usage, "{args:?}: {e}");
+        assert!(
+            e.contains("詳しくは '--help' を付けて実行してください"),
+            "{e}"
+        );
+        // --lang on the command line wins over the locale, even when parsing failed.
+        let mut en = vec!["--lang", "en"];
+        en.extend(&args);
+        let e = err(&run(&[JA], &en));
+        assert!(
+            e.starts_with("error: ") && !e.contains("エラー"),
+            "{args:?}: {e}"
+        );
+        assert_eq!(e.contains("Usage:"), usage, "{args:?}: {e}");
+    }
+    let e = err(&run(&[C], &["--lang", "ja", "rendr"]));
+    assert!(e.contains("'rendr' というサブコマンドはありません"), "{e}");
+    assert!(e.contains("'render' のことですか？"), "{e}");
+}
+
+#[test]
+fn the_class_summary_and_a_refused_zip_in_japanese() {
+    let class = common::temp_dir("i18n-class");
+    std::fs::create_dir_all(class.join("ada")).unwrap();
+    std::fs::write(class.join("bob.zip"), "PK not really").unwrap();
+    let report = class.join("report");
+    let o = run(
+        &[JA],
+        &[
+            "grade",
+            "--class",
+            class.to_str().unwrap(),
+            "--out",
+            report.to_str().unwrap(),
+        ],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", err(&o));
+    let s = out(&o);
+    assert!(s.contains("の学生 2 人を採点します"), "{s}");
+    assert!(s.contains("不合格 bob: 5 ステップ中 0 ステップ合格"), "{s}");
+    assert!(s.contains("2 人中 0 人が全ステップに合格しました"), "{s}");
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    assert!(html.contains("<html lang=\"ja\">"), "{html}");
+    assert!(
+        html.contains("アーカイブを受け付けません: ")
+            && html.contains("bob.zip は読み込める .zip ファイルではありません"),
+        "{html}"
+    );
+    // The machine-read files stay English.
+    let junit = std::fs::read_to_string(report.join("junit.xml")).unwrap();
+    assert!(junit.contains("the archive is refused"), "{junit}");
+}

@@ -13,6 +13,7 @@ mod engine_options;
 mod gl_basics;
 mod grade;
 mod grade_class;
+mod grade_class_zip;
 mod i18n;
 mod inputs;
 mod lessons_ja;

@@ -5,11 +5,15 @@
 
 use super::args::Step;
 use super::report::StepReport;
+use rust_i18n::t;
 
 /// One student's verdicts, in the order of the graded steps.
 pub struct StudentResult {
     pub name: String,
     pub reports: Vec<StepReport>,
+    /// For each report, the path of its pictures relative to the report, without
+    /// `-difference.png` (`pictures/001-ada/sao`), when a failing step left them.
+    pub heat_maps: Vec<Option<String>>,
     /// Wall time spent grading the student.
     pub seconds: f64,
 }
@@ -101,20 +105,42 @@ fn html(text: &str) -> String {
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}\
 th,td{border:1px solid #999;padding:.3em .5em;vertical-align:top;text-align:left}\
 td{max-width:28em}.pass{background:#c8f0c8}.fail{background:#f5c0c0}.missing{background:#e4e4e4}\
-.why{font-size:.8em;white-space:pre-wrap;overflow-wrap:anywhere}small{font-weight:normal}";
+.why{font-size:.8em;white-space:pre-wrap;overflow-wrap:anywhere}small{font-weight:normal}\
+.heat{display:block;margin-top:.3em}.heat img{width:160px;image-rendering:pixelated;border:1px solid #666}";
 
-/// report.html: one self-contained table (no scripts, no outside files), a row per student, a cell
-/// per step with its verdict and message.
+/// The thumbnail of a failing step's heat map, linked to the full picture, and links to the
+/// expected and actual pictures beside it. `stem` is built by the grader from a sanitised name.
+fn heat_map(step: &str, stem: &str) -> String {
+    let (heat, expected, actual) = (
+        html(&format!("{stem}-difference.png")),
+        html(&format!("{stem}-expected.png")),
+        html(&format!("{stem}-actual.png")),
+    );
+    format!(
+        "<a class=\"heat\" href=\"{heat}\"><img src=\"{heat}\" alt=\"{alt}\"></a>\
+         <small><a href=\"{expected}\">{e}</a> · <a href=\"{actual}\">{a}</a></small>",
+        alt = html(&t!("class.html_heat_alt", step = step)),
+        e = html(&t!("class.html_expected")),
+        a = html(&t!("class.html_actual")),
+    )
+}
+
+/// report.html: one self-contained table (no scripts, nothing from outside the report folder), a
+/// row per student, a cell per step with its verdict and message (in the chosen language) and, for
+/// a failing step, its heat map's thumbnail linked to the pictures in `pictures/`.
 pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String {
     let all = results.iter().filter(|r| r.all_passed()).count();
     let mut h = String::new();
     h.push_str(&format!(
-        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n\
+        "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>opengl3d grade: {t}</h1>\n<p>{all} of {n} student(s) passed every step.</p>\n\
-         <table>\n<thead><tr><th>student</th>",
+         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
+         <table>\n<thead><tr><th>{student}</th>",
+        lang = crate::i18n::current().code(),
         t = html(title),
-        n = results.len()
+        summary = html(&t!("class.html_summary", all = all, count = results.len())),
+        legend = html(&t!("class.html_legend")),
+        student = html(&t!("class.html_student")),
     ));
     for s in steps {
         h.push_str(&format!(
@@ -123,19 +149,26 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
             html(s.file())
         ));
     }
-    h.push_str("<th>passed</th></tr></thead>\n<tbody>\n");
+    h.push_str(&format!(
+        "<th>{}</th></tr></thead>\n<tbody>\n",
+        html(&t!("class.html_passed"))
+    ));
     for r in results {
         h.push_str(&format!("<tr><th>{}</th>", html(&r.name)));
-        for s in &r.reports {
-            let class = match verdict(s) {
-                "PASS" => "pass",
-                "FAIL" => "fail",
-                _ => "missing",
+        for (i, s) in r.reports.iter().enumerate() {
+            let (class, shown) = match verdict(s) {
+                "PASS" => ("pass", t!("grade.pass")),
+                "FAIL" => ("fail", t!("grade.fail")),
+                _ => ("missing", t!("class.html_not_submitted")),
+            };
+            let picture = match r.heat_maps.get(i) {
+                Some(Some(stem)) => heat_map(&s.step, stem),
+                _ => String::new(),
             };
             h.push_str(&format!(
-                "<td class=\"{class}\"><b>{}</b><div class=\"why\">{}</div></td>",
-                verdict(s),
-                html(&s.message)
+                "<td class=\"{class}\"><b>{}</b><div class=\"why\">{}</div>{picture}</td>",
+                html(&shown),
+                html(s.shown_message())
             ));
         }
         h.push_str(&format!(

@@ -32,16 +32,18 @@
 //! render into R32F targets (the engine's are R8), so an output that is not normalised shows its
 //! real size.
 //!
-//! `--class DIR` grades every folder in DIR as one student, `--jobs` of them at once, each exactly as
-//! `--res` grades one, and writes results.csv, report.html and junit.xml into `--out`.
+//! `--class DIR` grades every folder (or `.zip`) in DIR as one student, `--jobs` of them at once,
+//! each exactly as `--res` grades one, and writes results.csv, report.html (with the failing
+//! steps' heat maps) and junit.xml into `--out`.
 //!
 //! Files: `args` (command line, `Step`), `run` (the grader) with `student` (one folder's steps),
 //! `child` (one step's process) and `report`; `class` (a whole class) with `class_report` (its CSV,
-//! HTML and JUnit); `submission` (finding the student's file); `run_step` (the child) with `staging` (the
-//! private copy), `rig` (GL context and both sides' passes), `interface` (the program against the
-//! lesson's interface), `passes` (running them), `steps/` (one file per step), `say` (messages),
-//! `measure` (shared statistics), `tol` (every tolerance, with what it was measured against);
-//! `scene` and `picture` (the SAO scenes and the PNGs).
+//! HTML and JUnit) and `unzip` (.zip submissions); `submission` (finding the student's file);
+//! `run_step` (the child) with `staging` (the private copy), `rig` (GL context and both sides'
+//! passes), `interface` (the program against the lesson's interface), `passes` (running them),
+//! `steps/` (one file per step), `say` (messages), `measure` (shared statistics), `tol` (every
+//! tolerance, with what it was measured against); `scene` and `picture` (the SAO scenes and the
+//! PNGs) with `scale_bar` (the heat map's colour scale).
 
 mod args;
 mod child;
@@ -56,12 +58,14 @@ mod rig;
 mod run;
 mod run_step;
 mod say;
+mod scale_bar;
 pub mod scene;
 mod staging;
 mod steps;
 mod student;
 mod submission;
 mod tol;
+mod unzip;
 
 pub use args::{selected_steps, GradeArgs, GradeStepArgs, Step};
 pub use report::StepReport;

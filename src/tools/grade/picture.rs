@@ -1,5 +1,7 @@
-//! The grader's pictures (`--out DIR`): expected, actual and a difference heat map per step.
+//! The grader's pictures (`--out DIR`, and the class report's): expected, actual and a difference
+//! heat map per step, at least `MIN_WIDTH` pixels wide, the heat map with its colour scale.
 
+use super::scale_bar;
 use anyhow::{Context as _, Result};
 use std::path::{Path, PathBuf};
 
@@ -87,19 +89,42 @@ pub fn heat(t: f32) -> [u8; 3] {
     [c(0), c(1), c(2)]
 }
 
-/// Lays the panels side by side (2 px apart) and writes `<step>-expected.png`, `<step>-actual.png`
-/// and `<step>-difference.png` into `dir`.
+/// The narrowest picture written: smaller rigs are enlarged (nearest neighbour, whole factors) so
+/// that a texel stays visible and the scale bar has room.
+pub const MIN_WIDTH: usize = 256;
+
+/// Lays the panels side by side (2 px apart), enlarges them by a whole factor to at least
+/// `MIN_WIDTH` pixels, and writes `<step>-expected.png`, `<step>-actual.png` and
+/// `<step>-difference.png` into `dir`. The difference picture has a colour scale under it (0 to 1,
+/// the panels' full heat, with a marker at the largest difference).
 pub fn write(dir: &Path, step: &str, panels: &[Panel]) -> Result<Vec<PathBuf>> {
     std::fs::create_dir_all(dir).with_context(|| format!("cannot create {}", dir.display()))?;
     let gap = 2usize;
-    let width =
-        panels.iter().map(|p| p.width).sum::<usize>() + gap * panels.len().saturating_sub(1);
-    let height = panels.iter().map(|p| p.height).max().unwrap_or(1);
+    let width = (panels.iter().map(|p| p.width).sum::<usize>()
+        + gap * panels.len().saturating_sub(1))
+    .max(1);
+    let height = panels.iter().map(|p| p.height).max().unwrap_or(1).max(1);
+    let zoom = MIN_WIDTH.div_ceil(width).max(1);
+    let max_diff = panels
+        .iter()
+        .flat_map(|p| p.diff.iter().copied())
+        .fold(0.0f32, |m, d| {
+            if d.is_nan() || m.is_nan() {
+                f32::NAN
+            } else {
+                m.max(d)
+            }
+        });
     let mut written = Vec::new();
     for which in ["expected", "actual", "difference"] {
+        let bar = if which == "difference" {
+            scale_bar::HEIGHT
+        } else {
+            0
+        };
         let mut img = image::RgbImage::from_pixel(
-            width.max(1) as u32,
-            height as u32,
+            (width * zoom) as u32,
+            (height * zoom) as u32 + bar,
             image::Rgb([40, 40, 40]),
         );
         let mut x0 = 0usize;
@@ -107,17 +132,25 @@ pub fn write(dir: &Path, step: &str, panels: &[Panel]) -> Result<Vec<PathBuf>> {
             for y in 0..p.height {
                 for x in 0..p.width {
                     let i = y * p.width + x;
-                    let c = match which {
+                    let c = image::Rgb(match which {
                         "expected" => grey(p.shade, p.expected[i]),
                         "actual" => grey(p.shade, p.actual[i]),
                         _ => heat(p.diff[i]),
-                    };
+                    });
                     // Rows are stored bottom-up; images are top-down, bottom-aligned.
                     let row = height - 1 - y;
-                    img.put_pixel((x0 + x) as u32, row as u32, image::Rgb(c));
+                    for dy in 0..zoom {
+                        for dx in 0..zoom {
+                            let px = ((x0 + x) * zoom + dx) as u32;
+                            img.put_pixel(px, (row * zoom + dy) as u32, c);
+                        }
+                    }
                 }
             }
             x0 += p.width + gap;
+        }
+        if bar > 0 {
+            scale_bar::draw(&mut img, (height * zoom) as u32, max_diff, heat);
         }
         let path = dir.join(format!("{step}-{which}.png"));
         img.save(&path)
@@ -125,4 +158,42 @@ pub fn write(dir: &Path, step: &str, panels: &[Panel]) -> Result<Vec<PathBuf>> {
         written.push(path);
     }
     Ok(written)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_small_rig_is_enlarged_to_256_px_with_a_scale_under_the_heat_map() {
+        let dir = std::env::temp_dir().join(format!("opengl3d-picture-{}", std::process::id()));
+        // 10×4 texels, bottom-up rows: texel (9, 0) (bottom right) is off by 2 × full scale.
+        let expected = vec![0.5f32; 40];
+        let mut actual = expected.clone();
+        actual[9] = 1.0;
+        let panel = Panel::absolute(10, 4, expected, actual, Shade::Occlusion, 0.25);
+        let files = write(&dir, "step", &[panel]).unwrap();
+        let read = |i: usize| image::open(&files[i]).unwrap().to_rgb8();
+        let (expected, difference) = (read(0), read(2));
+        // 256 / 10 rounds up to a zoom of 26: 260 px wide, 104 px high, each texel 26×26 px.
+        assert_eq!(expected.dimensions(), (260, 104));
+        assert_eq!(difference.dimensions(), (260, 104 + scale_bar::HEIGHT));
+        // The off texel is the whole bottom-right 26×26 block, full heat (white, the top of the
+        // colour scale); its neighbours are 0 (black).
+        for (x, y) in [(234, 78), (259, 103), (250, 90)] {
+            assert_eq!(difference.get_pixel(x, y).0, heat(1.0), "({x}, {y})");
+        }
+        for (x, y) in [(233, 103), (259, 77), (0, 0)] {
+            assert_eq!(difference.get_pixel(x, y).0, heat(0.0), "({x}, {y})");
+        }
+        // Under it, the bar runs from the colour of 0 to the colour of 1.
+        let bar_rows = (104..difference.height())
+            .filter(|&y| {
+                difference.get_pixel(10, y).0 == heat(0.0)
+                    && difference.get_pixel(249, y).0 == heat(1.0)
+            })
+            .count();
+        assert!(bar_rows >= 10, "{bar_rows} rows of the bar");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }

@@ -23,9 +23,12 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if let Some(dir) = &args.class {
         if let Some(res) = student {
             bail!(
-                "--res {} and --class {}: give one of them (--class grades each folder in it)",
-                res.display(),
-                dir.display()
+                "{}",
+                t!(
+                    "class.res_and_class",
+                    res = res.display(),
+                    class = dir.display()
+                )
             );
         }
         return class::run(&exe, dir, &steps, args, timeout);

@@ -22,6 +22,7 @@ use std::{
 };
 
 use anyhow::{bail, Context, Result};
+use rust_i18n::t;
 
 use super::hash::Fnv64;
 use super::image::RefImage;
@@ -183,8 +184,12 @@ pub fn read_cached(cache_dir: &Path, key: &str) -> Option<RefImage> {
         Err(e) if matches!(e.kind(), ErrorKind::NotFound | ErrorKind::NotADirectory) => None,
         Err(e) => {
             eprintln!(
-                "warning: cannot read reference cache {}: {e}; rendering it again",
-                path.display()
+                "{}",
+                t!(
+                    "reference.cache_unreadable",
+                    path = path.display(),
+                    error = e
+                )
             );
             None
         }
@@ -195,9 +200,14 @@ pub fn read_cached(cache_dir: &Path, key: &str) -> Option<RefImage> {
 /// time, so the failure is a warning naming the file, and the caller keeps its result.
 pub(crate) fn store_or_warn(cache_dir: &Path, key: &str, img: &RefImage) {
     if let Err(e) = write_cached(cache_dir, key, img) {
+        let error = format!("{e:#}");
         eprintln!(
-            "warning: reference cache {} not written: {e:#}",
-            cache_path(cache_dir, key).display()
+            "{}",
+            t!(
+                "reference.cache_not_written",
+                path = cache_path(cache_dir, key).display(),
+                error = error
+            )
         );
     }
 }

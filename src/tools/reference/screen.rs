@@ -427,7 +427,7 @@ impl EdgeFamily {
 pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<RefImage> {
     depth.validate()?;
     if params.variant != AoVariant::Visibility {
-        bail!("the screen-space reference computes visibility only, not obscurance");
+        bail!("{}", rust_i18n::t!("reference.visibility_only"));
     }
     let field = Heightfield::new(depth);
     Ok(shade_image(
