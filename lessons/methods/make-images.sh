@@ -21,7 +21,7 @@ else
   run() { cargo run --release --quiet -- "$@" >/dev/null; }
 fi
 SMALL="--width 640 --height 360"
-METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao"
+METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao vbao"
 fig() { python3 "$ROOT/lessons/figures.py" "$@"; }
 
 # Raw and blurred AO of every method (visibility: white = open), and two composites.
@@ -31,6 +31,7 @@ for m in $METHODS; do
 done
 run render --method sao --view composite $SMALL --out "$IMG/sao-composite.png"
 run render --method gtao --view composite $SMALL --out "$IMG/gtao-composite.png"
+run render --method vbao --view composite $SMALL --out "$IMG/vbao-composite.png"
 
 # Crytek without the rescale of the occluded fraction (an edited copy of its shader via --res;
 # #include is resolved next to the including file, so common.glsl goes along).
@@ -49,6 +50,30 @@ run render --method gtao --samples 11 --view ao-raw $SMALL --out "$TMP/gtao-11.p
 run render --method gtao --samples 44 --view ao-raw $SMALL --out "$TMP/gtao-44.pfm"
 fig grid "$IMG/gtao-samples.png" 320 180 \
   "--samples 11=$TMP/gtao-11.pfm@120,150" "--samples 44=$TMP/gtao-44.pfm@120,150"
+
+# HBAO before and after the fix of its tangent (commits 6e47616, 4fbc477), on the near floor at the old
+# default of 8 taps: the shader before it comes from git history (skipped outside a git checkout).
+if git cat-file -e 2711d1e:Res/ao/hbao.frag 2>/dev/null; then
+  V="$TMP/hbao-old"
+  mkdir -p "$V/ao"
+  cp Res/ao/common.glsl "$V/ao/"
+  git show 2711d1e:Res/ao/hbao.frag > "$V/ao/hbao.frag"
+  run --res "$V" render --method hbao --samples 8 --view ao-raw $SMALL --out "$TMP/hbao-old.pfm"
+  run render --method hbao --samples 8 --view ao-raw $SMALL --out "$TMP/hbao-new.pfm"
+  fig grid "$IMG/hbao-tangent-fix.png" 320 180 \
+    "before (old tangent)=$TMP/hbao-old.pfm@0,180" "now (tangent plane)=$TMP/hbao-new.pfm@0,180"
+else
+  echo "no git history: hbao-tangent-fix.png left as it is" >&2
+fi
+
+# VBAO: what lies behind each depth sample (raw buffer; the demo's radius is 1 m, the default thickness).
+for t in 0.1 3 backface; do
+  run render --method vbao --thickness "$t" --view ao-raw $SMALL --out "$TMP/vbao-$t.pfm"
+done
+run render --method vbao --view ao-raw $SMALL --out "$TMP/vbao-default.pfm"
+fig grid "$IMG/vbao-thickness.png" 320 180 \
+  "--thickness 0.1=$TMP/vbao-0.1.pfm@140,140" "default, 1 m=$TMP/vbao-default.pfm@140,140" \
+  "--thickness 3=$TMP/vbao-3.pfm@140,140" "--thickness backface=$TMP/vbao-backface.pfm@140,140"
 
 # The two blurs on the same wall: the lesson's 9x9 (taps 2 texels apart) and the separable 2 x 9.
 run render --method sao-lesson --view ao $SMALL --out "$TMP/lesson-blur.pfm"
