@@ -177,13 +177,30 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
 }
 
 /// What `opengl3d lesson` prints without a step: the steps and how to begin.
+/// The view's name in the chosen language (`view.<name>` keys).
+fn view_label(view: crate::render::View) -> String {
+    let key = format!("view.{}", view.name());
+    let label = t!(&key);
+    label.into_owned()
+}
+
+/// Whether `s` is set in full-width characters (CJK), which take two columns each.
+fn is_wide(s: &str) -> bool {
+    s.chars().any(|c| c as u32 >= 0x3000)
+}
+
 fn lesson_overview() -> String {
     use crate::tools::lesson::{shaders_for_step, view_for_step, STEPS};
     let mut s = t!("lesson.overview_usage").into_owned();
     for n in 1..=STEPS {
-        let view = view_for_step(n).map(|v| v.label()).unwrap_or("?");
+        let view = view_for_step(n)
+            .map(view_label)
+            .unwrap_or_else(|_| "?".into());
         let files = shaders_for_step(n).join(", ");
-        let (n, view) = (format!("{n:>2}"), format!("{view:<13}"));
+        // Pad by characters shown, not bytes: the Japanese labels are wider per byte.
+        let width = view.chars().count() * if is_wide(&view) { 2 } else { 1 };
+        let pad = 17usize.saturating_sub(width);
+        let (n, view) = (format!("{n:>2}"), format!("{view}{}", " ".repeat(pad)));
         s.push_str(&t!(
             "lesson.overview_step",
             n = n,
@@ -245,7 +262,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             }
         }
     }
-    println!("{}", t!("lesson.showing", n = n, view = view.label()));
+    println!("{}", t!("lesson.showing", n = n, view = view_label(view)));
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
         let ctx = HeadlessContext::new()?;

@@ -80,6 +80,12 @@ fn lesson_start_speaks_japanese() {
     assert!(s.contains("5 つの課題シェーダーはスタブです"), "{s}");
     let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
     assert!(out(&o).contains("そのまま残しました"), "{}", out(&o));
+    // The step list names each step's view in Japanese too.
+    let o = run(&[JA], &["lesson"]);
+    let s = format!("{}{}", out(&o), err(&o));
+    assert!(s.contains("表示: 線形距離"), "{s}");
+    assert!(s.contains("表示: ぼかした遮蔽率"), "{s}");
+    assert!(!s.contains("linear depth"), "{s}");
 }
 
 #[test]
