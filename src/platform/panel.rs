@@ -3,7 +3,7 @@
 //! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
-use crate::ao::{AoMethod, CompositeMode};
+use crate::ao::{AoMethod, AoResolution, CompositeMode, Thickness};
 use crate::i18n::Lang;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
@@ -111,6 +111,39 @@ impl Panel {
                 }
             });
         actions.sync_shader_constants |= p.method != before;
+
+        // The engine's methods can run at the main size; the lesson's SAO stays at half as taught.
+        let resolution = p.resolution;
+        ui.add_enabled_ui(p.method != AoMethod::SaoLesson, |ui| {
+            egui::ComboBox::from_label(tr("panel.resolution"))
+                .selected_text(p.resolution.name())
+                .show_ui(ui, |ui| {
+                    for r in AoResolution::ALL {
+                        ui.selectable_value(&mut p.resolution, r, r.name());
+                    }
+                })
+        });
+        actions.sync_shader_constants |= p.resolution != resolution;
+        if p.method == AoMethod::Vbao {
+            let mut back_faces = p.thickness == Some(Thickness::Backface);
+            ui.checkbox(&mut back_faces, tr("panel.backface"))
+                .on_hover_text(tr("panel.backface_help"));
+            let mut metres = p.thickness_metres();
+            let r = ui.add_enabled(
+                !back_faces,
+                egui::Slider::new(&mut metres, 0.01..=10.0)
+                    .logarithmic(true)
+                    .suffix(" m")
+                    .text(tr("panel.thickness")),
+            );
+            p.thickness = if back_faces {
+                Some(Thickness::Backface)
+            } else if r.changed() || matches!(p.thickness, Some(Thickness::Backface)) {
+                Some(Thickness::Metres(metres))
+            } else {
+                p.thickness
+            };
+        }
 
         egui::ComboBox::from_label(tr("panel.composite"))
             .selected_text(composite_name(p.composite))
