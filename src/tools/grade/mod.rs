@@ -23,6 +23,9 @@
 //! render into R32F targets (the engine's are R8), so an output that is not normalised shows its
 //! real size.
 //!
+//! `--mutation-score` measures the grader itself: `mutate` writes mutants of the project's shaders,
+//! `mutation_probe` tells which differ observably, `mutation_score` counts how many of those fail.
+//!
 //! `--class DIR` grades every folder in DIR as one student, `--jobs` of them at once, each exactly as
 //! `--res` grades one, and writes results.csv, report.html and junit.xml into `--out`.
 //!
@@ -38,6 +41,9 @@ mod child;
 mod class;
 mod class_report;
 mod measure;
+mod mutate;
+mod mutation_probe;
+mod mutation_score;
 mod passes;
 pub mod picture;
 mod report;

@@ -42,6 +42,22 @@ fn grade(step: Step, subject: &Subject, project_res: &Path) -> Verdict {
     v
 }
 
+/// Renders the mutation-testing probe and adds what it found to the report's metrics; a probe the
+/// grader cannot run is said with the verdict (and leaves no metric, so the mutant is not counted).
+fn add_probe(step: Step, subject: &Subject, project: &Path, report: &mut StepReport) {
+    use super::mutation_probe::{probe, Probe};
+    use super::mutation_score::{PROBE_BUILDS_METRIC, PROBE_METRIC};
+    match probe(step, subject, project) {
+        Ok(Probe::Difference(d)) => {
+            report.metrics.insert(PROBE_METRIC.into(), d);
+        }
+        Ok(Probe::DoesNotBuild) => {
+            report.metrics.insert(PROBE_BUILDS_METRIC.into(), 0.0);
+        }
+        Err(e) => report.message = format!("{} (grader error in the probe: {e:#})", report.message),
+    }
+}
+
 /// The child: grades one step and prints its report as one JSON line on stdout.
 pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
     let project = project_res_dir();
@@ -73,6 +89,9 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
             report.passed = v.passed;
             report.message = v.message;
             report.metrics = v.metrics;
+            if args.probe {
+                add_probe(step, &subject, &project, &mut report);
+            }
             if let Some(out) = &args.out {
                 if !v.panels.is_empty() {
                     // The verdict is the shader's; pictures that cannot be written are the
