@@ -50,8 +50,14 @@ pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
+/// Blur: in the response to a single occluded texel, a value counts as "no tap" below this fraction
+/// of the response's peak, and mirror images must agree within it. Float rounding leaves about 1e-6
+/// of the peak; the weakest tap is 17% of the peak with the port's weights and 12% with the lesson's
+/// (its centre weight is the smallest), so a missing or extra tap is far above it.
+pub const BLUR_IMPULSE_REL: f32 = 0.01;
 /// Blur: at a depth edge the near side must stay above 1 − this and the far side below this
-/// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48).
+/// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48; measured with the far side 10 m away, the
+/// panel's far side is now 0.5 m behind, which the lesson's weight cuts just as fully).
 pub const BLUR_EDGE_ABS: f64 = 0.05;
 /// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
 /// (input 0.290; reference 0.038, listing 0.036).

@@ -26,7 +26,9 @@ fn noise(x: usize, y: usize) -> f32 {
 }
 
 /// The blur's synthetic panel (rows bottom-up): lower half a noisy flat surface at 5 m with sky on
-/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one (10 m) right.
+/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one right. The
+/// far side is only 0.5 m behind (a kerb, a table top): the lesson's edge distance (0.15 m) cuts
+/// it fully, one ten times too large does not.
 fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
     let mut depth = vec![0f32; w * h];
     let mut occ = vec![0f32; w * h];
@@ -45,12 +47,80 @@ fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
                 depth[i] = 2.0;
                 occ[i] = 1.0;
             } else {
-                depth[i] = 10.0;
+                depth[i] = 2.5;
                 occ[i] = 0.0;
             }
         }
     }
     (depth, occ)
+}
+
+/// Where the impulse input has its single occluded texels (one on even, one on odd coordinates).
+const IMPULSES: [(usize, usize); 2] = [(40, 40), (89, 87)];
+/// How far the impulse response is read around each impulse (the blur's reach is 8 texels).
+const IMPULSE_REACH: isize = 10;
+
+/// A flat surface at 5 m, open but for single fully occluded texels: blurred, each shows the blur's
+/// footprint and weights (its impulse response).
+fn impulse_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let mut occ = vec![0f32; w * h];
+    for (x, y) in IMPULSES {
+        occ[y * w + x] = 1.0;
+    }
+    (vec![5.0; w * h], occ)
+}
+
+/// The impulse responses around `IMPULSES` in `v`, each as (dx, dy) → value.
+fn responses(v: &[f32], w: usize) -> Vec<Vec<((isize, isize), f32)>> {
+    IMPULSES
+        .iter()
+        .map(|&(x, y)| {
+            let mut out = Vec::new();
+            for dy in -IMPULSE_REACH..=IMPULSE_REACH {
+                for dx in -IMPULSE_REACH..=IMPULSE_REACH {
+                    let (px, py) = ((x as isize + dx) as usize, (y as isize + dy) as usize);
+                    out.push(((dx, dy), v[py * w + px]));
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// What is wrong with the student's impulse responses `s` next to the reference's `r`: a tap
+/// missing or added (the footprint), or a response that is not mirror-symmetric (x, y, and x↔y:
+/// the weights are gaussian[|x|]·gaussian[|y|]); `None` when nothing is.
+fn impulse_fault(s: &[f32], r: &[f32], w: usize) -> Option<String> {
+    for (rs, rr) in responses(s, w).iter().zip(responses(r, w)) {
+        let peak = rs.iter().map(|(_, v)| v.abs()).fold(0.0f32, f32::max).max(1e-12);
+        let small = |v: f32| v.abs() <= tol::BLUR_IMPULSE_REL * peak;
+        let at = |dx: isize, dy: isize| {
+            let n = 2 * IMPULSE_REACH + 1;
+            rs[((dy + IMPULSE_REACH) * n + dx + IMPULSE_REACH) as usize].1
+        };
+        for (((dx, dy), v), (_, e)) in rs.iter().zip(&rr) {
+            let (dx, dy) = (*dx, *dy);
+            if small(*e) != small(*v) {
+                return Some(if small(*e) {
+                    format!(
+                        "reads the wrong texels: a single occluded texel spreads to offset                          ({dx}, {dy}), which is not one of the taps (every blurScale = 2 texels,                          up to blurRadius = 4 taps each side); use uv + ivec2(x, y) * blurScale"
+                    )
+                } else {
+                    format!(
+                        "misses a tap: a single occluded texel does not reach offset ({dx}, {dy});                          the loops must run from -blurRadius to +blurRadius in both x and y"
+                    )
+                });
+            }
+            for (name, m) in [("left-right", at(-dx, dy)), ("up-down", at(dx, -dy)), ("x↔y", at(dy, dx))] {
+                if (v - m).abs() > tol::BLUR_IMPULSE_REL * peak {
+                    return Some(format!(
+                        "the blur is not symmetric ({name}): a single occluded texel gives {v:.4} at                          offset ({dx}, {dy}) but {m:.4} at its mirror image; the weight of a tap is                          gaussian[abs(x)] * gaussian[abs(y)], over x and y from -blurRadius to                          +blurRadius"
+                    ));
+                }
+            }
+        }
+    }
+    None
 }
 
 /// Both sides' blur of a real SAO buffer (`a`: the project's occlusion of the first SAO scene) and
@@ -62,6 +132,9 @@ struct Runs {
     occ_b: Vec<f32>,
     reference_b: Vec<f32>,
     raw_b: Vec<f32>,
+    /// The impulse panel, the reference's and the student's.
+    reference_c: Vec<f32>,
+    raw_c: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
@@ -81,6 +154,9 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let (depth_b, occ_b) = blur_panel(w, h, far);
     let reference_b = run_blur(&rig.reference, &rig.meshes, &depth_b, &occ_b)?;
     let raw_b = run_blur(&rig.student, &rig.meshes, &depth_b, &occ_b)?;
+    let (depth_c, occ_c) = impulse_panel(w, h);
+    let reference_c = run_blur(&rig.reference, &rig.meshes, &depth_c, &occ_c)?;
+    let raw_c = run_blur(&rig.student, &rig.meshes, &depth_c, &occ_c)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -88,6 +164,8 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         occ_b,
         reference_b,
         raw_b,
+        reference_c,
+        raw_c,
     })
 }
 
@@ -102,6 +180,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         occ_b,
         reference_b: r_b,
         raw_b,
+        reference_c: r_c,
+        raw_c,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -110,6 +190,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     let nan = raw_a
         .iter()
         .chain(&raw_b)
+        .chain(&raw_c)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -229,6 +310,9 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
                 "occlusion leaks into the sky ({sky_max:.2}): sky pixels must be kept as they are"
             ),
         );
+    }
+    if let Some(fault) = impulse_fault(&raw_c, &r_c, w) {
+        return verdict(false, fault);
     }
     if rmse > tol::BLUR_RMSE {
         let (x, y) = (worst.1 % w, worst.1 / w);
