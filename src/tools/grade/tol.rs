@@ -43,10 +43,21 @@ pub const SAO_BAD_PIXEL_FRACTION: f64 = 0.01;
 /// SAO: emptying mip levels 1–3 must move the student's output by at least this fraction of
 /// what it moves the project's (listing 1.24, rewrite 1.25; every sample from level 0: 0)...
 pub const SAO_MIP_USE: f64 = 0.25;
+/// ...and at most this (near samples reading levels 1–3 too: mip level inverted 5.0, level 0
+/// never read 12.6)...
+pub const SAO_MIP_USE_MAX: f64 = 2.5;
 /// ...when the project's own output moves by more than this (mean |Δ| per non-sky pixel; it
 /// moves by 0.0034 on the three scenes); otherwise the scenes do not exercise the mips and the
 /// check is skipped.
 pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
+/// SAO: two diagonal pixels of a 2×2 quad that the lesson's smoothing evens out count as equal
+/// within this (float rounding of the two steps leaves about 1e-7; one step of the engine's 8-bit
+/// target is 0.004).
+pub const SAO_QUAD_SPREAD: f64 = 1e-3;
+/// SAO: the fraction of such quads that may be uneven (project, listing, guarded listing and
+/// rewrite: 0; smoothing missing, or with the wrong sign or pixel parity: most quads; see
+/// `uneven_quad_fraction` in the step's metrics).
+pub const SAO_UNEVEN_QUADS: f64 = 0.1;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;

@@ -98,23 +98,39 @@ fn impulse_fault(s: &[f32], r: &[f32], w: usize) -> Option<String> {
             let n = 2 * IMPULSE_REACH + 1;
             rs[((dy + IMPULSE_REACH) * n + dx + IMPULSE_REACH) as usize].1
         };
-        for (((dx, dy), v), (_, e)) in rs.iter().zip(&rr) {
-            let (dx, dy) = (*dx, *dy);
-            if small(*e) != small(*v) {
-                return Some(if small(*e) {
+        // An extra tap first: it says more (blurScale ignored) than the taps it leaves out.
+        for added in [true, false] {
+            for (((dx, dy), v), (_, e)) in rs.iter().zip(&rr) {
+                if small(*e) == small(*v) || small(*e) != added {
+                    continue;
+                }
+                return Some(if added {
                     format!(
-                        "reads the wrong texels: a single occluded texel spreads to offset                          ({dx}, {dy}), which is not one of the taps (every blurScale = 2 texels,                          up to blurRadius = 4 taps each side); use uv + ivec2(x, y) * blurScale"
+                        "reads the wrong texels: a single occluded texel spreads to offset \
+                         ({dx}, {dy}), which is not one of the taps (every blurScale = 2 texels, \
+                         up to blurRadius = 4 taps each side); use uv + ivec2(x, y) * blurScale"
                     )
                 } else {
                     format!(
-                        "misses a tap: a single occluded texel does not reach offset ({dx}, {dy});                          the loops must run from -blurRadius to +blurRadius in both x and y"
+                        "misses a tap: a single occluded texel does not reach offset ({dx}, {dy}); \
+                         the loops must run from -blurRadius to +blurRadius in both x and y"
                     )
                 });
             }
-            for (name, m) in [("left-right", at(-dx, dy)), ("up-down", at(dx, -dy)), ("x↔y", at(dy, dx))] {
+        }
+        for ((dx, dy), v) in rs.iter() {
+            let (dx, dy) = (*dx, *dy);
+            for (name, m) in [
+                ("left-right", at(-dx, dy)),
+                ("up-down", at(dx, -dy)),
+                ("x↔y", at(dy, dx)),
+            ] {
                 if (v - m).abs() > tol::BLUR_IMPULSE_REL * peak {
                     return Some(format!(
-                        "the blur is not symmetric ({name}): a single occluded texel gives {v:.4} at                          offset ({dx}, {dy}) but {m:.4} at its mirror image; the weight of a tap is                          gaussian[abs(x)] * gaussian[abs(y)], over x and y from -blurRadius to                          +blurRadius"
+                        "the blur is not symmetric ({name}): a single occluded texel gives {v:.4} \
+                         at offset ({dx}, {dy}) but {m:.4} at its mirror image; the weight of a \
+                         tap is gaussian[abs(x)] * gaussian[abs(y)], over x and y from \
+                         -blurRadius to +blurRadius"
                     ));
                 }
             }

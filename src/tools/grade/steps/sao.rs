@@ -68,6 +68,36 @@ fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
     m
 }
 
+/// Aligned 2×2 quads (even x and y) whose four pixels lie away from depth edges on surfaces facing
+/// the camera squarely (depth changing by under 2 cm per texel, as the lesson's 2×2 smoothing asks
+/// before it runs): (such quads, those whose diagonal pixels differ by more than
+/// `tol::SAO_QUAD_SPREAD`). The lesson's smoothing (x, then y of the result) leaves the quad's mean
+/// in all four pixels; taking both derivatives first, as a correct rewrite may, leaves each diagonal
+/// pair the mean of the other pair. Either way the diagonal pixels are equal; without the smoothing,
+/// or with its sign or pixel parity wrong, they are not.
+fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> (usize, usize) {
+    let (mut quads, mut uneven) = (0, 0);
+    for y in (2..h.saturating_sub(3)).step_by(2) {
+        for x in (2..w.saturating_sub(3)).step_by(2) {
+            let px = [(x, y), (x + 1, y + 1), (x + 1, y), (x, y + 1)].map(|(a, b)| b * w + a);
+            let square = px.iter().all(|&i| {
+                clean[i]
+                    && (depth[i + 1] - depth[i - 1]).abs() < 0.02
+                    && (depth[i + w] - depth[i - w]).abs() < 0.02
+            });
+            if !square {
+                continue;
+            }
+            quads += 1;
+            let apart = |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
+            if apart(0, 1) || apart(2, 3) {
+                uneven += 1;
+            }
+        }
+    }
+    (quads, uneven)
+}
+
 /// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
 /// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
 /// those also facing the camera (`flat`).
@@ -95,6 +125,8 @@ struct Measured {
     worst_block: (f64, &'static str, usize, usize),
     probes: Vec<ProbeResult>,
     sky_max: f64,
+    /// Quads checked for the 2×2 smoothing, and those left uneven (`quad_parity`).
+    quads: (usize, usize),
 }
 
 fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
@@ -108,6 +140,7 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
     let mut worst_block = (0.0f64, "", 0usize, 0usize);
     let mut probes = vec![];
     let mut sky_max = 0.0f64;
+    let mut quads = (0usize, 0usize);
     for scene in scenes {
         let (w, h) = (scene.width as usize, scene.height as usize);
         let depth = scene.depth();
@@ -170,6 +203,8 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
                 clean_n += 1;
             }
         }
+        let (q, uneven) = quad_parity(&s, &depth, &clean, w, h);
+        quads = (quads.0 + q, quads.1 + uneven);
         let bs = block_means(&s, &flat, w, h, 8);
         let br = block_means(&r, &flat, w, h, 8);
         for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
@@ -230,6 +265,7 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
         worst_block,
         probes,
         sky_max,
+        quads,
     })
 }
 
@@ -274,6 +310,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         worst_block,
         probes,
         sky_max,
+        quads,
     } = match measure(rig, params, &scenes) {
         Ok(m) => m,
         Err(e) => return Verdict::grader_error(&e),
@@ -302,6 +339,8 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("over_one_fraction".into(), over as f64 / n);
     metrics.insert("negative_fraction".into(), negative as f64 / n);
     metrics.insert("sky_max".into(), sky_max);
+    let uneven = quads.1 as f64 / quads.0.max(1) as f64;
+    metrics.insert("uneven_quad_fraction".into(), uneven);
     let mean_err = (fmean_s - fmean_r) / fmean_r.max(1e-6);
     let falloff_err = probes
         .iter()
@@ -450,6 +489,17 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             ),
         );
     }
+    if uneven > tol::SAO_UNEVEN_QUADS {
+        return verdict(
+            false,
+            format!(
+                "the 2×2 smoothing is missing or wrong: on surfaces facing the camera {:.0}% of the \
+                 2×2 pixel blocks are not evened out; occlusion −= dFdx(occlusion) * \
+                 ((iuv.x & 1) − 0.5), then the same with dFdy and iuv.y, averages each block",
+                100.0 * uneven
+            ),
+        );
+    }
     if rmse > tol::SAO_BLOCK_RMSE {
         return verdict(
             false,
@@ -491,6 +541,19 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
                  average, the project's sao.frag by {:.4}; read each sample with \
                  textureLod(texDepth, uv, mipLevel) where mipLevel = clamp(findMSB(int(ssR)) − \
                  logMipOffset, 0, maxMipLevel) grows with the sample's distance in pixels",
+                mip_s / scenes.len() as f64,
+                mip_r / scenes.len() as f64
+            ),
+        );
+    }
+    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use > tol::SAO_MIP_USE_MAX {
+        return verdict(
+            false,
+            format!(
+                "reads the mip levels 1–3 for near samples too: emptying them changes the output \
+                 by {:.4} on average, the project's sao.frag by {:.4}; samples closer than \
+                 2^logMipOffset pixels read level 0: mipLevel = clamp(findMSB(int(ssR)) − \
+                 logMipOffset, 0, maxMipLevel)",
                 mip_s / scenes.len() as f64,
                 mip_r / scenes.len() as f64
             ),
