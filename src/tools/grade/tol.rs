@@ -58,6 +58,10 @@ pub const SAO_QUAD_SPREAD: f64 = 1e-3;
 /// rewrite: 0; smoothing missing, or with the wrong sign or pixel parity: most quads; see
 /// `uneven_quad_fraction` in the step's metrics).
 pub const SAO_UNEVEN_QUADS: f64 = 0.1;
+/// SAO: beside a square panel raised from a wall (seen head-on), the four sides' occlusion may
+/// spread by this fraction of its mean (project 0.067, listing 0.027, rewrite 0.075; twoPi = π, a
+/// spiral over half the circle: 0.86).
+pub const SAO_ANISOTROPY: f64 = 0.3;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;

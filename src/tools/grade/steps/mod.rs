@@ -5,6 +5,7 @@ mod blur;
 mod down_sampling;
 mod restore;
 mod sao;
+mod sao_isotropy;
 
 pub use blur::{blur, BLUR_SIZE};
 pub use down_sampling::down_sampling;

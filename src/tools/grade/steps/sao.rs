@@ -523,7 +523,13 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         Err(e) => return Verdict::grader_error(&e),
     };
     let mip_use = mip_s / mip_r.max(1e-9);
+    let (aniso_s, aniso_r) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE) {
+        Ok(a) => a,
+        Err(e) => return Verdict::grader_error(&e),
+    };
     let mut metrics = metrics.clone();
+    metrics.insert("anisotropy".into(), aniso_s);
+    metrics.insert("anisotropy_reference".into(), aniso_r);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
@@ -543,6 +549,19 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
                  logMipOffset, 0, maxMipLevel) grows with the sample's distance in pixels",
                 mip_s / scenes.len() as f64,
                 mip_r / scenes.len() as f64
+            ),
+        );
+    }
+    if aniso_s > tol::SAO_ANISOTROPY {
+        return verdict(
+            false,
+            format!(
+                "the occlusion depends on the direction: beside a square panel the four sides are \
+                 occluded unevenly (spread {:.0}% of their mean, the project's sao.frag {:.0}%); \
+                 the spiral must turn through spiralTurns · 2π (twoPi = 2π) and the start angle \
+                 cover the whole circle",
+                100.0 * aniso_s,
+                100.0 * aniso_r
             ),
         );
     }
