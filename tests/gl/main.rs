@@ -11,6 +11,7 @@ mod engine_options;
 mod gl_basics;
 mod grade;
 mod grade_class;
+mod grade_mutation;
 mod i18n;
 mod inputs;
 mod lessons_ja;

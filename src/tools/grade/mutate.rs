@@ -39,8 +39,8 @@ struct Token {
 
 /// Multi-character operators, longest first.
 const PUNCTS: [&str; 20] = [
-    "<<=", ">>=", "<=", ">=", "==", "!=", "&&", "||", "^^", "++", "--", "+=", "-=", "*=", "/=", "%=",
-    "<<", ">>", "&=", "|=",
+    "<<=", ">>=", "<=", ">=", "==", "!=", "&&", "||", "^^", "++", "--", "+=", "-=", "*=", "/=",
+    "%=", "<<", ">>", "&=", "|=",
 ];
 
 /// Whether line `line` (its text) is one the generator must not touch.
@@ -75,7 +75,9 @@ fn tokenize(src: &str) -> Vec<Token> {
             continue;
         }
         if src[i..].starts_with("/*") {
-            let end = src[i + 2..].find("*/").map_or(bytes.len(), |e| i + 2 + e + 2);
+            let end = src[i + 2..]
+                .find("*/")
+                .map_or(bytes.len(), |e| i + 2 + e + 2);
             for &b in &bytes[i..end] {
                 if b == b'\n' {
                     line += 1;
@@ -95,7 +97,8 @@ fn tokenize(src: &str) -> Vec<Token> {
                 i += 1;
             }
             Kind::Ident
-        } else if c.is_ascii_digit() || (c == b'.' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit))
+        } else if c.is_ascii_digit()
+            || (c == b'.' && bytes.get(i + 1).is_some_and(u8::is_ascii_digit))
         {
             let mut float = false;
             while i < bytes.len() {
@@ -130,7 +133,10 @@ fn tokenize(src: &str) -> Vec<Token> {
             let len = PUNCTS
                 .iter()
                 .find(|p| src[i..].starts_with(**p))
-                .map_or_else(|| src[i..].chars().next().map_or(1, char::len_utf8), |p| p.len());
+                .map_or_else(
+                    || src[i..].chars().next().map_or(1, char::len_utf8),
+                    |p| p.len(),
+                );
             i += len;
             Kind::Punct
         };
@@ -178,7 +184,11 @@ fn operand_before(toks: &[Token], end: usize) -> Option<usize> {
         let t = &toks[i];
         match t.text.as_str() {
             ")" | "]" => {
-                let (open, close) = if t.text == ")" { ("(", ")") } else { ("[", "]") };
+                let (open, close) = if t.text == ")" {
+                    ("(", ")")
+                } else {
+                    ("[", "]")
+                };
                 let mut depth = 0i32;
                 let mut j = i;
                 loop {
@@ -332,7 +342,11 @@ fn edits(src: &str, toks: &[Token]) -> Vec<Edit> {
             ")" => paren -= 1,
             _ => {}
         }
-        if depth >= 1 && paren == 0 && stmt_start.is_none() && !matches!(t.text.as_str(), "{" | "}" | ";") {
+        if depth >= 1
+            && paren == 0
+            && stmt_start.is_none()
+            && !matches!(t.text.as_str(), "{" | "}" | ";")
+        {
             stmt_start = Some(i);
         }
         match (t.kind, t.text.as_str()) {
@@ -372,7 +386,11 @@ fn edits(src: &str, toks: &[Token]) -> Vec<Edit> {
             _ => {}
         }
         // Swap the operands of a non-commutative binary operator.
-        if binary && matches!(t.text.as_str(), "-" | "/" | "%" | "<" | ">" | "<=" | ">=" | "<<" | ">>")
+        if binary
+            && matches!(
+                t.text.as_str(),
+                "-" | "/" | "%" | "<" | ">" | "<=" | ">=" | "<<" | ">>"
+            )
         {
             if let Some(e) = swap_operands(src, toks, i) {
                 out.push(e);
@@ -388,7 +406,10 @@ fn edits(src: &str, toks: &[Token]) -> Vec<Edit> {
                         with: String::new(),
                         line: first.line,
                         col: first.col,
-                        what: format!("drop statement `{}`", statement_text(src, first.start, t.start + 1)),
+                        what: format!(
+                            "drop statement `{}`",
+                            statement_text(src, first.start, t.start + 1)
+                        ),
                     });
                 }
             }
@@ -402,7 +423,10 @@ fn edits(src: &str, toks: &[Token]) -> Vec<Edit> {
 
 /// A statement's text on one line, shortened for a description.
 fn statement_text(src: &str, start: usize, end: usize) -> String {
-    let one_line = src[start..end].split_whitespace().collect::<Vec<_>>().join(" ");
+    let one_line = src[start..end]
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ");
     if one_line.chars().count() > 40 {
         format!("{}…", one_line.chars().take(39).collect::<String>())
     } else {
@@ -416,19 +440,31 @@ fn swap_operands(src: &str, toks: &[Token], op: usize) -> Option<Edit> {
     let a = operand_before(toks, op - 1)?;
     let b_end = operand_after(toks, op + 1)?;
     // The left operand is all of `a` only when nothing before it binds at least as tightly.
-    if a > 0 && precedence(&toks[a - 1].text).is_some_and(|p| p >= prec) && ends_operand_before(toks, a) {
+    if a > 0
+        && precedence(&toks[a - 1].text).is_some_and(|p| p >= prec)
+        && ends_operand_before(toks, a)
+    {
         return None;
     }
     // A unary minus before `a` would bind to it, not to the whole operand.
-    if a > 0 && matches!(toks[a - 1].text.as_str(), "-" | "!" | "~") && !ends_operand_before(toks, a) {
+    if a > 0
+        && matches!(toks[a - 1].text.as_str(), "-" | "!" | "~")
+        && !ends_operand_before(toks, a)
+    {
         return None;
     }
     // The right operand is all of `b` only when nothing after it binds more tightly.
-    if toks.get(b_end).is_some_and(|t| precedence(&t.text).is_some_and(|p| p > prec)) {
+    if toks
+        .get(b_end)
+        .is_some_and(|t| precedence(&t.text).is_some_and(|p| p > prec))
+    {
         return None;
     }
     let (sa, ea) = (toks[a].start, toks[op - 1].start + toks[op - 1].text.len());
-    let (sb, eb) = (toks[op + 1].start, toks[b_end - 1].start + toks[b_end - 1].text.len());
+    let (sb, eb) = (
+        toks[op + 1].start,
+        toks[b_end - 1].start + toks[b_end - 1].text.len(),
+    );
     let (ta, tb) = (&src[sa..ea], &src[sb..eb]);
     let between = &src[ea..sb];
     let t = &toks[op];
@@ -487,7 +523,8 @@ mod tests {
 
     #[test]
     fn each_operator_writes_what_it_says() {
-        let src = "void main()\n{\n  float a = min(b.x, 2.0) - c / 4;\n  if (a < 1) { a += -b.y; }\n}\n";
+        let src =
+            "void main()\n{\n  float a = min(b.x, 2.0) - c / 4;\n  if (a < 1) { a += -b.y; }\n}\n";
         let s = sources(src);
         let has = |t: &str| s.iter().any(|m| m.contains(t));
         assert!(has("float a = max(b.x, 2.0) - c / 4;"), "min→max");
@@ -515,7 +552,10 @@ mod tests {
         assert!(!s.iter().any(|m| m.contains("a - c - b")), "{s:?}");
         assert!(!s.iter().any(|m| m.contains("x = a - c - b * d")), "{s:?}");
         let s = sources("void main() { x = f(a, b) / g[2].y; }");
-        assert!(s.iter().any(|m| m.contains("x = g[2].y / f(a, b);")), "{s:?}");
+        assert!(
+            s.iter().any(|m| m.contains("x = g[2].y / f(a, b);")),
+            "{s:?}"
+        );
     }
 
     #[test]
@@ -524,7 +564,11 @@ mod tests {
         assert_eq!(m[0].index, 1);
         assert_eq!(m[0].description, "3:7 min → max");
         assert!(m.windows(2).all(|w| w[0].index + 1 == w[1].index));
-        assert_eq!(mutants("void main()\n{\n  y = min(a, 1);\n}\n"), m, "deterministic");
+        assert_eq!(
+            mutants("void main()\n{\n  y = min(a, 1);\n}\n"),
+            m,
+            "deterministic"
+        );
     }
 
     #[test]
@@ -532,10 +576,24 @@ mod tests {
         let src = std::fs::read_to_string(crate::res::project_res_dir().join("sao.frag"))
             .expect("Res/sao.frag");
         let d = descriptions(&src);
-        for what in ["min → max", "max → min", "flip sign", "swap operands", "×2", "×0.5", "< → <=", "drop statement", ".x → .y"] {
+        for what in [
+            "min → max",
+            "max → min",
+            "flip sign",
+            "swap operands",
+            "×2",
+            "×0.5",
+            "< → <=",
+            "drop statement",
+            ".x → .y",
+        ] {
             assert!(d.iter().any(|s| s.contains(what)), "no `{what}` in {d:#?}");
         }
         // Nothing from the interface or the engine's defines.
-        assert!(!d.iter().any(|s| s.starts_with("12:") || s.starts_with("23:")), "{d:#?}");
+        assert!(
+            !d.iter()
+                .any(|s| s.starts_with("12:") || s.starts_with("23:")),
+            "{d:#?}"
+        );
     }
 }

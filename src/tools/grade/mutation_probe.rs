@@ -106,7 +106,11 @@ pub fn probe(step: Step, subject: &Subject, project_res: &Path) -> Result<Probe>
         Step::Sao => sao(&rig, &scene, &params)?,
         Step::Blur => blur(&rig, &scene, &params)?,
     };
-    Ok(Probe::Difference(if d.is_finite() { d.min(HUGE) } else { HUGE }))
+    Ok(Probe::Difference(if d.is_finite() {
+        d.min(HUGE)
+    } else {
+        HUGE
+    }))
 }
 
 /// Largest `|a − b| / scale(b)`, NaN and Inf counting as `HUGE`.
@@ -163,7 +167,8 @@ fn restore(rig: &Rig, scene: &SynthScene) -> Result<f64> {
             .iter()
             .map(|(dx, dy)| stored[(y + dy) * w + x + dx] as f64)
             .fold(1.0, f64::min);
-        let bound = tol::RESTORE_ULPS * f32::EPSILON as f64 * (1.0 + b / ((2.0 * dv - 1.0) - b).abs());
+        let bound =
+            tol::RESTORE_ULPS * f32::EPSILON as f64 * (1.0 + b / ((2.0 * dv - 1.0) - b).abs());
         r.abs() * bound
     }))
 }
@@ -176,7 +181,11 @@ fn down_sampling(rig: &Rig, scene: &SynthScene) -> Result<f64> {
         lesson.targets.tex_depth.upload_f32(0, 1, &depth)?;
         lesson.down_sample(&rig.meshes);
         let t = &lesson.targets.tex_depth;
-        levels.push((1..t.levels()).map(|l| t.read_f32(l, 1)).collect::<Vec<_>>());
+        levels.push(
+            (1..t.levels())
+                .map(|l| t.read_f32(l, 1))
+                .collect::<Vec<_>>(),
+        );
     }
     for (r, s) in levels[0].iter().zip(&levels[1]) {
         diff = diff.max(worst(s, r, |_, r| tol::DOWN_REL * r.abs()));
@@ -219,7 +228,16 @@ fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
     let (w, h) = (scene.width as usize, scene.height as usize);
     let depth = scene.depth();
     let far = scene.camera.far;
-    let run = |lesson| run_sao(lesson, &rig.meshes, &scene.camera, &depth, params, Mips::Filled);
+    let run = |lesson| {
+        run_sao(
+            lesson,
+            &rig.meshes,
+            &scene.camera,
+            &depth,
+            params,
+            Mips::Filled,
+        )
+    };
     let r = run(&rig.reference)?;
     let raw = run(&rig.student)?;
     let sky = depth.iter().filter(|d| **d >= far).count();
@@ -232,7 +250,10 @@ fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
     let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
     let r: Vec<f32> = r.iter().map(|v| as_r8(*v)).collect();
     let mask = compared(&depth, w, h, far);
-    let (bs, br) = (block_means(&s, &mask, w, h, 8), block_means(&r, &mask, w, h, 8));
+    let (bs, br) = (
+        block_means(&s, &mask, w, h, 8),
+        block_means(&r, &mask, w, h, 8),
+    );
     let (mut sq, mut n) = (0.0f64, 0usize);
     for (a, b) in bs.iter().zip(&br) {
         if let (Some(a), Some(b)) = (a, b) {
@@ -248,7 +269,14 @@ fn blur(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
     let (w, h) = (scene.width as usize, scene.height as usize);
     let depth = scene.depth();
     let far = scene.camera.far;
-    let occ = run_sao(&rig.reference, &rig.meshes, &scene.camera, &depth, params, Mips::Filled)?;
+    let occ = run_sao(
+        &rig.reference,
+        &rig.meshes,
+        &scene.camera,
+        &depth,
+        params,
+        Mips::Filled,
+    )?;
     let occ: Vec<f32> = occ.iter().map(|v| as_r8(*v)).collect();
     let r = run_blur(&rig.reference, &rig.meshes, &depth, &occ)?;
     let raw = run_blur(&rig.student, &rig.meshes, &depth, &occ)?;

@@ -130,10 +130,7 @@ fn scratch() -> Result<Scratch> {
         .duration_since(std::time::UNIX_EPOCH)
         .map(|d| d.as_nanos())
         .unwrap_or(0);
-    let dir = std::env::temp_dir().join(format!(
-        "opengl3d-mutants-{}-{nanos}",
-        std::process::id()
-    ));
+    let dir = std::env::temp_dir().join(format!("opengl3d-mutants-{}-{nanos}", std::process::id()));
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create folder {}", dir.display()))?;
     Ok(Scratch(dir))
@@ -180,8 +177,8 @@ fn run_one(
         .arg("--work")
         .arg(root.join(format!("{id}-work")))
         .arg("--probe");
-    let child = Child::spawn(cmd, step)
-        .with_context(|| format!("cannot start {}", exe.display()))?;
+    let child =
+        Child::spawn(cmd, step).with_context(|| format!("cannot start {}", exe.display()))?;
     let report = child.finish(timeout);
     let (outcome, probe) = outcome(&report);
     // The mutant's folder is not needed any more; the scratch folder goes at the end anyway.
@@ -234,7 +231,11 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
         println!(
             "grading {} mutant(s) of {} ({jobs} at once)",
             work.len(),
-            steps.iter().map(|s| s.file()).collect::<Vec<_>>().join(", ")
+            steps
+                .iter()
+                .map(|s| s.file())
+                .collect::<Vec<_>>()
+                .join(", ")
         );
     }
     let bar = progress_bar(work.len());
@@ -257,7 +258,9 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
         }
     }
     let scores: Vec<StepScore> = per_step.into_iter().map(|(s, r)| score(s, r)).collect();
-    let passed = scores.iter().all(|s| s.score >= TARGET && s.grader_errors == 0);
+    let passed = scores
+        .iter()
+        .all(|s| s.score >= TARGET && s.grader_errors == 0);
     if args.json {
         let v = serde_json::json!({
             "passed": passed,
@@ -287,19 +290,28 @@ fn print_text(scores: &[StepScore], seconds: f64) {
             s.equivalent,
             s.does_not_build,
             100.0 * s.score,
-            if s.score >= TARGET { "" } else { "  (below 95%)" }
+            if s.score >= TARGET {
+                ""
+            } else {
+                "  (below 95%)"
+            }
         );
     }
     for s in scores {
         for r in s.results.iter().filter(|r| {
-            matches!(r.outcome, Outcome::Survived | Outcome::GraderError | Outcome::TimedOut)
+            matches!(
+                r.outcome,
+                Outcome::Survived | Outcome::GraderError | Outcome::TimedOut
+            )
         }) {
             let what = match r.outcome {
                 Outcome::Survived => "survived",
                 Outcome::TimedOut => "timed out",
                 _ => "grader error",
             };
-            let probe = r.probe.map_or(String::new(), |d| format!(" (probe {d:.2}× tolerance)"));
+            let probe = r
+                .probe
+                .map_or(String::new(), |d| format!(" (probe {d:.2}× tolerance)"));
             println!("  {what}: {} {}{probe}: {}", r.id, r.description, r.message);
         }
     }
@@ -320,16 +332,38 @@ mod tests {
     #[test]
     fn outcomes_follow_the_probe_and_the_verdict() {
         let o = |r: &StepReport| outcome(r).0;
-        assert_eq!(o(&report(false, "x", &[(PROBE_METRIC, 3.0)])), Outcome::Killed);
-        assert_eq!(o(&report(true, "x", &[(PROBE_METRIC, 3.0)])), Outcome::Survived);
-        assert_eq!(o(&report(true, "x", &[(PROBE_METRIC, 0.5)])), Outcome::Equivalent);
-        assert_eq!(o(&report(false, "x", &[(PROBE_METRIC, 1.0)])), Outcome::Equivalent);
         assert_eq!(
-            o(&report(false, "does not compile", &[(PROBE_BUILDS_METRIC, 0.0)])),
+            o(&report(false, "x", &[(PROBE_METRIC, 3.0)])),
+            Outcome::Killed
+        );
+        assert_eq!(
+            o(&report(true, "x", &[(PROBE_METRIC, 3.0)])),
+            Outcome::Survived
+        );
+        assert_eq!(
+            o(&report(true, "x", &[(PROBE_METRIC, 0.5)])),
+            Outcome::Equivalent
+        );
+        assert_eq!(
+            o(&report(false, "x", &[(PROBE_METRIC, 1.0)])),
+            Outcome::Equivalent
+        );
+        assert_eq!(
+            o(&report(
+                false,
+                "does not compile",
+                &[(PROBE_BUILDS_METRIC, 0.0)]
+            )),
             Outcome::DoesNotBuild
         );
-        assert_eq!(o(&report(false, "timed out after 20 s", &[])), Outcome::TimedOut);
-        assert_eq!(o(&report(false, "grader error: x", &[])), Outcome::GraderError);
+        assert_eq!(
+            o(&report(false, "timed out after 20 s", &[])),
+            Outcome::TimedOut
+        );
+        assert_eq!(
+            o(&report(false, "grader error: x", &[])),
+            Outcome::GraderError
+        );
     }
 
     #[test]

@@ -92,7 +92,11 @@ fn responses(v: &[f32], w: usize) -> Vec<Vec<((isize, isize), f32)>> {
 /// the weights are gaussian[|x|]·gaussian[|y|]); `None` when nothing is.
 fn impulse_fault(s: &[f32], r: &[f32], w: usize) -> Option<String> {
     for (rs, rr) in responses(s, w).iter().zip(responses(r, w)) {
-        let peak = rs.iter().map(|(_, v)| v.abs()).fold(0.0f32, f32::max).max(1e-12);
+        let peak = rs
+            .iter()
+            .map(|(_, v)| v.abs())
+            .fold(0.0f32, f32::max)
+            .max(1e-12);
         let small = |v: f32| v.abs() <= tol::BLUR_IMPULSE_REL * peak;
         let at = |dx: isize, dy: isize| {
             let n = 2 * IMPULSE_REACH + 1;

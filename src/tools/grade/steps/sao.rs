@@ -89,7 +89,8 @@ fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> 
                 continue;
             }
             quads += 1;
-            let apart = |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
+            let apart =
+                |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
             if apart(0, 1) || apart(2, 3) {
                 uneven += 1;
             }

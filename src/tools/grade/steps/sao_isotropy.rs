@@ -5,11 +5,11 @@
 //! angles in half the circle) darkens some sides more than others.
 
 use crate::ao::AoSettings;
+use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
 use crate::tools::grade::passes::{run_sao, Mips};
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{Aabb, SynthScene};
-use crate::math::Camera;
 use anyhow::Result;
 use glam::Vec3;
 
@@ -60,7 +60,16 @@ fn spread(b: [f64; 4]) -> f64 {
 pub fn anisotropy(rig: &Rig, params: &AoSettings, size: u32) -> Result<(f64, f64)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
-    let run = |lesson| run_sao(lesson, &rig.meshes, &scene.camera, &depth, params, Mips::Filled);
+    let run = |lesson| {
+        run_sao(
+            lesson,
+            &rig.meshes,
+            &scene.camera,
+            &depth,
+            params,
+            Mips::Filled,
+        )
+    };
     let s = run(&rig.student)?;
     let r = run(&rig.reference)?;
     Ok((spread(bands(&s, &scene)), spread(bands(&r, &scene))))
