@@ -523,8 +523,8 @@ mod tests {
 
     #[test]
     fn each_operator_writes_what_it_says() {
-        let src =
-            "void main()\n{\n  float a = min(b.x, 2.0) - c / 4;\n  if (a < 1) { a += -b.y; }\n}\n";
+        let src = "void main()\n{\n  float a = min(b.x, 2.0) - c / 4;\n  d = e - f;\n  \
+                   if (a < 1) { a += -b.y; }\n}\n";
         let s = sources(src);
         let has = |t: &str| s.iter().any(|m| m.contains(t));
         assert!(has("float a = max(b.x, 2.0) - c / 4;"), "min→max");
@@ -532,7 +532,9 @@ mod tests {
         assert!(has("float a = min(b.x, 4.0) - c / 4;"), "×2");
         assert!(has("float a = min(b.x, 1.0) - c / 4;"), "×0.5");
         assert!(has("float a = min(b.x, 2.0) + c / 4;"), "flip sign");
-        assert!(has("float a = c / 4 - min(b.x, 2.0);"), "swap -");
+        // `c / 4` is the right operand of `-`, not `c`: no swap there.
+        assert!(!has("float a = c - min(b.x, 2.0) / 4;"), "not a swap of -");
+        assert!(has("d = f - e;"), "swap -");
         assert!(has("float a = min(b.x, 2.0) - 4 / c;"), "swap /");
         assert!(has("c / 5;") && has("c / 3;"), "±1");
         assert!(has("if (a <= 1)"), "< → <=");
@@ -540,7 +542,7 @@ mod tests {
         assert!(has("a += b.y;"), "drop unary -");
         assert!(has("{  }"), "drop statement");
         // A declaration is never dropped: that only makes a compile error.
-        assert!(!has("{\n  \n  if"), "{s:?}");
+        assert!(!has("{\n  \n  d = e"), "{s:?}");
     }
 
     #[test]
