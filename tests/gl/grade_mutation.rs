@@ -122,5 +122,9 @@ fn the_grader_fails_every_observable_mutant_of_a_fixed_sample() {
 fn mutation_score_arguments_are_checked() {
     crate::common::fails_with(&["grade", "--mutation-score", "--class", "x"], &["--class"]);
     crate::common::fails_with(&["grade", "--jobs", "2"], &["--jobs"]);
+    crate::common::fails_with(
+        &["--res", ".", "grade", "--mutation-score"],
+        &["--res", "--mutation-score"],
+    );
     crate::common::fails_with(&["grade", "--mutation-sample", "2"], &["--mutation-score"]);
 }

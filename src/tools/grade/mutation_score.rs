@@ -228,14 +228,15 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
         .build()
         .map_err(|e| anyhow!("cannot start {jobs} threads: {e}"))?;
     if !args.json {
+        let files: Vec<&str> = steps.iter().map(|s| s.file()).collect();
         println!(
-            "grading {} mutant(s) of {} ({jobs} at once)",
-            work.len(),
-            steps
-                .iter()
-                .map(|s| s.file())
-                .collect::<Vec<_>>()
-                .join(", ")
+            "{}",
+            rust_i18n::t!(
+                "mutation.grading",
+                count = work.len(),
+                files = files.join(", "),
+                jobs = jobs
+            )
         );
     }
     let bar = progress_bar(work.len());

@@ -23,15 +23,12 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     let exe = std::env::current_exe().context("cannot find the opengl3d executable")?;
     if args.mutation_score {
         if let Some(res) = student {
-            bail!(
-                "--res {} and --mutation-score: the score is of the grader, on the project's shaders",
-                res.display()
-            );
+            bail!("{}", t!("mutation.with_res", dir = res.display()));
         }
         return mutation_score::run(&exe, &steps, args, timeout);
     }
     if args.jobs.is_some() && args.class.is_none() {
-        bail!("--jobs goes with --class or --mutation-score");
+        bail!("{}", t!("mutation.jobs_alone"));
     }
     if let Some(dir) = &args.class {
         if let Some(res) = student {
