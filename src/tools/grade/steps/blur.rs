@@ -1,7 +1,9 @@
 //! The blur step (`sao_blur.frag`): the project's SAO output of the first scene, plus a panel with a
 //! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
-//! smoothed with its mean kept, nothing may leak into the sky, and the RMSE against the project's
-//! `sao_blur.frag` is bounded (loosely: the lesson's listing has wider weights).
+//! smoothed with its mean kept, nothing may leak into the sky, the response to a single occluded
+//! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
+//! mirror-symmetric, and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the
+//! lesson's listing has wider weights).
 
 use crate::ao::AoSettings;
 use crate::tools::grade::measure::{as_r8, mean_and_std};

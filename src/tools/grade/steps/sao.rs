@@ -5,8 +5,10 @@
 //! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
 //! camera and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
 //! mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth edges
-//! they legitimately differ); and that far samples come from mip levels 1–3 (the output must move
-//! when those levels are emptied, about as much as the project's does).
+//! they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing the camera
+//! end up equal); the same occlusion in every direction (`sao_isotropy`); and that far samples
+//! come from mip levels 1–3 and near ones from level 0 (the output must move when levels 1–3 are
+//! emptied, about as much as the project's does: not much less, not far more).
 
 use crate::ao::AoSettings;
 use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
