@@ -127,4 +127,8 @@ fn mutation_score_arguments_are_checked() {
         &["--res", "--mutation-score"],
     );
     crate::common::fails_with(&["grade", "--mutation-sample", "2"], &["--mutation-score"]);
+    crate::common::fails_with(
+        &["grade", "--mutation-score", "--mutation-sample", "0"],
+        &["--mutation-sample 0"],
+    );
 }

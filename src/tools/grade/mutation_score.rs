@@ -210,6 +210,9 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
         Some(n) => n,
         None => std::thread::available_parallelism().map_or(1, |n| n.get()),
     };
+    if args.mutation_sample == Some(0) {
+        bail!("--mutation-sample 0: give at least 1 (a score of no mutants says nothing)");
+    }
     let project = project_res_dir();
     let mut work: Vec<(Step, Mutant)> = Vec::new();
     for &step in steps {
