@@ -182,6 +182,11 @@ fails! {
     sao_including_from_above_its_folder_is_refused_unread: "sao-include-parent" => ["sao-include-parent/sao.frag:3: #include \"../rewrite-sao-include/sao_helpers.glsl\" goes up with '..'"],
     blur_without_normalisation_fails: "blur-no-normalise" => ["not normalised", "totalWeight"],
     blur_without_the_edge_weight_fails: "blur-no-edge-weight" => ["across a depth edge"],
+    blur_ignoring_blur_scale_fails: "blur-no-blur-scale" => ["reads the wrong texels", "blurScale"],
+    blur_with_an_edge_distance_ten_times_too_large_fails: "blur-edge-distance-x10" => ["across a depth edge"],
+    sao_without_the_2x2_smoothing_fails: "sao-no-smoothing" => ["2×2 smoothing"],
+    sao_with_the_2x2_smoothing_of_the_wrong_sign_fails: "sao-smoothing-wrong-sign" => ["2×2 smoothing"],
+    sao_with_the_mip_level_inverted_fails: "sao-mip-level-inverted" => ["flat and open but occluded"],
 }
 
 #[test]

@@ -14,6 +14,7 @@ mod gl_basics;
 mod grade;
 mod grade_class;
 mod grade_class_zip;
+mod grade_mutation;
 mod i18n;
 mod inputs;
 mod lessons_ja;

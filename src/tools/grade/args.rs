@@ -70,9 +70,17 @@ pub struct GradeArgs {
     /// Grade a whole class: each folder in DIR is one student's shaders (named after the folder).
     #[arg(long, value_name = "DIR", conflicts_with = "json")]
     pub class: Option<PathBuf>,
-    /// With --class, how many students are graded at once (default: the number of cores).
-    #[arg(long, value_name = "N", requires = "class")]
+    /// With --class, how many students are graded at once; with --mutation-score, how many mutants
+    /// (default: the number of cores).
+    #[arg(long, value_name = "N")]
     pub jobs: Option<usize>,
+    /// Measure the grader: grade every mutant of the project's lesson shaders (of --step, or all
+    /// four) and print per step the fraction of the observable mutants it fails (target 95%).
+    #[arg(long, conflicts_with_all = ["class", "lesson", "out"])]
+    pub mutation_score: bool,
+    /// With --mutation-score, only N mutants per step, evenly spread (a quick sample).
+    #[arg(long, value_name = "N", requires = "mutation_score")]
+    pub mutation_sample: Option<usize>,
     /// Seconds each step may take before it counts as hung (an endless loop in a shader).
     #[arg(long, default_value_t = 20.0, value_name = "SECONDS")]
     pub timeout: f64,
@@ -96,6 +104,10 @@ pub struct GradeStepArgs {
     /// (`sao.frag` at steps 6–7) is checked as far as it is written.
     #[arg(long)]
     pub lesson: Option<u32>,
+    /// Also render the mutation-testing probe and add its difference from the project's output to
+    /// the report's metrics (`grade --mutation-score`).
+    #[arg(long)]
+    pub probe: bool,
 }
 
 /// The lesson step the children are told about: `--lesson N`, unless `--step` chose the steps (then

@@ -6,8 +6,8 @@
 //! | `restore` | `sao_restore_depth.frag` | the exact (f64) inverse of the projection of the nearest of each 2×2 block, within float precision |
 //! | `down-sampling` | `sao_down_sampling.frag` | the exact min of each 2×2 block, level by level |
 //! | `simple` | `simple.frag` | the project's `Res/simple.frag`: an RGBA texture drawn at twice its size, every channel as `texture()` gives it, and the lesson's composite over an image |
-//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain: mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, far samples read from mip levels 1–3 |
-//! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input: RMSE, edges kept, flat surfaces smoothed, mean kept |
+//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain: mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
+//! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input: RMSE, edges kept (one 0.5 m deep), flat surfaces smoothed, mean kept, the impulse response's footprint and symmetry |
 //!
 //! Each step is graded on its own, from the project's inputs (a broken restore pass does not fail the
 //! SAO step). With `--res DIR`, a step whose file is missing from DIR (or misnamed, a folder, a
@@ -32,6 +32,9 @@
 //! render into R32F targets (the engine's are R8), so an output that is not normalised shows its
 //! real size.
 //!
+//! `--mutation-score` measures the grader itself: `mutate` writes mutants of the project's shaders,
+//! `mutation_probe` tells which differ observably, `mutation_score` counts how many of those fail.
+//!
 //! `--class DIR` grades every folder (or `.zip`) in DIR as one student, `--jobs` of them at once,
 //! each exactly as `--res` grades one, and writes results.csv, report.html (with the failing
 //! steps' heat maps) and junit.xml into `--out`.
@@ -51,6 +54,9 @@ mod class;
 mod class_report;
 mod interface;
 mod measure;
+mod mutate;
+mod mutation_probe;
+mod mutation_score;
 mod passes;
 pub mod picture;
 mod report;

@@ -3,6 +3,7 @@
 
 use super::args::{selected_steps, GradeArgs};
 use super::class;
+use super::mutation_score;
 use super::report;
 use super::student::{self, Grading};
 use crate::res::{project_res_dir, ResDirs};
@@ -20,6 +21,15 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     }
     let timeout = Duration::from_secs_f64(args.timeout);
     let exe = std::env::current_exe().context("cannot find the opengl3d executable")?;
+    if args.mutation_score {
+        if let Some(res) = student {
+            bail!("{}", t!("mutation.with_res", dir = res.display()));
+        }
+        return mutation_score::run(&exe, &steps, args, timeout);
+    }
+    if args.jobs.is_some() && args.class.is_none() {
+        bail!("{}", t!("mutation.jobs_alone"));
+    }
     if let Some(dir) = &args.class {
         if let Some(res) = student {
             bail!(

@@ -104,6 +104,22 @@ fn set_message(report: &mut StepReport, message: Text) {
     report.message_localised = message.localised;
 }
 
+/// Renders the mutation-testing probe and adds what it found to the report's metrics; a probe the
+/// grader cannot run is said with the verdict (and leaves no metric, so the mutant is not counted).
+fn add_probe(step: Step, subject: &Subject, project: &Path, report: &mut StepReport) {
+    use super::mutation_probe::{probe, Probe};
+    use super::mutation_score::{PROBE_BUILDS_METRIC, PROBE_METRIC};
+    match probe(step, subject, project) {
+        Ok(Probe::Difference(d)) => {
+            report.metrics.insert(PROBE_METRIC.into(), d);
+        }
+        Ok(Probe::DoesNotBuild) => {
+            report.metrics.insert(PROBE_BUILDS_METRIC.into(), 0.0);
+        }
+        Err(e) => report.message = format!("{} (grader error in the probe: {e:#})", report.message),
+    }
+}
+
 /// The child: grades one step and prints its report as one JSON line on stdout.
 pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
     let project = project_res_dir();
@@ -159,6 +175,9 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
                 }
             }
             set_message(&mut report, message);
+            if args.probe {
+                add_probe(step, &subject, &project, &mut report);
+            }
         }
     }
     // The verdict stands whatever happens to the copy: a folder left behind is only reported.

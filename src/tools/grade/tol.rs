@@ -43,15 +43,36 @@ pub const SAO_BAD_PIXEL_FRACTION: f64 = 0.01;
 /// SAO: emptying mip levels 1–3 must move the student's output by at least this fraction of
 /// what it moves the project's (listing 1.24, rewrite 1.25; every sample from level 0: 0)...
 pub const SAO_MIP_USE: f64 = 0.25;
+/// ...and at most this (near samples reading levels 1–3 too: mip level inverted 5.0, level 0
+/// never read 12.6)...
+pub const SAO_MIP_USE_MAX: f64 = 2.5;
 /// ...when the project's own output moves by more than this (mean |Δ| per non-sky pixel; it
 /// moves by 0.0034 on the three scenes); otherwise the scenes do not exercise the mips and the
 /// check is skipped.
 pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
+/// SAO: two diagonal pixels of a 2×2 quad that the lesson's smoothing evens out count as equal
+/// within this (float rounding of the two steps leaves about 1e-7; one step of the engine's 8-bit
+/// target is 0.004).
+pub const SAO_QUAD_SPREAD: f64 = 1e-3;
+/// SAO: the fraction of such quads that may be uneven: the project, both listings and the rewrite
+/// leave none; without the smoothing, or with its sign wrong, 19% are (the rest are open, all 0).
+/// A few quads where the two rows took different branches are forgiven.
+pub const SAO_UNEVEN_QUADS: f64 = 0.05;
+/// SAO: beside a square panel raised from a wall (seen head-on), the four sides' occlusion may
+/// spread by this fraction of its mean (project 0.067, listing 0.027, rewrite 0.075; twoPi = π, a
+/// spiral over half the circle: 0.86).
+pub const SAO_ANISOTROPY: f64 = 0.3;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
+/// Blur: in the response to a single occluded texel, a value counts as "no tap" below this fraction
+/// of the response's peak, and mirror images must agree within it. Float rounding leaves about 1e-6
+/// of the peak; the weakest tap is 17% of the peak with the port's weights and 12% with the lesson's
+/// (its centre weight is the smallest), so a missing or extra tap is far above it.
+pub const BLUR_IMPULSE_REL: f32 = 0.01;
 /// Blur: at a depth edge the near side must stay above 1 − this and the far side below this
-/// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48).
+/// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48; measured with the far side 10 m away, the
+/// panel's far side is now 0.5 m behind, which the lesson's weight cuts just as fully).
 pub const BLUR_EDGE_ABS: f64 = 0.05;
 /// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
 /// (input 0.290; reference 0.038, listing 0.036).

@@ -1,7 +1,9 @@
 //! The blur step (`sao_blur.frag`): the project's SAO output of the first scene, plus a panel with a
 //! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
-//! smoothed with its mean kept, nothing may leak into the sky, and the RMSE against the project's
-//! `sao_blur.frag` is bounded (loosely: the lesson's listing has wider weights).
+//! smoothed with its mean kept, nothing may leak into the sky, the response to a single occluded
+//! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
+//! mirror-symmetric, and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the
+//! lesson's listing has wider weights).
 
 use crate::ao::AoSettings;
 use crate::i18n::Text;
@@ -28,7 +30,9 @@ fn noise(x: usize, y: usize) -> f32 {
 }
 
 /// The blur's synthetic panel (rows bottom-up): lower half a noisy flat surface at 5 m with sky on
-/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one (10 m) right.
+/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one right. The
+/// far side is only 0.5 m behind (a kerb, a table top): the lesson's edge distance (0.15 m) cuts
+/// it fully, one ten times too large does not.
 fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
     let mut depth = vec![0f32; w * h];
     let mut occ = vec![0f32; w * h];
@@ -47,12 +51,97 @@ fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
                 depth[i] = 2.0;
                 occ[i] = 1.0;
             } else {
-                depth[i] = 10.0;
+                depth[i] = 2.5;
                 occ[i] = 0.0;
             }
         }
     }
     (depth, occ)
+}
+
+/// Where the impulse input has its single occluded texels (one on even, one on odd coordinates).
+const IMPULSES: [(usize, usize); 2] = [(40, 40), (89, 87)];
+/// How far the impulse response is read around each impulse (the blur's reach is 8 texels).
+const IMPULSE_REACH: isize = 10;
+
+/// A flat surface at 5 m, open but for single fully occluded texels: blurred, each shows the blur's
+/// footprint and weights (its impulse response).
+fn impulse_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let mut occ = vec![0f32; w * h];
+    for (x, y) in IMPULSES {
+        occ[y * w + x] = 1.0;
+    }
+    (vec![5.0; w * h], occ)
+}
+
+/// The impulse responses around `IMPULSES` in `v`, each as (dx, dy) → value.
+fn responses(v: &[f32], w: usize) -> Vec<Vec<((isize, isize), f32)>> {
+    IMPULSES
+        .iter()
+        .map(|&(x, y)| {
+            let mut out = Vec::new();
+            for dy in -IMPULSE_REACH..=IMPULSE_REACH {
+                for dx in -IMPULSE_REACH..=IMPULSE_REACH {
+                    let (px, py) = ((x as isize + dx) as usize, (y as isize + dy) as usize);
+                    out.push(((dx, dy), v[py * w + px]));
+                }
+            }
+            out
+        })
+        .collect()
+}
+
+/// What is wrong with the student's impulse responses `s` next to the reference's `r`: a tap
+/// missing or added (the footprint), or a response that is not mirror-symmetric (x, y, and x↔y:
+/// the weights are gaussian[|x|]·gaussian[|y|]); `None` when nothing is.
+fn impulse_fault(s: &[f32], r: &[f32], w: usize) -> Option<Text> {
+    for (rs, rr) in responses(s, w).iter().zip(responses(r, w)) {
+        let peak = rs
+            .iter()
+            .map(|(_, v)| v.abs())
+            .fold(0.0f32, f32::max)
+            .max(1e-12);
+        let small = |v: f32| v.abs() <= tol::BLUR_IMPULSE_REL * peak;
+        let at = |dx: isize, dy: isize| {
+            let n = 2 * IMPULSE_REACH + 1;
+            rs[((dy + IMPULSE_REACH) * n + dx + IMPULSE_REACH) as usize].1
+        };
+        // An extra tap first: it says more (blurScale ignored) than the taps it leaves out.
+        for added in [true, false] {
+            for (((dx, dy), v), (_, e)) in rs.iter().zip(&rr) {
+                if small(*e) == small(*v) || small(*e) != added {
+                    continue;
+                }
+                let (dx, dy) = (*dx, *dy);
+                return Some(if added {
+                    say!("grade.verdict.blur_impulse_extra", dx = dx, dy = dy)
+                } else {
+                    say!("grade.verdict.blur_impulse_missing", dx = dx, dy = dy)
+                });
+            }
+        }
+        for ((dx, dy), v) in rs.iter() {
+            let (dx, dy) = (*dx, *dy);
+            for (axis, m) in [
+                ("grade.verdict.axis_left_right", at(-dx, dy)),
+                ("grade.verdict.axis_up_down", at(dx, -dy)),
+                ("grade.verdict.axis_diagonal", at(dy, dx)),
+            ] {
+                if (v - m).abs() > tol::BLUR_IMPULSE_REL * peak {
+                    let (got, mirror) = (format!("{v:.4}"), format!("{m:.4}"));
+                    return Some(say!(
+                        l => "grade.verdict.blur_not_symmetric",
+                        axis = rust_i18n::t!(axis, locale = l),
+                        got = got,
+                        mirror = mirror,
+                        dx = dx,
+                        dy = dy
+                    ));
+                }
+            }
+        }
+    }
+    None
 }
 
 /// Both sides' blur of a real SAO buffer (`a`: the project's occlusion of the first SAO scene) and
@@ -64,6 +153,9 @@ struct Runs {
     occ_b: Vec<f32>,
     reference_b: Vec<f32>,
     raw_b: Vec<f32>,
+    /// The impulse panel, the reference's and the student's.
+    reference_c: Vec<f32>,
+    raw_c: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
@@ -83,6 +175,9 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let (depth_b, occ_b) = blur_panel(w, h, far);
     let reference_b = run_blur(&rig.reference, &rig.meshes, &depth_b, &occ_b)?;
     let raw_b = run_blur(&rig.student, &rig.meshes, &depth_b, &occ_b)?;
+    let (depth_c, occ_c) = impulse_panel(w, h);
+    let reference_c = run_blur(&rig.reference, &rig.meshes, &depth_c, &occ_c)?;
+    let raw_c = run_blur(&rig.student, &rig.meshes, &depth_c, &occ_c)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -90,6 +185,8 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         occ_b,
         reference_b,
         raw_b,
+        reference_c,
+        raw_c,
     })
 }
 
@@ -104,6 +201,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         occ_b,
         reference_b: r_b,
         raw_b,
+        reference_c: r_c,
+        raw_c,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -112,6 +211,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     let nan = raw_a
         .iter()
         .chain(&raw_b)
+        .chain(&raw_c)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -229,6 +329,9 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     if sky_max > tol::BLUR_SKY_ABS {
         let sky = f2(sky_max);
         return verdict(false, say!("grade.verdict.blur_sky", sky = sky));
+    }
+    if let Some(fault) = impulse_fault(&raw_c, &r_c, w) {
+        return verdict(false, fault);
     }
     if rmse > tol::BLUR_RMSE {
         let (x, y) = (worst.1 % w, worst.1 / w);

@@ -6,6 +6,7 @@ mod down_sampling;
 mod restore;
 mod sao;
 mod sao_checkpoint;
+mod sao_isotropy;
 mod simple;
 
 pub use blur::{blur, BLUR_SIZE};
@@ -13,4 +14,4 @@ pub use down_sampling::down_sampling;
 pub use restore::{restore, MAIN_SIZE};
 pub use sao::{sao, SAO_SIZE};
 pub use sao_checkpoint::sao_checkpoint;
-pub use simple::{simple, SIMPLE_SIZE};
+pub use simple::{probe_difference as simple_probe, simple, SIMPLE_SIZE};

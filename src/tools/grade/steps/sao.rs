@@ -5,8 +5,10 @@
 //! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
 //! camera and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
 //! mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth edges
-//! they legitimately differ); and that far samples come from mip levels 1–3 (the output must move
-//! when those levels are emptied, about as much as the project's does).
+//! they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing the camera
+//! end up equal); the same occlusion in every direction (`sao_isotropy`); and that far samples
+//! come from mip levels 1–3 and near ones from level 0 (the output must move when levels 1–3 are
+//! emptied, about as much as the project's does: not much less, not far more).
 
 use crate::ao::AoSettings;
 use crate::i18n::Text;
@@ -70,6 +72,37 @@ fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
     m
 }
 
+/// Aligned 2×2 quads (even x and y) whose four pixels lie away from depth edges on surfaces facing
+/// the camera squarely (depth changing by under 2 cm per texel, as the lesson's 2×2 smoothing asks
+/// before it runs): (such quads, those whose diagonal pixels differ by more than
+/// `tol::SAO_QUAD_SPREAD`). The lesson's smoothing (x, then y of the result) leaves the quad's mean
+/// in all four pixels; taking both derivatives first, as a correct rewrite may, leaves each diagonal
+/// pair the mean of the other pair. Either way the diagonal pixels are equal; without the smoothing,
+/// or with its sign or pixel parity wrong, they are not.
+fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> (usize, usize) {
+    let (mut quads, mut uneven) = (0, 0);
+    for y in (2..h.saturating_sub(3)).step_by(2) {
+        for x in (2..w.saturating_sub(3)).step_by(2) {
+            let px = [(x, y), (x + 1, y + 1), (x + 1, y), (x, y + 1)].map(|(a, b)| b * w + a);
+            let square = px.iter().all(|&i| {
+                clean[i]
+                    && (depth[i + 1] - depth[i - 1]).abs() < 0.02
+                    && (depth[i + w] - depth[i - w]).abs() < 0.02
+            });
+            if !square {
+                continue;
+            }
+            quads += 1;
+            let apart =
+                |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
+            if apart(0, 1) || apart(2, 3) {
+                uneven += 1;
+            }
+        }
+    }
+    (quads, uneven)
+}
+
 /// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
 /// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
 /// those also facing the camera (`flat`).
@@ -97,6 +130,8 @@ struct Measured {
     worst_block: (f64, &'static str, usize, usize),
     probes: Vec<ProbeResult>,
     sky_max: f64,
+    /// Quads checked for the 2×2 smoothing, and those left uneven (`quad_parity`).
+    quads: (usize, usize),
 }
 
 fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
@@ -110,6 +145,7 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
     let mut worst_block = (0.0f64, "", 0usize, 0usize);
     let mut probes = vec![];
     let mut sky_max = 0.0f64;
+    let mut quads = (0usize, 0usize);
     for scene in scenes {
         let (w, h) = (scene.width as usize, scene.height as usize);
         let depth = scene.depth();
@@ -172,6 +208,8 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
                 clean_n += 1;
             }
         }
+        let (q, uneven) = quad_parity(&s, &depth, &clean, w, h);
+        quads = (quads.0 + q, quads.1 + uneven);
         let bs = block_means(&s, &flat, w, h, 8);
         let br = block_means(&r, &flat, w, h, 8);
         for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
@@ -232,6 +270,7 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
         worst_block,
         probes,
         sky_max,
+        quads,
     })
 }
 
@@ -295,6 +334,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         worst_block,
         probes,
         sky_max,
+        quads,
     } = match measure(rig, params, &scenes) {
         Ok(m) => m,
         Err(e) => return Verdict::grader_error(&e),
@@ -323,6 +363,8 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("over_one_fraction".into(), over as f64 / n);
     metrics.insert("negative_fraction".into(), negative as f64 / n);
     metrics.insert("sky_max".into(), sky_max);
+    let uneven = quads.1 as f64 / quads.0.max(1) as f64;
+    metrics.insert("uneven_quad_fraction".into(), uneven);
     let mean_err = (fmean_s - fmean_r) / fmean_r.max(1e-6);
     let falloff_err = probes
         .iter()
@@ -492,6 +534,12 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             },
         );
     }
+    if uneven > tol::SAO_UNEVEN_QUADS {
+        return verdict(false, {
+            let percent = format!("{:.0}", 100.0 * uneven);
+            say!("grade.verdict.sao_no_smoothing", percent = percent)
+        });
+    }
     if rmse > tol::SAO_BLOCK_RMSE {
         let (rmse, diff) = (f3(rmse), format!("{:+.2}", worst_block.0));
         return verdict(
@@ -516,7 +564,13 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         Err(e) => return Verdict::grader_error(&e),
     };
     let mip_use = mip_s / mip_r.max(1e-9);
+    let (aniso_s, aniso_r) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE) {
+        Ok(a) => a,
+        Err(e) => return Verdict::grader_error(&e),
+    };
     let mut metrics = metrics.clone();
+    metrics.insert("anisotropy".into(), aniso_s);
+    metrics.insert("anisotropy_reference".into(), aniso_r);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
@@ -533,6 +587,32 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             false,
             say!(
                 "grade.verdict.sao_no_mips",
+                got = got,
+                reference = reference
+            ),
+        );
+    }
+    if aniso_s > tol::SAO_ANISOTROPY {
+        let (spread, reference) = (
+            format!("{:.0}", 100.0 * aniso_s),
+            format!("{:.0}", 100.0 * aniso_r),
+        );
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.sao_anisotropy",
+                spread = spread,
+                reference = reference
+            ),
+        );
+    }
+    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use > tol::SAO_MIP_USE_MAX {
+        let got = format!("{:.4}", mip_s / scenes.len() as f64);
+        let reference = format!("{:.4}", mip_r / scenes.len() as f64);
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.sao_near_mips",
                 got = got,
                 reference = reference
             ),

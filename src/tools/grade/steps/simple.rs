@@ -44,27 +44,27 @@ fn hash(x: usize, y: usize, k: u32) -> f32 {
 
 /// The copy's texture, RGBA rows bottom-up: red ramps left to right, green bottom to top, blue and
 /// alpha are two noises, so that no flip, swap or broadcast leaves the picture unchanged.
-fn pattern(w: usize, h: usize) -> Vec<f32> {
+fn pattern(w: usize, h: usize, seed: u32) -> Vec<f32> {
     let mut v = Vec::with_capacity(w * h * 4);
     for y in 0..h {
         for x in 0..w {
             v.push((x as f32 + 0.5) / w as f32);
             v.push(0.1 + 0.8 * (y as f32 + 0.5) / h as f32);
-            v.push(hash(x, y, 1));
-            v.push(0.2 + 0.6 * hash(x, y, 2));
+            v.push(hash(x, y, seed + 1));
+            v.push(0.2 + 0.6 * hash(x, y, seed + 2));
         }
     }
     v
 }
 
 /// The image the composite darkens (RGBA, rows bottom-up, opaque).
-fn main_image(w: usize, h: usize) -> Vec<f32> {
+fn main_image(w: usize, h: usize, seed: u32) -> Vec<f32> {
     let mut v = Vec::with_capacity(w * h * 4);
     for y in 0..h {
         for x in 0..w {
             v.extend([
                 0.2 + 0.7 * x as f32 / w as f32,
-                0.5 + 0.4 * hash(x, y, 3),
+                0.5 + 0.4 * hash(x, y, seed + 3),
                 0.7,
                 1.0,
             ]);
@@ -145,16 +145,20 @@ struct Runs {
 }
 
 fn render(rig: &Rig) -> Result<Runs> {
-    let (w, h) = SIMPLE_SIZE;
+    render_input(rig, SIMPLE_SIZE, 0)
+}
+
+/// `render` on a `w`×`h` input made with noise `seed` (0: the step's own).
+fn render_input(rig: &Rig, (w, h): (u32, u32), seed: u32) -> Result<Runs> {
     let target = (2 * w, 2 * h);
-    let data = pattern(w as usize, h as usize);
+    let data = pattern(w as usize, h as usize, seed);
     let linear = texture(rig, (w, h), glow::RGBA32F, glow::LINEAR, 4, &data)?;
     let nearest = texture(rig, (w, h), glow::RGBA32F, glow::NEAREST, 4, &data)?;
     let occ: Vec<f32> = (0..(w * h) as usize)
-        .map(|i| hash(i % w as usize, i / w as usize, 4))
+        .map(|i| hash(i % w as usize, i / w as usize, seed + 4))
         .collect();
     let occlusion = texture(rig, (w, h), glow::R8, glow::LINEAR, 1, &occ)?;
-    let image = main_image(target.0 as usize, target.1 as usize);
+    let image = main_image(target.0 as usize, target.1 as usize, seed);
     let (reference, student) = (&rig.reference.prog_simple, &rig.student.prog_simple);
     Ok(Runs {
         copy_reference: draw_copy(rig, reference, &linear, target)?,
@@ -321,4 +325,14 @@ pub fn simple(rig: &Rig) -> Verdict {
             expected = format!("{:.3}", runs.composite_reference[comp_at])
         ),
     )
+}
+
+/// The mutation probe of this step: the copy and the composite of an input the step never uses
+/// (another size and other noise), the largest difference from the project's in units of
+/// `tol::SIMPLE_ABS`.
+pub fn probe_difference(rig: &Rig) -> Result<f64> {
+    let runs = render_input(rig, (36, 28), 10)?;
+    let copy = worst(&runs.copy, &runs.copy_reference).0;
+    let composite = worst(&runs.composite, &runs.composite_reference).0;
+    Ok(copy.max(composite) / tol::SIMPLE_ABS)
 }
