@@ -259,6 +259,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
     let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
     let scene = load_scene(&args.scene, res)?;
+    // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
+    let thickness = match (args.scene.thickness, args.screen_space) {
+        (Some(_), false) => bail!("--thickness applies to the screen-space reference: add --screen-space"),
+        (Some(t), true) => t,
+        (None, _) => f32::INFINITY,
+    };
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
     if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
@@ -280,9 +286,11 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     };
     let (w, h) = (scene.output.width, scene.output.height);
     let img = if args.screen_space {
+        use crate::tools::reference::DepthBuffer;
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-        let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
+        let depth = DepthBuffer::from_engine_with_guard_band(&mut engine, args.guard_band)?
+            .with_thickness(thickness);
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
@@ -296,7 +304,19 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     println!(
         "wrote {} ({}, {w}x{h}, {} triangles, R = {} m, {} rays/pixel, mean std error {:.4}, {} sky pixels)",
         args.out.display(),
-        if args.screen_space { "screen-space, from the depth buffer" } else { "ray-traced" },
+        if !args.screen_space {
+            "ray-traced".to_string()
+        } else {
+            format!(
+                "screen-space, from the depth buffer, {}, guard band {} px",
+                if thickness.is_finite() {
+                    format!("slabs {thickness} m thick")
+                } else {
+                    "infinite thickness".to_string()
+                },
+                args.guard_band
+            )
+        },
         bvh.triangle_count(),
         radius,
         args.rays,

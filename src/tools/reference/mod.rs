@@ -8,7 +8,9 @@
 
 mod cache;
 mod camera;
+mod depth_buffer;
 mod hash;
+mod heightfield;
 mod image;
 mod params;
 mod sampling;
@@ -21,7 +23,6 @@ pub use camera::{pixel_dir, view_direction};
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};
-pub use screen::{
-    load_or_render_screen_cached, render_screen_space, screen_cache_key, DepthBuffer,
-};
+pub use depth_buffer::DepthBuffer;
+pub use screen::{load_or_render_screen_cached, render_screen_space, screen_cache_key};
 pub use trace::render_reference;
