@@ -55,8 +55,13 @@ pub struct ReferenceArgs {
     /// wider field of view), so that surfaces just off the visible screen can occlude; the output
     /// stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
     /// (the model `vbao` uses) instead of an infinitely thick heightfield.
-    #[arg(long, value_name = "PX", default_value_t = 0, requires = "screen_space",
-          allow_negative_numbers = true)]
+    #[arg(
+        long,
+        value_name = "PX",
+        default_value_t = 0,
+        requires = "screen_space",
+        allow_negative_numbers = true
+    )]
     pub guard_band: u32,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]

@@ -261,7 +261,9 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     let scene = load_scene(&args.scene, res)?;
     // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
     let thickness = match (args.scene.thickness, args.screen_space) {
-        (Some(_), false) => bail!("--thickness applies to the screen-space reference: add --screen-space"),
+        (Some(_), false) => {
+            bail!("--thickness applies to the screen-space reference: add --screen-space")
+        }
         (Some(t), true) => t,
         (None, _) => f32::INFINITY,
     };

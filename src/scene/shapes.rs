@@ -287,9 +287,10 @@ pub fn to_obj(m: &MeshData, comment: &str) -> String {
     s
 }
 
-/// Every demo mesh: (file name under `Res/meshes/`, description, mesh).
+/// Every generated mesh: the courtyard's and those of the bench's thin-things and room scenes
+/// (`furniture.rs`): (file name under `Res/meshes/`, description, mesh).
 pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
-    vec![
+    let mut meshes = vec![
         (
             "ground.obj",
             "courtyard floor, 24 m square",
@@ -310,7 +311,9 @@ pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
             "torus lying on the floor",
             torus(0.6, 0.22, 40, 16),
         ),
-    ]
+    ];
+    meshes.extend(super::furniture::scene_meshes());
+    meshes
 }
 
 /// Writes the demo meshes into `dir` (normally `Res/meshes`).

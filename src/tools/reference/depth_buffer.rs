@@ -72,10 +72,7 @@ impl DepthBuffer {
     /// Size of the visible image (the buffer less its guard band).
     pub fn visible_size(&self) -> (u32, u32) {
         let g = 2 * self.guard_band;
-        (
-            self.width.saturating_sub(g),
-            self.height.saturating_sub(g),
-        )
+        (self.width.saturating_sub(g), self.height.saturating_sub(g))
     }
 
     /// The same buffer with its surfaces taken to be `thickness` metres thick (builder style).

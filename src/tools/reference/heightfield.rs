@@ -351,9 +351,9 @@ impl Heightfield {
             return false; // sky: no slab
         }
         let depth = corners.map(|w| 1.0 / w);
-        let (lo, hi) = depth
-            .iter()
-            .fold((f64::INFINITY, 0.0f64), |(lo, hi), z| (lo.min(*z), hi.max(*z)));
+        let (lo, hi) = depth.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
+            (lo.min(*z), hi.max(*z))
+        });
         hi - lo <= self.thickness
     }
 }
@@ -422,4 +422,3 @@ impl EdgeFamily {
         self.next_s = (self.k - self.u0) / self.du;
     }
 }
-

@@ -217,11 +217,16 @@ mod tests {
         // Left half: a plate at depth 3; right half: a wall at depth 5. A ray at constant depth
         // 4.5 from the wall's side towards the plate's passes 1.5 m behind the plate's surface.
         let field = |t: f32| {
-            Heightfield::new(&buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(t))
+            Heightfield::new(
+                &buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(t),
+            )
         };
         let o = DVec3::new(1.0, 0.0, -4.5);
         let left = DVec3::new(-1.0, 0.0, 0.0);
-        assert!(!field(0.5).blocked(o, left, 2.0), "through the silhouette's gap");
+        assert!(
+            !field(0.5).blocked(o, left, 2.0),
+            "through the silhouette's gap"
+        );
         assert!(field(1.6).blocked(o, left, 2.0), "into the slab [3, 4.6]");
         assert!(field(f32::INFINITY).blocked(o, left, 2.0));
         // Not far enough to reach the plate's side of the screen.

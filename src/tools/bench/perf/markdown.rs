@@ -273,7 +273,10 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
         s,
         "| scene | method | setting | ceiling thickness | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM | parts PSNR dB | gap dB (max) | adds up | ceiling above method |"
     )?;
-    writeln!(s, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|")?;
+    writeln!(
+        s,
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
+    )?;
     for row in &r.rows {
         let thickness = row
             .ceiling_thickness
@@ -295,8 +298,16 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
             f(row.parts_psnr, 2),
             f(row.split_gap_db, 2),
             f(row.split_gap_max_db, 2),
-            if row.split_gap_max_db <= ADDS_UP_DB { "yes" } else { "no" },
-            if row.depth_buffer_error.psnr > row.psnr { "yes" } else { "no" },
+            if row.split_gap_max_db <= ADDS_UP_DB {
+                "yes"
+            } else {
+                "no"
+            },
+            if row.depth_buffer_error.psnr > row.psnr {
+                "yes"
+            } else {
+                "no"
+            },
         )?;
     }
     let adds_up = r

@@ -61,7 +61,9 @@ pub struct Row {
     pub depth_buffer_error: Metrics,
     pub sampling_error: Metrics,
     /// Thickness (m) of the depth buffer's surfaces in this row's screen-space reference: the
-    /// method's own model (`vbao`: its slab thickness); `None` for the infinitely thick heightfield.
+    /// method's own model (`vbao`: its slab thickness); `None` (left out of the JSON) for the
+    /// infinitely thick heightfield.
+    #[serde(skip_serializing_if = "Option::is_none")]
     pub ceiling_thickness: Option<f32>,
     /// Means over the test cameras of `CameraError::parts_psnr` and of (raw PSNR − parts PSNR);
     /// the largest |raw PSNR − parts PSNR| of a test camera. The split adds up when the gap is small.

@@ -67,14 +67,8 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
         let ceilings = ceilings(&plan, &engine.ao_settings);
-        let screen = references::screen_references(
-            &mut engine,
-            sd,
-            &ceilings,
-            cfg,
-            &pb,
-            &mut screen_count,
-        )?;
+        let screen =
+            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?;
         engine.resize(cfg.width, cfg.height)?;
         for (method, settings) in &plan {
             for s in settings {

@@ -2,7 +2,7 @@
 //! the references at every bench camera.
 
 use super::config::PerfConfig;
-use super::references::{ceiling_thickness, ScreenMap, SceneData};
+use super::references::{ceiling_thickness, SceneData, ScreenMap};
 use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
 use crate::render::{Engine, View};
@@ -239,9 +239,8 @@ fn camera_errors(
         };
         // What the method's PSNR would be if its error were the two parts' errors added in
         // squares (uncorrelated): MSE_total ≈ MSE_depth_buffer + MSE_sampling.
-        let parts_psnr = metrics::psnr_from_mse(
-            depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2),
-        );
+        let parts_psnr =
+            metrics::psnr_from_mse(depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2));
         cameras.push(CameraError {
             scene: sd.name.clone(),
             camera: cam.name.clone(),
