@@ -263,6 +263,12 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
     Ok(s)
 }
 
+/// Mean of a per-camera figure over a row's test cameras.
+fn mean_test(row: &Row, pick: impl Fn(&super::report::CameraError) -> f64) -> f64 {
+    let test: Vec<f64> = row.cameras.iter().filter(|c| !c.train).map(pick).collect();
+    test.iter().sum::<f64>() / test.len().max(1) as f64
+}
+
 /// Allowed gap (dB) between a method's PSNR and the PSNR of its two parts added in squares.
 const ADDS_UP_DB: f64 = 1.0;
 
@@ -271,11 +277,11 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
     writeln!(s, "## Error split: depth buffer against sampling\n")?;
     writeln!(
         s,
-        "| scene | method | setting | ceiling thickness | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM | parts PSNR dB | gap dB (max) | adds up | ceiling above method |"
+        "| scene | method | setting | ceiling thickness | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM | ceiling noise σ | parts PSNR dB | gap dB (max) | adds up | ceiling above method |"
     )?;
     writeln!(
         s,
-        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
     )?;
     for row in &r.rows {
         let thickness = row
@@ -283,7 +289,7 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
             .map_or("∞".to_string(), |t| format!("{t} m"));
         writeln!(
             s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} | {} |",
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} | {} |",
             scene_of(row),
             row.method,
             row.setting,
@@ -295,6 +301,7 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
             f(row.sampling_error.rmse, 4),
             f(row.sampling_error.psnr, 2),
             f(row.sampling_error.ssim, 4),
+            f(mean_test(row, |c| c.ceiling_noise_rms), 4),
             f(row.parts_psnr, 2),
             f(row.split_gap_db, 2),
             f(row.split_gap_max_db, 2),
@@ -324,8 +331,12 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
         s,
         "\nThe depth-buffer columns depend only on the camera, the radius and the ceiling's thickness. \
          **Does the split add up?** For each test camera, **parts PSNR** = 10·log10(1 / (RMSE_db² + \
-         RMSE_s²)), the PSNR the method would have if its error against the ray-traced reference were \
-         the depth buffer's error and its sampling error added in squares (uncorrelated); **gap** = \
+         RMSE_s² − 2σ²)), the PSNR the method would have if its error against the ray-traced reference \
+         were the depth buffer's error and its sampling error added in squares (uncorrelated), where \
+         σ² (**ceiling noise**, shown as the RMS σ) is the mean squared standard error of the \
+         screen-space reference: its Monte Carlo noise is in both parts but not in the total, so it is \
+         taken out twice (the ray-traced reference's noise is in the total and the depth-buffer part \
+         alike); **gap** = \
          method PSNR − parts PSNR (mean over the test cameras; in brackets the largest |gap| of one \
          camera). A positive gap means the two parts partly cancel (the method under-darkens where the \
          depth buffer over-darkens), a negative one that they add up more than in squares. **Adds up**: \

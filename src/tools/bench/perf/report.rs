@@ -20,8 +20,12 @@ pub struct CameraError {
     pub depth_buffer_error: Metrics,
     /// The method (raw) against the screen-space reference: what its sampling loses (no FLIP).
     pub sampling_error: Metrics,
-    /// 10·log10(1 / (RMSE_depth_buffer² + RMSE_sampling²)): the raw PSNR the method would have if
-    /// the two parts' errors added up in squares (test cameras; 0 errors give the cap).
+    /// RMS over the pixels of the screen-space reference's standard error: its Monte Carlo noise,
+    /// which both parts contain and the total does not (test cameras; 0 on training cameras).
+    pub ceiling_noise_rms: f64,
+    /// 10·log10(1 / (RMSE_depth_buffer² + RMSE_sampling² − 2·ceiling_noise_rms²)): the raw PSNR the
+    /// method would have if the two parts' errors added up in squares (test cameras; 0 errors give
+    /// the cap).
     pub parts_psnr: f64,
 }
 

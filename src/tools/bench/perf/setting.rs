@@ -220,8 +220,8 @@ fn camera_errors(
         // same pixels. Training cameras have no screen-space reference (the split is reported on
         // test cameras).
         let key = (ci, s.radius.to_bits(), thickness.to_bits());
-        let (depth_buffer_error, sampling_error) = match screen.get(&key) {
-            None => (Metrics::default(), Metrics::default()),
+        let (depth_buffer_error, sampling_error, ceiling_noise_rms) = match screen.get(&key) {
+            None => (Metrics::default(), Metrics::default(), 0.0),
             Some(ss) => {
                 if (ss.width, ss.height) != (r.width, r.height) {
                     bail!(
@@ -231,16 +231,28 @@ fn camera_errors(
                     );
                 }
                 let ss_gray = Gray::new(rw, rh, &ss.ao);
+                let (sum, n) = ss
+                    .std_error
+                    .iter()
+                    .zip(&mask)
+                    .filter(|(_, m)| **m)
+                    .fold((0.0f64, 0usize), |(s, n), (e, _)| {
+                        (s + (*e as f64).powi(2), n + 1)
+                    });
                 (
                     metrics::compare(reference, ss_gray, Some(&mask), false),
                     metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false),
+                    (sum / n.max(1) as f64).sqrt(),
                 )
             }
         };
-        // What the method's PSNR would be if its error were the two parts' errors added in
-        // squares (uncorrelated): MSE_total ≈ MSE_depth_buffer + MSE_sampling.
-        let parts_psnr =
-            metrics::psnr_from_mse(depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2));
+        // What the method's MSE would be if its error were the two parts' errors added in squares
+        // (uncorrelated). The screen-space reference's Monte Carlo noise is in both parts and not
+        // in the total, so its variance is taken out twice; the ray-traced reference's noise is in
+        // the total and in the depth-buffer part alike.
+        let parts_mse = depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2)
+            - 2.0 * ceiling_noise_rms.powi(2);
+        let parts_psnr = metrics::psnr_from_mse(parts_mse.max(0.0));
         cameras.push(CameraError {
             scene: sd.name.clone(),
             camera: cam.name.clone(),
@@ -249,6 +261,7 @@ fn camera_errors(
             fitted,
             depth_buffer_error,
             sampling_error,
+            ceiling_noise_rms,
             parts_psnr,
         });
     }
