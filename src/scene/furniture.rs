@@ -5,7 +5,7 @@
 //! slats are what a depth buffer of infinite thickness gets most wrong; ceilings, arches and shelves
 //! are overhangs that shade what lies under them.
 
-use super::shapes::add_box;
+use super::primitives::add_box;
 use crate::gl::mesh::MeshData;
 use glam::Vec3;
 

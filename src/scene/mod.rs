@@ -6,6 +6,7 @@ mod file;
 pub mod furniture;
 pub mod game_object;
 mod places;
+mod primitives;
 pub mod shapes;
 
 pub use check::{Issue, MAX_DEPTH_RATIO};
