@@ -175,7 +175,7 @@ impl DepthBuffer {
         let camera = engine.camera;
         let half = (camera.fov_y_deg as f64).to_radians() * 0.5;
         let wide = 2.0 * (half.tan() * gh as f64 / h.max(1) as f64).atan();
-        if !(wide.to_degrees() < 179.0) {
+        if wide.is_nan() || wide.to_degrees() >= 179.0 {
             bail!(
                 "guard band of {guard_band} pixels widens the {}° field of view past 179°",
                 camera.fov_y_deg
