@@ -119,7 +119,7 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
          count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
          error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
-         off-screen occluders: the same for every method at a camera and radius); **sampling \
+         off-screen occluders: the same for every method with the same thickness model at a camera and radius); **sampling \
          error** = the method (raw) against the screen-space reference (what its samples, mips, \
          blur and intensity lose). Both on the ray-traced reference's non-sky pixels, means over \
          the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
