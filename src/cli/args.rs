@@ -51,6 +51,18 @@ pub struct ReferenceArgs {
     /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
     #[arg(long)]
     pub screen_space: bool,
+    /// With --screen-space: render the depth buffer PX pixels wider on each side (same pixel size,
+    /// wider field of view), so that surfaces just off the visible screen can occlude; the output
+    /// stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
+    /// (the model `vbao` uses) instead of an infinitely thick heightfield.
+    #[arg(
+        long,
+        value_name = "PX",
+        default_value_t = 0,
+        requires = "screen_space",
+        allow_negative_numbers = true
+    )]
+    pub guard_band: u32,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,

@@ -280,6 +280,17 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
     let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
     let scene = load_scene(&args.scene, res)?;
+    // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
+    let thickness = match (args.scene.thickness, args.screen_space) {
+        (Some(_), false) => {
+            bail!("--thickness applies to the screen-space reference: add --screen-space")
+        }
+        (Some(crate::ao::Thickness::Metres(t)), true) => t,
+        (Some(crate::ao::Thickness::Backface), true) => {
+            bail!("--thickness backface: the screen-space reference has no back-face pass; give a thickness in metres")
+        }
+        (None, _) => f32::INFINITY,
+    };
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
     if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
@@ -301,9 +312,11 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     };
     let (w, h) = (scene.output.width, scene.output.height);
     let img = if args.screen_space {
+        use crate::tools::reference::DepthBuffer;
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-        let depth = crate::tools::reference::DepthBuffer::from_engine(&mut engine)?;
+        let depth = DepthBuffer::from_engine_with_guard_band(&mut engine, args.guard_band)?
+            .with_thickness(thickness);
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
@@ -315,9 +328,15 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     }
     let sky = img.sky_mask().iter().filter(|s| **s).count();
     let kind = if args.screen_space {
-        t!("reference.kind_screen")
+        let slabs = if thickness.is_finite() {
+            t!("reference.slabs", thickness = thickness)
+        } else {
+            t!("reference.infinite_thickness")
+        };
+        let guard = t!("reference.guard_band", px = args.guard_band);
+        format!("{}, {slabs}, {guard}", t!("reference.kind_screen"))
     } else {
-        t!("reference.kind_rays")
+        t!("reference.kind_rays").into_owned()
     };
     let error = format!("{:.4}", img.mean_std_error());
     println!(

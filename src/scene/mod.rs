@@ -3,8 +3,10 @@
 mod check;
 mod desc;
 mod file;
+pub mod furniture;
 pub mod game_object;
 mod places;
+mod primitives;
 pub mod shapes;
 
 pub use check::{Issue, MAX_DEPTH_RATIO};

@@ -1,100 +1,10 @@
 //! Procedural meshes for the demo courtyard, written to `Res/meshes/*.obj` by `opengl3d gen-demo`.
 //! Everything the demo shows is made here: nothing is downloaded.
 
+pub use super::primitives::{add_box, add_quad};
 use crate::gl::mesh::{MeshData, Vertex};
-use glam::{Vec2, Vec3};
+use glam::Vec3;
 use std::fmt::Write as _;
-
-/// Appends an axis-aligned box with flat normals (24 vertices, outward faces, CCW).
-pub fn add_box(m: &mut MeshData, min: Vec3, max: Vec3) {
-    let c = |x: bool, y: bool, z: bool| {
-        Vec3::new(
-            if x { max.x } else { min.x },
-            if y { max.y } else { min.y },
-            if z { max.z } else { min.z },
-        )
-    };
-    // Each face: normal and four corners counter-clockwise seen from outside.
-    let faces = [
-        (
-            Vec3::X,
-            [
-                c(true, false, true),
-                c(true, false, false),
-                c(true, true, false),
-                c(true, true, true),
-            ],
-        ),
-        (
-            Vec3::NEG_X,
-            [
-                c(false, false, false),
-                c(false, false, true),
-                c(false, true, true),
-                c(false, true, false),
-            ],
-        ),
-        (
-            Vec3::Y,
-            [
-                c(false, true, true),
-                c(true, true, true),
-                c(true, true, false),
-                c(false, true, false),
-            ],
-        ),
-        (
-            Vec3::NEG_Y,
-            [
-                c(false, false, false),
-                c(true, false, false),
-                c(true, false, true),
-                c(false, false, true),
-            ],
-        ),
-        (
-            Vec3::Z,
-            [
-                c(false, false, true),
-                c(true, false, true),
-                c(true, true, true),
-                c(false, true, true),
-            ],
-        ),
-        (
-            Vec3::NEG_Z,
-            [
-                c(true, false, false),
-                c(false, false, false),
-                c(false, true, false),
-                c(true, true, false),
-            ],
-        ),
-    ];
-    for (n, q) in faces {
-        add_quad(m, q, n);
-    }
-}
-
-/// Appends a quad (two triangles) with one normal.
-pub fn add_quad(m: &mut MeshData, q: [Vec3; 4], n: Vec3) {
-    let base = m.vertices.len() as u32;
-    let uv = [
-        Vec2::new(0.0, 0.0),
-        Vec2::new(1.0, 0.0),
-        Vec2::new(1.0, 1.0),
-        Vec2::new(0.0, 1.0),
-    ];
-    for (p, t) in q.iter().zip(uv) {
-        m.vertices.push(Vertex {
-            position: p.to_array(),
-            texcoord: t.to_array(),
-            normal: n.to_array(),
-        });
-    }
-    m.indices
-        .extend_from_slice(&[base, base + 1, base + 2, base + 2, base + 3, base]);
-}
 
 /// A horizontal ground plane of half-size `h`, split into `n`×`n` quads (keeps interpolation well behaved).
 pub fn ground(h: f32, n: u32) -> MeshData {
@@ -287,9 +197,10 @@ pub fn to_obj(m: &MeshData, comment: &str) -> String {
     s
 }
 
-/// Every demo mesh: (file name under `Res/meshes/`, description, mesh).
+/// Every generated mesh: the courtyard's and those of the bench's thin-things and room scenes
+/// (`furniture.rs`): (file name under `Res/meshes/`, description, mesh).
 pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
-    vec![
+    let mut meshes = vec![
         (
             "ground.obj",
             "courtyard floor, 24 m square",
@@ -310,7 +221,9 @@ pub fn demo_meshes() -> Vec<(&'static str, &'static str, MeshData)> {
             "torus lying on the floor",
             torus(0.6, 0.22, 40, 16),
         ),
-    ]
+    ];
+    meshes.extend(super::furniture::scene_meshes());
+    meshes
 }
 
 /// Writes the demo meshes into `dir` (normally `Res/meshes`).

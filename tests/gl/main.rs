@@ -4,6 +4,7 @@
 mod ao_resolution;
 mod bench;
 mod bench_skips;
+mod bench_split;
 mod blur_stripes;
 mod cli;
 #[path = "../common/mod.rs"]
@@ -22,6 +23,7 @@ mod methods;
 mod numerics;
 mod reference_analytic;
 mod reference_screen;
+mod reference_slabs;
 mod sao_pipeline;
 mod shader_interface;
 mod vbao;

@@ -15,7 +15,7 @@ use opengl3d::tools::reference::{
 };
 use std::f64::consts::PI;
 
-fn params(radius: f32, rays: u32) -> RefParams {
+pub(crate) fn params(radius: f32, rays: u32) -> RefParams {
     RefParams {
         radius,
         rays,
@@ -25,7 +25,7 @@ fn params(radius: f32, rays: u32) -> RefParams {
     }
 }
 
-fn ref_camera(e: &Engine) -> Camera {
+pub(crate) fn ref_camera(e: &Engine) -> Camera {
     Camera {
         up: Vec3::Y,
         ..e.camera
@@ -34,7 +34,14 @@ fn ref_camera(e: &Engine) -> Camera {
 
 /// Whether the cube of half-side `r` around `p` (and so the ball of radius r) projects inside
 /// the image with a one-pixel margin, entirely beyond the near plane.
-fn neighbourhood_on_screen(vp: &Mat4, near: f32, w: u32, h: u32, p: Vec3, r: f32) -> bool {
+pub(crate) fn neighbourhood_on_screen(
+    vp: &Mat4,
+    near: f32,
+    w: u32,
+    h: u32,
+    p: Vec3,
+    r: f32,
+) -> bool {
     let (mx, my) = (1.0 - 2.0 / w as f32, 1.0 - 2.0 / h as f32);
     (0..8).all(|k| {
         let c = p + Vec3::new(
@@ -49,7 +56,7 @@ fn neighbourhood_on_screen(vp: &Mat4, near: f32, w: u32, h: u32, p: Vec3, r: f32
 
 /// Size of pixel `p`'s footprint on the crease scene's surfaces (floor y = 0 or wall x = 0): the
 /// depth buffer resolves nothing finer, so the heightfield cuts the crease by about this much.
-fn crease_footprint(cam: &Camera, h: u32, p: Vec3) -> f32 {
+pub(crate) fn crease_footprint(cam: &Camera, h: u32, p: Vec3) -> f32 {
     let normal = if p.y.abs() < p.x.abs() {
         Vec3::Y
     } else {
@@ -62,12 +69,12 @@ fn crease_footprint(cam: &Camera, h: u32, p: Vec3) -> f32 {
 
 /// Pixels whose surface the depth buffer resolves at the scale of `radius` and that lie at least
 /// two footprints away from the crease line.
-fn resolved(cam: &Camera, h: u32, p: Vec3, radius: f32) -> bool {
+pub(crate) fn resolved(cam: &Camera, h: u32, p: Vec3, radius: f32) -> bool {
     let f = crease_footprint(cam, h, p);
     f < radius / 4.0 && p.x.max(p.y) > 2.0 * f
 }
 
-fn assert_valid(img: &RefImage) {
+pub(crate) fn assert_valid(img: &RefImage) {
     for i in 0..img.ao.len() {
         let (a, e, d) = (img.ao[i], img.std_error[i], img.linear_depth[i]);
         assert!(a.is_finite() && (0.0..=1.0).contains(&a), "ao[{i}] = {a}");
@@ -79,12 +86,12 @@ fn assert_valid(img: &RefImage) {
 /// Cosine-weighted probability that a ray from a point at distance `d` from an infinite wall
 /// perpendicular to the point's surface meets the wall within `r` (the circular segment beyond
 /// x = d/r of the unit disk that cosine-weighted directions project to, over π).
-fn crease_blocked(d: f64, r: f64) -> f64 {
+pub(crate) fn crease_blocked(d: f64, r: f64) -> f64 {
     let a = (d / r).clamp(0.0, 1.0);
     (a.acos() - a * (1.0 - a * a).sqrt()) / PI
 }
 
-fn crease_engine(
+pub(crate) fn crease_engine(
     ctx: &opengl3d::platform::HeadlessContext,
     name: &str,
     w: u32,

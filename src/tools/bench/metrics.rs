@@ -68,7 +68,7 @@ pub fn mse_mae(a: &[f32], b: &[f32], mask: Option<&[bool]>) -> (f64, f64, usize)
 }
 
 /// PSNR in dB for a peak of 1, capped at [`PSNR_CAP_DB`].
-fn psnr_from_mse(mse: f64) -> f64 {
+pub fn psnr_from_mse(mse: f64) -> f64 {
     if mse <= 0.0 {
         return PSNR_CAP_DB;
     }

@@ -8,7 +8,9 @@
 
 mod cache;
 mod camera;
+mod depth_buffer;
 mod hash;
+mod heightfield;
 mod image;
 mod params;
 mod sampling;
@@ -18,10 +20,9 @@ mod trace;
 
 pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
 pub use camera::{pixel_dir, view_direction};
+pub use depth_buffer::DepthBuffer;
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};
-pub use screen::{
-    load_or_render_screen_cached, render_screen_space, screen_cache_key, DepthBuffer,
-};
+pub use screen::{load_or_render_screen_cached, render_screen_space, screen_cache_key};
 pub use trace::render_reference;

@@ -7,15 +7,19 @@
 //!
 //! The quantity is the ray-traced reference's binary visibility: the fraction of cosine-weighted
 //! directions about the normal whose ray meets nothing within `radius` metres. The scene is
-//! replaced by the depth buffer with infinite thickness: a ray point is blocked when it lies
-//! behind the stored surface at its screen position.
+//! replaced by the depth buffer with infinite thickness by default: a ray point is blocked when it
+//! lies behind the stored surface at its screen position. With a finite
+//! [`DepthBuffer::thickness`] each surface is instead a slab that thick behind itself along its
+//! camera ray, the model `vbao` assumes (`heightfield.rs`), so the reference is the ceiling of a
+//! method with that model. A [`DepthBuffer::guard_band`] adds pixels around the visible image
+//! (rendered over a wider field of view) that occlude but are not shaded.
 //!
 //! * **Surface.** Each pixel centre is lifted to view space from its linear depth. Between pixel
 //!   centres the surface is the two triangles of each 2×2 cell (split along the cell's main
 //!   diagonal) with *inverse* depth interpolated linearly in screen space: inverse depth is affine
 //!   in screen space on any plane, so a planar surface is rebuilt exactly, and creases are cut
-//!   by at most one pixel. The image's outer half-pixel border is outside the heightfield, and rays
-//!   that leave the screen or cross the near plane see nothing more (the buffer knows nothing there).
+//!   by at most one pixel. The buffer's outer half-pixel border is outside the heightfield, and rays
+//!   that leave the buffer or cross the near plane see nothing more (the buffer knows nothing there).
 //! * **Normal.** From the depth buffer, not the triangles: per axis the one-sided difference whose
 //!   neighbour continues the pixel's own plane best (smallest error when the next two pixels
 //!   predict its inverse depth), so normals do not bend across creases and silhouettes.
@@ -33,417 +37,46 @@
 use std::path::Path;
 
 use anyhow::{bail, Result};
-use glam::DVec3;
 
 use super::cache;
+use super::depth_buffer::DepthBuffer;
 use super::hash::Fnv64;
+use super::heightfield::Heightfield;
 use super::image::{shade_image, RefImage};
 use super::params::{AoVariant, RefParams};
 use super::sampling;
-use crate::math::Camera;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
 const SCREEN_ALGORITHM_VERSION: u32 = 1;
 
-/// A depth buffer and the projection it was rendered with.
-#[derive(Clone, Debug, PartialEq)]
-pub struct DepthBuffer {
-    pub width: u32,
-    pub height: u32,
-    /// View distance (−z_view, metres) at each pixel centre, rows top-down; `f32::INFINITY` (or
-    /// anything not finite and > 0) for sky.
-    pub linear_depth: Vec<f32>,
-    /// Vertical field of view in degrees; the aspect ratio is width / height.
-    pub fov_y_deg: f32,
-    /// Near clip distance (metres): the buffer knows nothing closer.
-    pub near: f32,
-}
-
-impl DepthBuffer {
-    /// Checks the buffer's size and projection (clear errors instead of NaN later).
-    fn validate(&self) -> Result<()> {
-        let n = self.width as usize * self.height as usize;
-        if self.linear_depth.len() != n {
-            bail!(
-                "depth buffer of {} values does not match its {}x{} size",
-                self.linear_depth.len(),
-                self.width,
-                self.height
-            );
-        }
-        if !(self.fov_y_deg > 0.0 && self.fov_y_deg < 180.0) {
-            bail!(
-                "field of view {}° of the depth buffer: use (0, 180)",
-                self.fov_y_deg
-            );
-        }
-        if !(self.near > 0.0 && self.near.is_finite()) {
-            bail!("near plane {} of the depth buffer: use > 0", self.near);
-        }
-        Ok(())
-    }
-
-    /// The depth buffer of a ray-traced reference image (its `linear_depth`, same pixel centres).
-    pub fn from_reference(img: &RefImage, cam: &Camera) -> DepthBuffer {
-        DepthBuffer {
-            width: img.width,
-            height: img.height,
-            linear_depth: img.linear_depth.clone(),
-            fov_y_deg: cam.fov_y_deg,
-            near: cam.near,
-        }
-    }
-
-    /// Converts raw window-space depth values D in [0, 1] (rows top-down) written with `mode`'s
-    /// projection and these planes; the mode's cleared value (1 for D32, 0 for reversed-Z) is sky.
-    fn from_window_depth(
-        width: u32,
-        height: u32,
-        window_depth: &[f32],
-        mode: crate::math::DepthMode,
-        fov_y_deg: f32,
-        near: f32,
-        far: f32,
-    ) -> Result<DepthBuffer> {
-        if !(far > near && far.is_finite()) {
-            bail!("far plane {far} must be finite and beyond the near plane {near}");
-        }
-        let linear_depth = window_depth
-            .iter()
-            .map(|&d| {
-                if d.is_finite() && (0.0..=1.0).contains(&d) && d != mode.clear_value() {
-                    let z = crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
-                    if z.is_finite() && z > 0.0 {
-                        return z as f32;
-                    }
-                }
-                f32::INFINITY
-            })
-            .collect();
-        let buf = DepthBuffer {
-            width,
-            height,
-            linear_depth,
-            fov_y_deg,
-            near,
-        };
-        buf.validate()?;
-        Ok(buf)
-    }
-
-    /// The engine's full-resolution depth buffer at its current camera and size: renders the
-    /// opaque pass (through the linear-depth view, which runs no AO method) and reads the main
-    /// framebuffer's depth texture back.
-    pub fn from_engine(engine: &mut crate::render::Engine) -> Result<DepthBuffer> {
-        engine.render_values(crate::render::View::LinearDepth)?;
-        let Some(tex) = engine.fbo_main.depth_texture() else {
-            bail!("the engine's main framebuffer has no depth texture");
-        };
-        let (w, h) = (tex.width(), tex.height());
-        let mut raw = tex.read_f32(0, 1);
-        if let Some(e) = crate::gl::take_error(engine.gl()) {
-            bail!("{e} while reading the depth buffer");
-        }
-        crate::gl::readback::flip_rows(&mut raw, w as usize, h as usize);
-        let cam = engine.camera;
-        let mode = engine.depth_mode();
-        DepthBuffer::from_window_depth(w, h, &raw, mode, cam.fov_y_deg, cam.near, cam.far)
-    }
-
-    /// Stable content hash (every depth value's bits and the projection), for cache keys.
-    fn content_hash(&self) -> u64 {
-        let mut h = Fnv64::new();
-        h.u32(self.width);
-        h.u32(self.height);
-        h.f32(self.fov_y_deg);
-        h.f32(self.near);
-        for d in &self.linear_depth {
-            h.f32(*d);
-        }
-        h.0
-    }
-}
-
-/// Inverse depths of the buffer and its projection, in f64.
-struct Heightfield {
-    w: usize,
-    h: usize,
-    /// 1 / depth per pixel (rows top-down); 0 for sky (a surface at infinity blocks nothing).
-    inv: Vec<f64>,
-    /// tan(fov/2) · aspect and tan(fov/2): view-space x/−z and y/−z at the image edges.
-    sx: f64,
-    sy: f64,
-    near: f64,
-    /// Distance from the eye beyond which no stored surface lies (for unbounded rays).
-    max_dist: f64,
-}
-
-impl Heightfield {
-    fn new(buf: &DepthBuffer) -> Heightfield {
-        let (w, h) = (buf.width as usize, buf.height as usize);
-        let sy = (buf.fov_y_deg as f64).to_radians() * 0.5;
-        let sy = sy.tan();
-        let sx = sy * w as f64 / h.max(1) as f64;
-        let inv: Vec<f64> = buf
-            .linear_depth
-            .iter()
-            .map(|&d| {
-                if d.is_finite() && d > 0.0 {
-                    1.0 / d as f64
-                } else {
-                    0.0
-                }
-            })
-            .collect();
-        let max_depth = buf
-            .linear_depth
-            .iter()
-            .filter(|d| d.is_finite() && **d > 0.0)
-            .fold(0.0f64, |m, d| m.max(*d as f64));
-        Heightfield {
-            w,
-            h,
-            inv,
-            sx,
-            sy,
-            near: buf.near as f64,
-            max_dist: max_depth * (1.0 + sx * sx + sy * sy).sqrt(),
-        }
-    }
-
-    #[inline]
-    fn inv_at(&self, i: usize, j: usize) -> f64 {
-        self.inv[j * self.w + i]
-    }
-
-    /// View-space position of pixel (i, j)'s centre; `None` for sky.
-    fn point(&self, i: usize, j: usize) -> Option<DVec3> {
-        let inv = self.inv_at(i, j);
-        if inv <= 0.0 {
-            return None;
-        }
-        let ndc_x = 2.0 * (i as f64 + 0.5) / self.w as f64 - 1.0;
-        let ndc_y = 1.0 - 2.0 * (j as f64 + 0.5) / self.h as f64;
-        Some(DVec3::new(ndc_x * self.sx, ndc_y * self.sy, -1.0) / inv)
-    }
-
-    /// Grid coordinates (pixel centre (i, j) at (i, j)) and inverse depth of a view-space point
-    /// in front of the camera.
-    #[inline]
-    fn project(&self, q: DVec3) -> (f64, f64, f64) {
-        let inv = 1.0 / -q.z;
-        let ndc_x = q.x * inv / self.sx;
-        let ndc_y = q.y * inv / self.sy;
-        (
-            (ndc_x + 1.0) * 0.5 * self.w as f64 - 0.5,
-            (1.0 - ndc_y) * 0.5 * self.h as f64 - 0.5,
-            inv,
-        )
-    }
-
-    /// Inverse depth of the triangulated surface at grid point (x, y), inside [0, w−1]×[0, h−1].
-    #[inline]
-    fn surface(&self, x: f64, y: f64) -> f64 {
-        let i = (x.floor() as isize).clamp(0, self.w as isize - 2) as usize;
-        let j = (y.floor() as isize).clamp(0, self.h as isize - 2) as usize;
-        let (fx, fy) = (x - i as f64, y - j as f64);
-        let a = self.inv_at(i, j);
-        let d = self.inv_at(i + 1, j + 1);
-        if fx >= fy {
-            let b = self.inv_at(i + 1, j);
-            a + fx * (b - a) + fy * (d - b)
-        } else {
-            let c = self.inv_at(i, j + 1);
-            a + fy * (c - a) + fx * (d - c)
-        }
-    }
-
-    /// Error of predicting pixel k's inverse depth from the next two pixels in direction `step`
-    /// along one axis (`None` if the neighbour is missing or sky; large if only one exists).
-    fn side_error(&self, at: &dyn Fn(isize) -> Option<f64>, step: isize) -> Option<f64> {
-        let c = at(0)?;
-        let n1 = at(step)?;
-        Some(match at(2 * step) {
-            Some(n2) => (c - (2.0 * n1 - n2)).abs(),
-            None => f64::MAX,
-        })
-    }
-
-    /// Unit normal at pixel (i, j) from the depth buffer, facing the camera (see the module docs).
-    fn normal(&self, i: usize, j: usize, p: DVec3) -> DVec3 {
-        let facing = -p.normalize_or(DVec3::Z);
-        let tangent = |horizontal: bool| -> Option<DVec3> {
-            let at = |k: isize| -> Option<f64> {
-                let (x, y) = if horizontal {
-                    (i as isize + k, j as isize)
-                } else {
-                    (i as isize, j as isize + k)
-                };
-                if x < 0 || y < 0 || x >= self.w as isize || y >= self.h as isize {
-                    return None;
-                }
-                let v = self.inv_at(x as usize, y as usize);
-                (v > 0.0).then_some(v)
-            };
-            let fwd = self.side_error(&at, 1);
-            let back = self.side_error(&at, -1);
-            let use_fwd = match (fwd, back) {
-                (Some(f), Some(b)) => f <= b,
-                (Some(_), None) => true,
-                (None, Some(_)) => false,
-                (None, None) => return None,
-            };
-            let (x, y) = match (horizontal, use_fwd) {
-                (true, true) => (i + 1, j),
-                (true, false) => (i - 1, j),
-                (false, true) => (i, j + 1),
-                (false, false) => (i, j - 1),
-            };
-            let q = self.point(x, y)?;
-            Some(if use_fwd { q - p } else { p - q })
-        };
-        let n = match (tangent(true), tangent(false)) {
-            (Some(tx), Some(ty)) => tx.cross(ty).try_normalize(),
-            _ => None,
-        };
-        match n {
-            Some(n) if n.dot(facing) < 0.0 => -n,
-            Some(n) => n,
-            // A pixel without usable neighbours on an axis: assume it faces the camera.
-            None => facing,
-        }
-    }
-
-    /// Whether the segment `o + t·d`, t in (0, t_max], passes behind the surface (see the
-    /// module docs). `d` is a unit vector, `o` lies in front of the near plane.
-    fn blocked(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
-        if self.w < 2 || self.h < 2 {
-            return false; // no cell between pixel centres: no surface to pass behind
-        }
-        // Beyond max_dist + |o| from o, every point is deeper than any stored surface, so the
-        // first crossing (if any) happened before: the cap loses nothing.
-        let mut t1 = t_max.min(2.0 * (self.max_dist + o.length()));
-        let near_z = -self.near;
-        if d.z > 0.0 {
-            t1 = t1.min((near_z - o.z) / d.z);
-        }
-        if t1.is_nan() || t1 <= 0.0 || o.z > near_z {
-            return false;
-        }
-        let (ax, ay, aw) = self.project(o);
-        let (bx, by, bw) = self.project(o + d * t1);
-        let (dx, dy, dw) = (bx - ax, by - ay, bw - aw);
-        // Clip s in [0, 1] to the grid [0, w−1] × [0, h−1].
-        let (mut s0, mut s1) = (0.0f64, 1.0f64);
-        for (start, delta, hi) in [(ax, dx, (self.w - 1) as f64), (ay, dy, (self.h - 1) as f64)] {
-            if delta == 0.0 {
-                if start < 0.0 || start > hi {
-                    return false;
-                }
-                continue;
-            }
-            let (ta, tb) = ((0.0 - start) / delta, (hi - start) / delta);
-            s0 = s0.max(ta.min(tb));
-            s1 = s1.min(ta.max(tb));
-        }
-        if s0.is_nan() || s1.is_nan() || s0 > s1 {
-            return false;
-        }
-        let behind = |s: f64| -> bool {
-            let x = (ax + s * dx).clamp(0.0, (self.w - 1) as f64);
-            let y = (ay + s * dy).clamp(0.0, (self.h - 1) as f64);
-            aw + s * dw < self.surface(x, y)
-        };
-        if behind(s0) {
-            return true;
-        }
-        // The three families of cell edges the segment crosses: x = integer, y = integer,
-        // x − y = integer. Each gives evenly spaced s; they are merged in increasing order.
-        let mut families = [
-            EdgeFamily::new(ax, dx, s0),
-            EdgeFamily::new(ay, dy, s0),
-            EdgeFamily::new(ax - ay, dx - dy, s0),
-        ];
-        loop {
-            let (k, s) = families
-                .iter()
-                .enumerate()
-                .map(|(k, f)| (k, f.next_s))
-                .min_by(|a, b| a.1.total_cmp(&b.1))
-                .unwrap();
-            if s.is_nan() || s1.is_nan() || s >= s1 {
-                break;
-            }
-            if behind(s) {
-                return true;
-            }
-            families[k].advance();
-        }
-        behind(s1)
-    }
-}
-
-/// The crossings of `u(s) = u0 + s·du` with the integers, in increasing s from `s_from`.
-struct EdgeFamily {
-    u0: f64,
-    du: f64,
-    /// Next integer to cross.
-    k: f64,
-    next_s: f64,
-}
-
-impl EdgeFamily {
-    fn new(u0: f64, du: f64, s_from: f64) -> EdgeFamily {
-        if du == 0.0 || !du.is_finite() {
-            return EdgeFamily {
-                u0,
-                du,
-                k: 0.0,
-                next_s: f64::INFINITY,
-            };
-        }
-        let u = u0 + s_from * du;
-        let k = if du > 0.0 {
-            u.floor() + 1.0
-        } else {
-            u.ceil() - 1.0
-        };
-        EdgeFamily {
-            u0,
-            du,
-            k,
-            next_s: (k - u0) / du,
-        }
-    }
-
-    fn advance(&mut self) {
-        self.k += self.du.signum();
-        self.next_s = (self.k - self.u0) / self.du;
-    }
-}
-
 /// Renders the screen-space reference of `depth` with the ray-traced reference's parameters
-/// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`].
+/// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`], the size of the
+/// visible image ([`DepthBuffer::visible_size`]).
 pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<RefImage> {
     depth.validate()?;
     if params.variant != AoVariant::Visibility {
         bail!("{}", rust_i18n::t!("reference.visibility_only"));
     }
     let field = Heightfield::new(depth);
+    let (w, h) = depth.visible_size();
+    let g = depth.guard_band as usize;
     Ok(shade_image(
-        depth.width,
-        depth.height,
+        w,
+        h,
         "screen-space reference",
         params.progress,
-        |x, y| shade_pixel(&field, x, y, params),
+        // Each visible pixel keeps the random stream it has without a guard band.
+        |x, y| shade_pixel(&field, x + g, y + g, (y * w as usize + x) as u64, params),
     ))
 }
 
-/// (ao, std_error, linear depth) of one pixel; `None` for sky.
+/// (ao, std_error, linear depth) of buffer pixel (x, y), whose random stream is `stream`; `None`
+/// for sky.
 fn shade_pixel(
     field: &Heightfield,
     x: usize,
     y: usize,
+    stream: u64,
     params: &RefParams,
 ) -> Option<(f32, f32, f32)> {
     let p = field.point(x, y)?;
@@ -460,7 +93,7 @@ fn shade_pixel(
     let origin = p + nrm * (1e-4 * p.length().max(1.0));
     let (tan, bit) = sampling::tangent_frame(nrm);
     let count = params.rays.max(1);
-    let mut rng = sampling::Pcg32::for_pixel(params.seed, (y * field.w + x) as u64);
+    let mut rng = sampling::Pcg32::for_pixel(params.seed, stream);
     let shift = (rng.next_f64(), rng.next_f64());
     let mut open = 0u32;
     for i in 0..count {
@@ -499,7 +132,7 @@ pub fn load_or_render_screen_cached(
     depth.validate()?;
     let key = screen_cache_key(depth, params);
     if let Some(img) = cache::read_cached(cache_dir, &key) {
-        if (img.width, img.height) == (depth.width, depth.height) {
+        if (img.width, img.height) == depth.visible_size() {
             return Ok(img);
         }
     }
@@ -510,7 +143,9 @@ pub fn load_or_render_screen_cached(
 
 #[cfg(test)]
 mod tests {
+    use super::super::heightfield::EdgeFamily;
     use super::*;
+    use glam::DVec3;
 
     fn buffer(w: u32, h: u32, f: impl Fn(u32, u32) -> f32) -> DepthBuffer {
         DepthBuffer {
@@ -522,6 +157,8 @@ mod tests {
                 .collect(),
             fov_y_deg: 60.0,
             near: 0.1,
+            thickness: f32::INFINITY,
+            guard_band: 0,
         }
     }
 
@@ -556,6 +193,44 @@ mod tests {
         // Sky blocks nothing.
         let sky = Heightfield::new(&buffer(32, 24, |_, _| f32::INFINITY));
         assert!(!sky.blocked(o, DVec3::new(0.0, 0.0, -1.0), 100.0));
+    }
+
+    #[test]
+    fn slabs_block_only_within_their_thickness() {
+        let wall = |t: f32| Heightfield::new(&buffer(32, 24, |_, _| 5.0).with_thickness(t));
+        let deeper = DVec3::new(0.0, 0.0, -1.0);
+        // From depth 4 going deeper: the slab [5, 5.5] is met after 1 m.
+        let o = DVec3::new(0.0, 0.0, -4.0);
+        assert!(wall(0.5).blocked(o, deeper, 1.2));
+        assert!(!wall(0.5).blocked(o, deeper, 0.9));
+        // From depth 5.7, behind the slab: going deeper meets nothing (the heightfield would
+        // block at once), coming back crosses the slab after 0.2 m.
+        let behind = DVec3::new(0.0, 0.0, -5.7);
+        assert!(!wall(0.5).blocked(behind, deeper, 10.0));
+        assert!(wall(f32::INFINITY).blocked(behind, deeper, 10.0));
+        assert!(wall(0.5).blocked(behind, -deeper, 0.3));
+        assert!(!wall(0.5).blocked(behind, -deeper, 0.15));
+    }
+
+    #[test]
+    fn rays_pass_behind_a_plate_thinner_than_the_gap() {
+        // Left half: a plate at depth 3; right half: a wall at depth 5. A ray at constant depth
+        // 4.5 from the wall's side towards the plate's passes 1.5 m behind the plate's surface.
+        let field = |t: f32| {
+            Heightfield::new(
+                &buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(t),
+            )
+        };
+        let o = DVec3::new(1.0, 0.0, -4.5);
+        let left = DVec3::new(-1.0, 0.0, 0.0);
+        assert!(
+            !field(0.5).blocked(o, left, 2.0),
+            "through the silhouette's gap"
+        );
+        assert!(field(1.6).blocked(o, left, 2.0), "into the slab [3, 4.6]");
+        assert!(field(f32::INFINITY).blocked(o, left, 2.0));
+        // Not far enough to reach the plate's side of the screen.
+        assert!(!field(1.6).blocked(o, left, 0.5));
     }
 
     #[test]

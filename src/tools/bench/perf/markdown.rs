@@ -46,6 +46,11 @@ fn role_sum(passes: &BTreeMap<String, f64>, role: &str) -> Option<f64> {
     (!v.is_empty()).then(|| v.iter().sum())
 }
 
+/// The scene a row was measured on (its cameras carry the name).
+fn scene_of(row: &Row) -> &str {
+    row.cameras.first().map_or("", |c| c.scene.as_str())
+}
+
 fn f(v: f64, digits: usize) -> String {
     format!("{v:.digits$}")
 }
@@ -110,16 +115,18 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
          reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
-         scene replaced by the depth buffer seen as a heightfield of infinite thickness (inverse \
-         depth interpolated between pixel centres, normals from the depth buffer) and every ray \
+         scene replaced by the depth buffer (inverse depth interpolated between pixel centres, normals from the depth buffer) and every ray \
          marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
          count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
          error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
-         off-screen occluders: the same for every method at a camera and radius); **sampling \
+         off-screen occluders: the same for every method with the same thickness model at a camera and radius); **sampling \
          error** = the method (raw) against the screen-space reference (what its samples, mips, \
          blur and intensity lose). Both on the ray-traced reference's non-sky pixels, means over \
          the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
-         Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
+         Each method is split against the ceiling with its own model of what lies behind a depth \
+         sample: `vbao` against slabs of its thickness (the solid at a pixel is [z, z + T] in linear \
+         depth; a triangle between pixels more than T apart in depth is empty), every other method \
+         against the heightfield. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
         r.reference.width,
         r.reference.height,
         r.reference.screen_rays,
@@ -157,9 +164,9 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
     writeln!(s, "## Results\n")?;
     writeln!(
         s,
-        "| method | setting | restore | down | AO pass | blur | composite | **AO ms** (range) | AO CPU ms | frame ms | RMSE | MAE | PSNR dB | SSIM | FLIP | fit a, b | fitted RMSE | fitted PSNR | fitted SSIM | fitted FLIP |"
+        "| scene | method | setting | restore | down | AO pass | blur | composite | **AO ms** (range) | AO CPU ms | frame ms | RMSE | MAE | PSNR dB | SSIM | FLIP | fit a, b | fitted RMSE | fitted PSNR | fitted SSIM | fitted FLIP |"
     )?;
-    writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|")?;
+    writeln!(s, "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|")?;
     for row in &r.rows {
         let roles: Vec<String> = AO_PASS_ROLES
             .iter()
@@ -172,7 +179,8 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
             .collect();
         writeln!(
             s,
-            "| {} | {} | {} | **{}** ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {}, {} | {} | {} | {} | {} |",
+            "| {} | {} | {} | {} | **{}** ({}–{}) | {} | {} | {} | {} | {} | {} | {} | {}, {} | {} | {} | {} | {} |",
+            scene_of(row),
             row.method,
             row.setting,
             roles.join(" | "),
@@ -199,7 +207,7 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         r.rows
             .iter()
             .max_by(|a, b| key(a).total_cmp(&key(b)))
-            .map(|row| format!("{} {}", row.method, row.setting))
+            .map(|row| format!("{} {} ({})", row.method, row.setting, scene_of(row)))
             .unwrap_or_default()
     };
     writeln!(s)?;
@@ -209,44 +217,21 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         best(&|r| r.psnr),
         best(&|r| r.fitted.psnr)
     )?;
-    writeln!(s, "## Error split: depth buffer against sampling\n")?;
-    writeln!(
-        s,
-        "| method | setting | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM |"
-    )?;
-    writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|")?;
-    for row in &r.rows {
-        writeln!(
-            s,
-            "| {} | {} | {} | {} | {} | {} | {} | {} | {} |",
-            row.method,
-            row.setting,
-            f(row.rmse, 4),
-            f(row.psnr, 2),
-            f(row.depth_buffer_error.rmse, 4),
-            f(row.depth_buffer_error.psnr, 2),
-            f(row.sampling_error.rmse, 4),
-            f(row.sampling_error.psnr, 2),
-            f(row.sampling_error.ssim, 4),
-        )?;
-    }
-    writeln!(
-        s,
-        "\nThe depth-buffer columns depend only on the camera and radius. In squared error the \
-         method's error against the ray-traced reference is the sum of the two parts plus a cross \
-         term (the two can partly cancel, e.g. a method that under-darkens where the depth buffer \
-         over-darkens).\n"
-    )?;
+    split_section(&mut s, r)?;
     writeln!(s, "## Per camera (PSNR dB, raw / fitted)\n")?;
-    if let Some(first) = r.rows.first() {
+    for scene in &r.scenes {
+        let rows: Vec<&Row> = r.rows.iter().filter(|row| scene_of(row) == scene).collect();
+        let Some(first) = rows.first() else {
+            continue;
+        };
         let header: Vec<String> = first
             .cameras
             .iter()
             .map(|c| format!("{}{}", c.camera, if c.train { " (train)" } else { "" }))
             .collect();
-        writeln!(s, "| method | setting | {} |", header.join(" | "))?;
+        writeln!(s, "| {scene} | setting | {} |", header.join(" | "))?;
         writeln!(s, "|---|---|{}", "---:|".repeat(header.len()))?;
-        for row in &r.rows {
+        for row in rows {
             let cells: Vec<String> = row
                 .cameras
                 .iter()
@@ -266,13 +251,100 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
                 cells.join(" | ")
             )?;
         }
+        writeln!(s)?;
     }
     writeln!(
         s,
-        "\nCharts: `report.svg` (and `report.png` when a TrueType font was found): RMSE against the AO \
+        "Charts: `report.svg` (and `report.png` when a TrueType font was found): RMSE against the AO \
          chain's median wall ms (left) and CPU ms (right), raw (filled) and fitted (hollow), one colour \
          per method, each raw point labelled with its setting.\n\nRun time of the whole bench: {:.0} s.",
         r.run_s
     )?;
     Ok(s)
+}
+
+/// Mean of a per-camera figure over a row's test cameras.
+fn mean_test(row: &Row, pick: impl Fn(&super::report::CameraError) -> f64) -> f64 {
+    let test: Vec<f64> = row.cameras.iter().filter(|c| !c.train).map(pick).collect();
+    test.iter().sum::<f64>() / test.len().max(1) as f64
+}
+
+/// Allowed gap (dB) between a method's PSNR and the PSNR of its two parts added in squares.
+const ADDS_UP_DB: f64 = 1.0;
+
+/// The error split table and whether each row's split adds up.
+fn split_section(s: &mut String, r: &Report) -> fmt::Result {
+    writeln!(s, "## Error split: depth buffer against sampling\n")?;
+    writeln!(
+        s,
+        "| scene | method | setting | ceiling thickness | vs ray-traced RMSE | PSNR dB | depth-buffer RMSE | depth-buffer PSNR dB | sampling RMSE | sampling PSNR dB | sampling SSIM | ceiling noise σ | parts PSNR dB | gap dB (max) | adds up | ceiling above method |"
+    )?;
+    writeln!(
+        s,
+        "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
+    )?;
+    for row in &r.rows {
+        let thickness = row
+            .ceiling_thickness
+            .map_or("∞".to_string(), |t| format!("{t} m"));
+        writeln!(
+            s,
+            "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} | {} |",
+            scene_of(row),
+            row.method,
+            row.setting,
+            thickness,
+            f(row.rmse, 4),
+            f(row.psnr, 2),
+            f(row.depth_buffer_error.rmse, 4),
+            f(row.depth_buffer_error.psnr, 2),
+            f(row.sampling_error.rmse, 4),
+            f(row.sampling_error.psnr, 2),
+            f(row.sampling_error.ssim, 4),
+            f(mean_test(row, |c| c.ceiling_noise_rms), 4),
+            f(row.parts_psnr, 2),
+            f(row.split_gap_db, 2),
+            f(row.split_gap_max_db, 2),
+            if row.split_gap_max_db <= ADDS_UP_DB {
+                "yes"
+            } else {
+                "no"
+            },
+            if row.depth_buffer_error.psnr > row.psnr {
+                "yes"
+            } else {
+                "no"
+            },
+        )?;
+    }
+    let adds_up = r
+        .rows
+        .iter()
+        .filter(|row| row.split_gap_max_db <= ADDS_UP_DB)
+        .count();
+    let ceiling = r
+        .rows
+        .iter()
+        .filter(|row| row.depth_buffer_error.psnr > row.psnr)
+        .count();
+    writeln!(
+        s,
+        "\nThe depth-buffer columns depend only on the camera, the radius and the ceiling's thickness. \
+         **Does the split add up?** For each test camera, **parts PSNR** = 10·log10(1 / (RMSE_db² + \
+         RMSE_s² − 2σ²)), the PSNR the method would have if its error against the ray-traced reference \
+         were the depth buffer's error and its sampling error added in squares (uncorrelated), where \
+         σ² (**ceiling noise**, shown as the RMS σ) is the mean squared standard error of the \
+         screen-space reference: its Monte Carlo noise is in both parts but not in the total, so it is \
+         taken out twice (the ray-traced reference's noise is in the total and the depth-buffer part \
+         alike); **gap** = \
+         method PSNR − parts PSNR (mean over the test cameras; in brackets the largest |gap| of one \
+         camera). A positive gap means the two parts partly cancel (the method under-darkens where the \
+         depth buffer over-darkens), a negative one that they add up more than in squares. **Adds up**: \
+         every test camera's |gap| ≤ {ADDS_UP_DB} dB ({adds_up} of {} rows). **Ceiling above method**: the \
+         screen-space reference scores a higher PSNR against the ray-traced one than the method does \
+         ({ceiling} of {} rows).\n",
+        r.rows.len(),
+        r.rows.len()
+    )?;
+    Ok(())
 }

@@ -3,6 +3,7 @@
 //! the reference cache when it has them.
 
 use super::config::PerfConfig;
+use crate::ao::{AoMethod, AoSettings};
 use crate::render::Engine;
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
@@ -108,29 +109,44 @@ pub fn load_scene(
     })
 }
 
-/// Screen-space reference of every test camera and radius, from the engine's depth buffer at its
-/// current size (the reference's, so that the pixel centres match).
+/// Screen-space references keyed by (camera index, radius bits, thickness bits).
+pub type ScreenMap = BTreeMap<(usize, u32, u32), RefImage>;
+
+/// The thickness the ceiling of `method` gives the depth buffer's surfaces: the method's own model
+/// of what lies behind a depth sample. `vbao` takes each sample as a slab of
+/// `AoSettings::thickness_metres` (the settings' radius and `[ao] thickness`); every other method
+/// treats the depth buffer as a heightfield, infinitely thick.
+pub fn ceiling_thickness(method: AoMethod, ao: &AoSettings) -> f32 {
+    match method {
+        AoMethod::Vbao => ao.thickness_metres(),
+        _ => f32::INFINITY,
+    }
+}
+
+/// Screen-space reference of every test camera and (radius, thickness) pair, from the engine's
+/// depth buffer at its current size (the reference's, so that the pixel centres match).
 pub fn screen_references(
     engine: &mut Engine,
     sd: &SceneData,
-    radii: &[f32],
+    ceilings: &[(f32, f32)],
     cfg: &PerfConfig,
     pb: &ProgressBar,
     count: &mut RenderCount,
-) -> Result<RefMap> {
+) -> Result<ScreenMap> {
     let mut out = BTreeMap::new();
     for (ci, cam) in sd.cameras.iter().enumerate().filter(|(_, c)| !c.train) {
         engine.camera = cam.camera(&sd.desc.camera);
         engine.sync_shader_constants()?;
-        let depth = DepthBuffer::from_engine(engine)?;
-        for &r in radii {
+        let heightfield = DepthBuffer::from_engine(engine)?;
+        for &(r, thickness) in ceilings {
             let params = params(r, cfg.screen_rays, cfg.progress);
+            let depth = heightfield.clone().with_thickness(thickness);
             let key = screen_cache_key(&depth, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
             if cfg.progress {
                 pb.suspend(|| {
                     eprintln!(
-                        "screen-space reference {}/{} R = {r} m, {}x{}, {} rays: {}",
+                        "screen-space reference {}/{} R = {r} m, thickness {thickness} m, {}x{}, {} rays: {}",
                         sd.name,
                         cam.name,
                         depth.width,
@@ -143,7 +159,7 @@ pub fn screen_references(
             let t = Instant::now();
             let img = pb.suspend(|| load_or_render_screen_cached(&cfg.cache, &depth, &params))?;
             count.add(hit, t);
-            out.insert((ci, r.to_bits()), img);
+            out.insert((ci, r.to_bits(), thickness.to_bits()), img);
         }
     }
     Ok(out)

@@ -20,6 +20,13 @@ pub struct CameraError {
     pub depth_buffer_error: Metrics,
     /// The method (raw) against the screen-space reference: what its sampling loses (no FLIP).
     pub sampling_error: Metrics,
+    /// RMS over the pixels of the screen-space reference's standard error: its Monte Carlo noise,
+    /// which both parts contain and the total does not (test cameras; 0 on training cameras).
+    pub ceiling_noise_rms: f64,
+    /// 10·log10(1 / (RMSE_depth_buffer² + RMSE_sampling² − 2·ceiling_noise_rms²)): the raw PSNR the
+    /// method would have if the two parts' errors added up in squares (test cameras; 0 errors give
+    /// the cap).
+    pub parts_psnr: f64,
 }
 
 /// One row: a method at one setting.
@@ -57,6 +64,16 @@ pub struct Row {
     /// reference (its sampling).
     pub depth_buffer_error: Metrics,
     pub sampling_error: Metrics,
+    /// Thickness (m) of the depth buffer's surfaces in this row's screen-space reference: the
+    /// method's own model (`vbao`: its slab thickness); `None` (left out of the JSON) for the
+    /// infinitely thick heightfield.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ceiling_thickness: Option<f32>,
+    /// Means over the test cameras of `CameraError::parts_psnr` and of (raw PSNR − parts PSNR);
+    /// the largest |raw PSNR − parts PSNR| of a test camera. The split adds up when the gap is small.
+    pub parts_psnr: f64,
+    pub split_gap_db: f64,
+    pub split_gap_max_db: f64,
     pub cameras: Vec<CameraError>,
 }
 

@@ -6,7 +6,7 @@ use super::references::{self, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
 use super::{chart, markdown};
-use crate::ao::AoMethod;
+use crate::ao::{AoMethod, AoSettings};
 use crate::platform::HeadlessContext;
 use crate::render::Engine;
 use crate::res::ResDirs;
@@ -66,8 +66,9 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         // The engine starts at the reference's size for the screen-space references' depth
         // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
+        let ceilings = ceilings(&plan, &engine.ao_settings);
         let screen =
-            references::screen_references(&mut engine, sd, &radii, cfg, &pb, &mut screen_count)?;
+            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?;
         engine.resize(cfg.width, cfg.height)?;
         for (method, settings) in &plan {
             for s in settings {
@@ -115,6 +116,26 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     };
     write_outputs(&report, cfg)?;
     Ok(report)
+}
+
+/// Every (radius, thickness) whose screen-space reference the plan's error split needs: each
+/// setting's radius with its method's thickness model (`ceiling_thickness`) under the scene's AO
+/// settings.
+fn ceilings(plan: &[(AoMethod, Vec<Setting>)], scene_ao: &AoSettings) -> Vec<(f32, f32)> {
+    let mut out: Vec<(f32, f32)> = Vec::new();
+    for (method, settings) in plan {
+        for s in settings {
+            let ao = AoSettings {
+                radius: s.radius,
+                ..*scene_ao
+            };
+            let pair = (s.radius, references::ceiling_thickness(*method, &ao));
+            if !out.contains(&pair) {
+                out.push(pair);
+            }
+        }
+    }
+    out
 }
 
 /// The settings of every method, checked against what the engine accepts.

@@ -2,7 +2,7 @@
 //! the references at every bench camera.
 
 use super::config::PerfConfig;
-use super::references::{RefMap, SceneData};
+use super::references::{ceiling_thickness, SceneData, ScreenMap};
 use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
 use crate::render::{Engine, View};
@@ -27,7 +27,7 @@ struct Timing {
 pub fn run_setting(
     engine: &mut Engine,
     sd: &SceneData,
-    screen: &RefMap,
+    screen: &ScreenMap,
     method: AoMethod,
     s: &Setting,
     cfg: &PerfConfig,
@@ -47,9 +47,13 @@ pub fn run_setting(
     engine.sync_shader_constants()?;
 
     let fit = fit_on_training_cameras(sd, s, &views);
-    let cameras = camera_errors(sd, screen, s, &views, &fit, cfg.flip)?;
+    let thickness = ceiling_thickness(method, &engine.ao_settings);
+    let cameras = camera_errors(sd, screen, s, thickness, &views, &fit, cfg.flip)?;
     let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
     let raw = mean_metrics(&test, |c| c.raw);
+    let mean_of = |f: &dyn Fn(&CameraError) -> f64| {
+        test.iter().map(|c| f(c)).sum::<f64>() / test.len().max(1) as f64
+    };
     Ok(Row {
         method: method.name().to_string(),
         setting: s.label(),
@@ -79,6 +83,13 @@ pub fn run_setting(
             flip: 0.0,
             ..mean_metrics(&test, |c| c.sampling_error)
         },
+        ceiling_thickness: thickness.is_finite().then_some(thickness),
+        parts_psnr: mean_of(&|c| c.parts_psnr),
+        split_gap_db: mean_of(&|c| c.raw.psnr - c.parts_psnr),
+        split_gap_max_db: test
+            .iter()
+            .map(|c| (c.raw.psnr - c.parts_psnr).abs())
+            .fold(0.0, f64::max),
         cameras,
     })
 }
@@ -180,8 +191,9 @@ fn fit_on_training_cameras(sd: &SceneData, s: &Setting, views: &[Vec<f32>]) -> F
 /// share and the sampling's (test cameras, which have screen-space references).
 fn camera_errors(
     sd: &SceneData,
-    screen: &RefMap,
+    screen: &ScreenMap,
     s: &Setting,
+    thickness: f32,
     views: &[Vec<f32>],
     fit: &Fit,
     flip: bool,
@@ -207,8 +219,9 @@ fn camera_errors(
         // The split uses the ray-traced reference's mask too, so the three figures cover the
         // same pixels. Training cameras have no screen-space reference (the split is reported on
         // test cameras).
-        let (depth_buffer_error, sampling_error) = match screen.get(&(ci, s.radius.to_bits())) {
-            None => (Metrics::default(), Metrics::default()),
+        let key = (ci, s.radius.to_bits(), thickness.to_bits());
+        let (depth_buffer_error, sampling_error, ceiling_noise_rms) = match screen.get(&key) {
+            None => (Metrics::default(), Metrics::default(), 0.0),
             Some(ss) => {
                 if (ss.width, ss.height) != (r.width, r.height) {
                     bail!(
@@ -218,12 +231,28 @@ fn camera_errors(
                     );
                 }
                 let ss_gray = Gray::new(rw, rh, &ss.ao);
+                let (sum, n) = ss
+                    .std_error
+                    .iter()
+                    .zip(&mask)
+                    .filter(|(_, m)| **m)
+                    .fold((0.0f64, 0usize), |(s, n), (e, _)| {
+                        (s + (*e as f64).powi(2), n + 1)
+                    });
                 (
                     metrics::compare(reference, ss_gray, Some(&mask), false),
                     metrics::compare(ss_gray, Gray::new(rw, rh, &views[ci]), Some(&mask), false),
+                    (sum / n.max(1) as f64).sqrt(),
                 )
             }
         };
+        // What the method's MSE would be if its error were the two parts' errors added in squares
+        // (uncorrelated). The screen-space reference's Monte Carlo noise is in both parts and not
+        // in the total, so its variance is taken out twice; the ray-traced reference's noise is in
+        // the total and in the depth-buffer part alike.
+        let parts_mse = depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2)
+            - 2.0 * ceiling_noise_rms.powi(2);
+        let parts_psnr = metrics::psnr_from_mse(parts_mse.max(0.0));
         cameras.push(CameraError {
             scene: sd.name.clone(),
             camera: cam.name.clone(),
@@ -232,6 +261,8 @@ fn camera_errors(
             fitted,
             depth_buffer_error,
             sampling_error,
+            ceiling_noise_rms,
+            parts_psnr,
         });
     }
     Ok(cameras)

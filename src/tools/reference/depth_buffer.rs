@@ -1,0 +1,224 @@
+//! The input of the screen-space reference: a depth buffer, the projection it was rendered with,
+//! how thick its surfaces are taken to be, and how many of its pixels lie outside the visible image
+//! (a guard band rendered over a wider field of view).
+
+use anyhow::{bail, Result};
+
+use super::hash::Fnv64;
+use super::image::RefImage;
+use crate::math::Camera;
+
+/// A depth buffer and the projection it was rendered with.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DepthBuffer {
+    /// Size of the whole buffer, guard band included.
+    pub width: u32,
+    pub height: u32,
+    /// View distance (−z_view, metres) at each pixel centre, rows top-down; `f32::INFINITY` (or
+    /// anything not finite and > 0) for sky.
+    pub linear_depth: Vec<f32>,
+    /// Vertical field of view of the whole buffer in degrees; the aspect ratio is width / height.
+    pub fov_y_deg: f32,
+    /// Near clip distance (metres): the buffer knows nothing closer.
+    pub near: f32,
+    /// How far (linear depth, metres) behind its surface each pixel is taken to be solid:
+    /// `f32::INFINITY` is the heightfield (everything behind a stored surface is solid), a finite
+    /// value the slab model `vbao` uses (see the `heightfield` module).
+    pub thickness: f32,
+    /// Pixels on each side that lie outside the visible image: they can occlude, but the
+    /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
+    pub guard_band: u32,
+}
+
+impl DepthBuffer {
+    /// Checks the buffer's size and projection (clear errors instead of NaN later).
+    pub(crate) fn validate(&self) -> Result<()> {
+        let n = self.width as usize * self.height as usize;
+        if self.linear_depth.len() != n {
+            bail!(
+                "depth buffer of {} values does not match its {}x{} size",
+                self.linear_depth.len(),
+                self.width,
+                self.height
+            );
+        }
+        if !(self.fov_y_deg > 0.0 && self.fov_y_deg < 180.0) {
+            bail!(
+                "field of view {}° of the depth buffer: use (0, 180)",
+                self.fov_y_deg
+            );
+        }
+        if !(self.near > 0.0 && self.near.is_finite()) {
+            bail!("near plane {} of the depth buffer: use > 0", self.near);
+        }
+        if self.thickness.is_nan() || self.thickness <= 0.0 {
+            bail!(
+                "thickness {} m of the depth buffer's surfaces: use > 0 (infinity for a heightfield)",
+                self.thickness
+            );
+        }
+        let g = self.guard_band as u64 * 2;
+        if g > 0 && (g >= self.width as u64 || g >= self.height as u64) {
+            bail!(
+                "guard band of {} pixels leaves nothing visible in a {}x{} depth buffer",
+                self.guard_band,
+                self.width,
+                self.height
+            );
+        }
+        Ok(())
+    }
+
+    /// Size of the visible image (the buffer less its guard band).
+    pub fn visible_size(&self) -> (u32, u32) {
+        let g = 2 * self.guard_band;
+        (self.width.saturating_sub(g), self.height.saturating_sub(g))
+    }
+
+    /// The same buffer with its surfaces taken to be `thickness` metres thick (builder style).
+    pub fn with_thickness(self, thickness: f32) -> DepthBuffer {
+        DepthBuffer { thickness, ..self }
+    }
+
+    /// The depth buffer of a ray-traced reference image (its `linear_depth`, same pixel centres).
+    pub fn from_reference(img: &RefImage, cam: &Camera) -> DepthBuffer {
+        DepthBuffer {
+            width: img.width,
+            height: img.height,
+            linear_depth: img.linear_depth.clone(),
+            fov_y_deg: cam.fov_y_deg,
+            near: cam.near,
+            thickness: f32::INFINITY,
+            guard_band: 0,
+        }
+    }
+
+    /// Converts raw window-space depth values D in [0, 1] (rows top-down) written with `mode`'s
+    /// projection and these planes; the mode's cleared value (1 for D32, 0 for reversed-Z) is sky.
+    fn from_window_depth(
+        width: u32,
+        height: u32,
+        window_depth: &[f32],
+        mode: crate::math::DepthMode,
+        fov_y_deg: f32,
+        near: f32,
+        far: f32,
+    ) -> Result<DepthBuffer> {
+        if !(far > near && far.is_finite()) {
+            bail!("far plane {far} must be finite and beyond the near plane {near}");
+        }
+        let linear_depth = window_depth
+            .iter()
+            .map(|&d| {
+                if d.is_finite() && (0.0..=1.0).contains(&d) && d != mode.clear_value() {
+                    let z = crate::math::depth::linearize(mode, d as f64, near as f64, far as f64);
+                    if z.is_finite() && z > 0.0 {
+                        return z as f32;
+                    }
+                }
+                f32::INFINITY
+            })
+            .collect();
+        let buf = DepthBuffer {
+            width,
+            height,
+            linear_depth,
+            fov_y_deg,
+            near,
+            thickness: f32::INFINITY,
+            guard_band: 0,
+        };
+        buf.validate()?;
+        Ok(buf)
+    }
+
+    /// The engine's full-resolution depth buffer at its current camera and size: renders the
+    /// opaque pass (through the linear-depth view, which runs no AO method) and reads the main
+    /// framebuffer's depth texture back.
+    pub fn from_engine(engine: &mut crate::render::Engine) -> Result<DepthBuffer> {
+        engine.render_values(crate::render::View::LinearDepth)?;
+        let Some(tex) = engine.fbo_main.depth_texture() else {
+            bail!("the engine's main framebuffer has no depth texture");
+        };
+        let (w, h) = (tex.width(), tex.height());
+        let mut raw = tex.read_f32(0, 1);
+        if let Some(e) = crate::gl::take_error(engine.gl()) {
+            bail!("{e} while reading the depth buffer");
+        }
+        crate::gl::readback::flip_rows(&mut raw, w as usize, h as usize);
+        let cam = engine.camera;
+        let mode = engine.depth_mode();
+        DepthBuffer::from_window_depth(w, h, &raw, mode, cam.fov_y_deg, cam.near, cam.far)
+    }
+
+    /// Like [`DepthBuffer::from_engine`], with `guard_band` extra pixels on each side: the engine
+    /// renders at (w + 2g) × (h + 2g) with a field of view widened so that the pixels keep their
+    /// size and the inner pixels their centres, so that surfaces just off the visible screen exist
+    /// in the buffer. The engine's size and camera are restored afterwards (also on error).
+    pub fn from_engine_with_guard_band(
+        engine: &mut crate::render::Engine,
+        guard_band: u32,
+    ) -> Result<DepthBuffer> {
+        if guard_band == 0 {
+            return DepthBuffer::from_engine(engine);
+        }
+        let (w, h) = engine.size();
+        let (gw, gh) = guard_band
+            .checked_mul(2)
+            .and_then(|g| Some((w.checked_add(g)?, h.checked_add(g)?)))
+            .filter(|(gw, gh)| *gw <= 16384 && *gh <= 16384)
+            .ok_or_else(|| {
+                anyhow::anyhow!(
+                    "guard band of {guard_band} pixels: the depth buffer would exceed 16384 pixels"
+                )
+            })?;
+        let camera = engine.camera;
+        let half = (camera.fov_y_deg as f64).to_radians() * 0.5;
+        let wide = 2.0 * (half.tan() * gh as f64 / h.max(1) as f64).atan();
+        if wide.is_nan() || wide.to_degrees() >= 179.0 {
+            bail!(
+                "guard band of {guard_band} pixels widens the {}° field of view past 179°",
+                camera.fov_y_deg
+            );
+        }
+        let result = (|| -> Result<DepthBuffer> {
+            engine.resize(gw, gh)?;
+            engine.camera.fov_y_deg = wide.to_degrees() as f32;
+            engine.sync_shader_constants()?;
+            let mut buf = DepthBuffer::from_engine(engine)?;
+            buf.guard_band = guard_band;
+            buf.validate()?;
+            Ok(buf)
+        })();
+        engine.camera = camera;
+        let restored = engine
+            .resize(w, h)
+            .and_then(|_| engine.sync_shader_constants());
+        let buf = result?;
+        restored?;
+        Ok(buf)
+    }
+
+    /// Stable content hash (every depth value's bits and the projection; the thickness and the
+    /// guard band only when they differ from the heightfield's defaults, so that earlier cache
+    /// keys stay valid), for cache keys.
+    pub(crate) fn content_hash(&self) -> u64 {
+        let mut h = Fnv64::new();
+        h.u32(self.width);
+        h.u32(self.height);
+        h.f32(self.fov_y_deg);
+        h.f32(self.near);
+        for d in &self.linear_depth {
+            h.f32(*d);
+        }
+        if self.thickness != f32::INFINITY {
+            h.bytes(b"thickness");
+            h.f32(self.thickness);
+        }
+        if self.guard_band != 0 {
+            h.bytes(b"guard band");
+            h.u32(self.guard_band);
+        }
+        h.0
+    }
+}

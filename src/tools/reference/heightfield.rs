@@ -1,0 +1,424 @@
+//! The depth buffer as geometry: a heightfield of infinite thickness, or slabs of finite thickness,
+//! and the exact test of whether a ray segment passes through it (see `screen.rs` for the surface,
+//! the normals and the march).
+//!
+//! **Slabs.** With a finite thickness T, the solid at a screen point is the interval of linear
+//! depth [z(x), z(x) + T] behind the front surface z(x) (the same triangulated surface as the
+//! heightfield's), along that point's camera ray: the model `vbao` uses for each depth sample. Each
+//! triangle of the surface is solid only where its three pixels' slabs overlap, that is when their
+//! depths differ by at most T; otherwise nothing joins them (a silhouette, or a wall seen so edge-on
+//! that neighbouring pixels are more than T apart) and the triangle is empty, so a ray can pass
+//! behind a thin foreground object. With T = ∞ every triangle is solid and every point behind the
+//! surface blocked: the heightfield, marched by the original code path so that its output does not
+//! change. Along one march segment (inside one triangle) the ray's and the surface's inverse depths
+//! are affine, so "behind the front" is an affine inequality and "within T of it"
+//! (1/w_ray − 1/w_surface ≤ T, times both) a quadratic one: their roots split the segment into
+//! pieces of constant sign, and testing each piece decides the segment exactly.
+
+use glam::DVec3;
+
+use super::depth_buffer::DepthBuffer;
+
+/// Inverse depths of the buffer and its projection, in f64.
+pub(crate) struct Heightfield {
+    pub(crate) w: usize,
+    pub(crate) h: usize,
+    /// 1 / depth per pixel (rows top-down); 0 for sky (a surface at infinity blocks nothing).
+    inv: Vec<f64>,
+    /// tan(fov/2) · aspect and tan(fov/2): view-space x/−z and y/−z at the image edges.
+    sx: f64,
+    sy: f64,
+    pub(crate) near: f64,
+    /// Thickness of every surface in linear depth (m); `f64::INFINITY` for the heightfield.
+    thickness: f64,
+    /// Distance from the eye beyond which no solid point lies (for unbounded rays).
+    max_dist: f64,
+}
+
+impl Heightfield {
+    pub(crate) fn new(buf: &DepthBuffer) -> Heightfield {
+        let (w, h) = (buf.width as usize, buf.height as usize);
+        let sy = (buf.fov_y_deg as f64).to_radians() * 0.5;
+        let sy = sy.tan();
+        let sx = sy * w as f64 / h.max(1) as f64;
+        let inv: Vec<f64> = buf
+            .linear_depth
+            .iter()
+            .map(|&d| {
+                if d.is_finite() && d > 0.0 {
+                    1.0 / d as f64
+                } else {
+                    0.0
+                }
+            })
+            .collect();
+        let max_depth = buf
+            .linear_depth
+            .iter()
+            .filter(|d| d.is_finite() && **d > 0.0)
+            .fold(0.0f64, |m, d| m.max(*d as f64));
+        let thickness = buf.thickness as f64;
+        // An on-screen point at distance ℓ from the eye has a depth of at least ℓ / k.
+        let k = (1.0 + sx * sx + sy * sy).sqrt();
+        Heightfield {
+            w,
+            h,
+            inv,
+            sx,
+            sy,
+            near: buf.near as f64,
+            thickness,
+            max_dist: if thickness.is_finite() {
+                (max_depth + thickness) * k
+            } else {
+                max_depth * k
+            },
+        }
+    }
+
+    #[inline]
+    pub(crate) fn inv_at(&self, i: usize, j: usize) -> f64 {
+        self.inv[j * self.w + i]
+    }
+
+    /// View-space position of pixel (i, j)'s centre; `None` for sky.
+    pub(crate) fn point(&self, i: usize, j: usize) -> Option<DVec3> {
+        let inv = self.inv_at(i, j);
+        if inv <= 0.0 {
+            return None;
+        }
+        let ndc_x = 2.0 * (i as f64 + 0.5) / self.w as f64 - 1.0;
+        let ndc_y = 1.0 - 2.0 * (j as f64 + 0.5) / self.h as f64;
+        Some(DVec3::new(ndc_x * self.sx, ndc_y * self.sy, -1.0) / inv)
+    }
+
+    /// Grid coordinates (pixel centre (i, j) at (i, j)) and inverse depth of a view-space point
+    /// in front of the camera.
+    #[inline]
+    fn project(&self, q: DVec3) -> (f64, f64, f64) {
+        let inv = 1.0 / -q.z;
+        let ndc_x = q.x * inv / self.sx;
+        let ndc_y = q.y * inv / self.sy;
+        (
+            (ndc_x + 1.0) * 0.5 * self.w as f64 - 0.5,
+            (1.0 - ndc_y) * 0.5 * self.h as f64 - 0.5,
+            inv,
+        )
+    }
+
+    /// Inverse depth of the triangulated surface at grid point (x, y), inside [0, w−1]×[0, h−1].
+    #[inline]
+    fn surface(&self, x: f64, y: f64) -> f64 {
+        let i = (x.floor() as isize).clamp(0, self.w as isize - 2) as usize;
+        let j = (y.floor() as isize).clamp(0, self.h as isize - 2) as usize;
+        let (fx, fy) = (x - i as f64, y - j as f64);
+        let a = self.inv_at(i, j);
+        let d = self.inv_at(i + 1, j + 1);
+        if fx >= fy {
+            let b = self.inv_at(i + 1, j);
+            a + fx * (b - a) + fy * (d - b)
+        } else {
+            let c = self.inv_at(i, j + 1);
+            a + fy * (c - a) + fx * (d - c)
+        }
+    }
+
+    /// Error of predicting pixel k's inverse depth from the next two pixels in direction `step`
+    /// along one axis (`None` if the neighbour is missing or sky; large if only one exists).
+    fn side_error(&self, at: &dyn Fn(isize) -> Option<f64>, step: isize) -> Option<f64> {
+        let c = at(0)?;
+        let n1 = at(step)?;
+        Some(match at(2 * step) {
+            Some(n2) => (c - (2.0 * n1 - n2)).abs(),
+            None => f64::MAX,
+        })
+    }
+
+    /// Unit normal at pixel (i, j) from the depth buffer, facing the camera (see the module docs).
+    pub(crate) fn normal(&self, i: usize, j: usize, p: DVec3) -> DVec3 {
+        let facing = -p.normalize_or(DVec3::Z);
+        let tangent = |horizontal: bool| -> Option<DVec3> {
+            let at = |k: isize| -> Option<f64> {
+                let (x, y) = if horizontal {
+                    (i as isize + k, j as isize)
+                } else {
+                    (i as isize, j as isize + k)
+                };
+                if x < 0 || y < 0 || x >= self.w as isize || y >= self.h as isize {
+                    return None;
+                }
+                let v = self.inv_at(x as usize, y as usize);
+                (v > 0.0).then_some(v)
+            };
+            let fwd = self.side_error(&at, 1);
+            let back = self.side_error(&at, -1);
+            let use_fwd = match (fwd, back) {
+                (Some(f), Some(b)) => f <= b,
+                (Some(_), None) => true,
+                (None, Some(_)) => false,
+                (None, None) => return None,
+            };
+            let (x, y) = match (horizontal, use_fwd) {
+                (true, true) => (i + 1, j),
+                (true, false) => (i - 1, j),
+                (false, true) => (i, j + 1),
+                (false, false) => (i, j - 1),
+            };
+            let q = self.point(x, y)?;
+            Some(if use_fwd { q - p } else { p - q })
+        };
+        let n = match (tangent(true), tangent(false)) {
+            (Some(tx), Some(ty)) => tx.cross(ty).try_normalize(),
+            _ => None,
+        };
+        match n {
+            Some(n) if n.dot(facing) < 0.0 => -n,
+            Some(n) => n,
+            // A pixel without usable neighbours on an axis: assume it faces the camera.
+            None => facing,
+        }
+    }
+
+    /// Whether the segment `o + t·d`, t in (0, t_max], passes through the solid (see the module
+    /// docs). `d` is a unit vector, `o` lies in front of the near plane.
+    pub(crate) fn blocked(&self, o: DVec3, d: DVec3, t_max: f64) -> bool {
+        let Some(seg) = self.clip(o, d, t_max) else {
+            return false;
+        };
+        if self.thickness.is_finite() {
+            self.blocked_by_slabs(&seg)
+        } else {
+            self.blocked_by_heightfield(&seg)
+        }
+    }
+
+    /// The segment in grid coordinates, clipped to the near plane and the grid; `None` when
+    /// nothing of it is left.
+    fn clip(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<GridSegment> {
+        if self.w < 2 || self.h < 2 {
+            return None; // no cell between pixel centres: no surface to pass behind
+        }
+        // Beyond max_dist + |o| from o, every point is deeper than any solid point, so the first
+        // crossing (if any) happened before: the cap loses nothing.
+        let mut t1 = t_max.min(2.0 * (self.max_dist + o.length()));
+        let near_z = -self.near;
+        if d.z > 0.0 {
+            t1 = t1.min((near_z - o.z) / d.z);
+        }
+        if t1.is_nan() || t1 <= 0.0 || o.z > near_z {
+            return None;
+        }
+        let (ax, ay, aw) = self.project(o);
+        let (bx, by, bw) = self.project(o + d * t1);
+        let (dx, dy, dw) = (bx - ax, by - ay, bw - aw);
+        // Clip s in [0, 1] to the grid [0, w−1] × [0, h−1].
+        let (mut s0, mut s1) = (0.0f64, 1.0f64);
+        for (start, delta, hi) in [(ax, dx, (self.w - 1) as f64), (ay, dy, (self.h - 1) as f64)] {
+            if delta == 0.0 {
+                if start < 0.0 || start > hi {
+                    return None;
+                }
+                continue;
+            }
+            let (ta, tb) = ((0.0 - start) / delta, (hi - start) / delta);
+            s0 = s0.max(ta.min(tb));
+            s1 = s1.min(ta.max(tb));
+        }
+        if s0.is_nan() || s1.is_nan() || s0 > s1 {
+            return None;
+        }
+        Some(GridSegment {
+            ax,
+            ay,
+            aw,
+            dx,
+            dy,
+            dw,
+            s0,
+            s1,
+        })
+    }
+
+    /// Grid point of the segment at s, clamped to the grid.
+    #[inline]
+    fn grid_at(&self, seg: &GridSegment, s: f64) -> (f64, f64) {
+        (
+            (seg.ax + s * seg.dx).clamp(0.0, (self.w - 1) as f64),
+            (seg.ay + s * seg.dy).clamp(0.0, (self.h - 1) as f64),
+        )
+    }
+
+    /// Calls `visit` with every s in (s0, s1) where the segment crosses a cell edge (x = integer,
+    /// y = integer, x − y = integer), in increasing order, until it returns true; then returns
+    /// whether it did.
+    fn any_edge_crossing(seg: &GridSegment, mut visit: impl FnMut(f64) -> bool) -> bool {
+        // Each family gives evenly spaced s; they are merged in increasing order.
+        let mut families = [
+            EdgeFamily::new(seg.ax, seg.dx, seg.s0),
+            EdgeFamily::new(seg.ay, seg.dy, seg.s0),
+            EdgeFamily::new(seg.ax - seg.ay, seg.dx - seg.dy, seg.s0),
+        ];
+        loop {
+            let (k, s) = families
+                .iter()
+                .enumerate()
+                .map(|(k, f)| (k, f.next_s))
+                .min_by(|a, b| a.1.total_cmp(&b.1))
+                .unwrap();
+            if s.is_nan() || seg.s1.is_nan() || s >= seg.s1 {
+                return false;
+            }
+            if visit(s) {
+                return true;
+            }
+            families[k].advance();
+        }
+    }
+
+    /// Infinite thickness: along the segment both inverse depths are piecewise affine with breaks
+    /// only at cell edges, so comparing them at the edges and the two ends decides exactly whether
+    /// the ray passes behind the surface.
+    fn blocked_by_heightfield(&self, seg: &GridSegment) -> bool {
+        let behind = |s: f64| -> bool {
+            let (x, y) = self.grid_at(seg, s);
+            seg.aw + s * seg.dw < self.surface(x, y)
+        };
+        behind(seg.s0) || Self::any_edge_crossing(seg, behind) || behind(seg.s1)
+    }
+
+    /// Finite thickness: each piece between consecutive cell-edge crossings lies in one triangle;
+    /// it is tested against that triangle's slab (module docs).
+    fn blocked_by_slabs(&self, seg: &GridSegment) -> bool {
+        let surface_at = |s: f64| {
+            let (x, y) = self.grid_at(seg, s);
+            self.surface(x, y)
+        };
+        let mut prev = (seg.s0, surface_at(seg.s0));
+        let mut piece = |s: f64| -> bool {
+            let f = surface_at(s);
+            let hit = self.piece_in_slab(seg, prev, (s, f));
+            prev = (s, f);
+            hit
+        };
+        Self::any_edge_crossing(seg, &mut piece) || piece(seg.s1)
+    }
+
+    /// Whether the piece of the segment from s = a.0 to b.0 (surface inverse depths a.1, b.1 at
+    /// its ends, inside one triangle) passes through that triangle's slab.
+    fn piece_in_slab(&self, seg: &GridSegment, a: (f64, f64), b: (f64, f64)) -> bool {
+        if !self.triangle_is_solid(self.grid_at(seg, 0.5 * (a.0 + b.0))) {
+            return false;
+        }
+        let t = self.thickness;
+        let (ra, rb) = (seg.aw + a.0 * seg.dw, seg.aw + b.0 * seg.dw);
+        let (fa, df, dr) = (a.1, b.1 - a.1, rb - ra);
+        // u in [0, 1] along the piece: front(u) = f − r > 0 (behind the surface) and
+        // within(u) = T·r·f − (f − r) >= 0 (less than T behind it).
+        let (a0, a1) = (fa - ra, df - dr);
+        let (c2, c1, c0) = (t * dr * df, t * (ra * df + fa * dr) - a1, t * ra * fa - a0);
+        let inside = |u: f64| -> bool {
+            let front = a0 + u * a1;
+            let within = (c2 * u + c1) * u + c0;
+            front > 0.0 && within >= 0.0
+        };
+        let mut cuts = [0.0f64, 1.0, f64::NAN, f64::NAN, f64::NAN];
+        if a1 != 0.0 {
+            cuts[2] = -a0 / a1;
+        }
+        let (r1, r2) = quadratic_roots(c2, c1, c0);
+        cuts[3] = r1;
+        cuts[4] = r2;
+        let mut cuts: Vec<f64> = cuts
+            .into_iter()
+            .filter(|u| (0.0..=1.0).contains(u))
+            .collect();
+        cuts.sort_by(f64::total_cmp);
+        cuts.iter().any(|&u| inside(u)) || cuts.windows(2).any(|p| inside(0.5 * (p[0] + p[1])))
+    }
+
+    /// Whether the triangle holding grid point (x, y) is solid: its three pixels are surface and
+    /// their depths lie within the thickness of each other (module docs).
+    fn triangle_is_solid(&self, (x, y): (f64, f64)) -> bool {
+        let i = (x.floor() as isize).clamp(0, self.w as isize - 2) as usize;
+        let j = (y.floor() as isize).clamp(0, self.h as isize - 2) as usize;
+        let third = if x - i as f64 >= y - j as f64 {
+            self.inv_at(i + 1, j)
+        } else {
+            self.inv_at(i, j + 1)
+        };
+        let corners = [self.inv_at(i, j), self.inv_at(i + 1, j + 1), third];
+        if corners.iter().any(|w| *w <= 0.0) {
+            return false; // sky: no slab
+        }
+        let depth = corners.map(|w| 1.0 / w);
+        let (lo, hi) = depth.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
+            (lo.min(*z), hi.max(*z))
+        });
+        hi - lo <= self.thickness
+    }
+}
+
+/// A ray segment in grid coordinates: point (ax, ay) at inverse depth aw plus s·(dx, dy, dw), with
+/// s in [s0, s1] inside the grid.
+struct GridSegment {
+    ax: f64,
+    ay: f64,
+    aw: f64,
+    dx: f64,
+    dy: f64,
+    dw: f64,
+    s0: f64,
+    s1: f64,
+}
+
+/// Real roots of c2·u² + c1·u + c0 (NaN where there is none), without cancellation.
+fn quadratic_roots(c2: f64, c1: f64, c0: f64) -> (f64, f64) {
+    if c2 == 0.0 {
+        return (if c1 != 0.0 { -c0 / c1 } else { f64::NAN }, f64::NAN);
+    }
+    let disc = c1 * c1 - 4.0 * c2 * c0;
+    if disc.is_nan() || disc < 0.0 {
+        return (f64::NAN, f64::NAN);
+    }
+    let q = -0.5 * (c1 + disc.sqrt().copysign(c1));
+    (q / c2, if q != 0.0 { c0 / q } else { f64::NAN })
+}
+
+/// The crossings of `u(s) = u0 + s·du` with the integers, in increasing s from `s_from`.
+pub(crate) struct EdgeFamily {
+    u0: f64,
+    du: f64,
+    /// Next integer to cross.
+    k: f64,
+    pub(crate) next_s: f64,
+}
+
+impl EdgeFamily {
+    pub(crate) fn new(u0: f64, du: f64, s_from: f64) -> EdgeFamily {
+        if du == 0.0 || !du.is_finite() {
+            return EdgeFamily {
+                u0,
+                du,
+                k: 0.0,
+                next_s: f64::INFINITY,
+            };
+        }
+        let u = u0 + s_from * du;
+        let k = if du > 0.0 {
+            u.floor() + 1.0
+        } else {
+            u.ceil() - 1.0
+        };
+        EdgeFamily {
+            u0,
+            du,
+            k,
+            next_s: (k - u0) / du,
+        }
+    }
+
+    pub(crate) fn advance(&mut self) {
+        self.k += self.du.signum();
+        self.next_s = (self.k - self.u0) / self.du;
+    }
+}

@@ -1,0 +1,95 @@
+//! The bench's error split against the ceiling with each method's own thickness model, whether it
+//! adds up, and runs over several scenes. Speed is never asserted.
+
+use opengl3d::ao::AoMethod;
+use opengl3d::res::ResDirs;
+use opengl3d::tools::bench::perf;
+
+#[test]
+fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
+    let out = crate::common::temp_dir("bench-split");
+    let res = ResDirs::default();
+    let scenes = vec![
+        res.find("scenes/demo.toml").unwrap(),
+        res.find("scenes/room.toml").unwrap(),
+    ];
+    let cfg = perf::PerfConfig {
+        scenes,
+        width: 64,
+        height: 36,
+        out: out.clone(),
+        methods: vec![AoMethod::Gtao, AoMethod::Vbao],
+        samples: vec![8],
+        radii: vec![0.5],
+        ref_rays: 8,
+        screen_rays: 8,
+        ref_scale: 1,
+        cache: out.join("cache"),
+        warmup: 0,
+        frames: 1,
+        flip: false,
+        charts: false,
+        progress: false,
+    };
+    let report = perf::run(&res, &cfg).expect("bench run");
+    // Neither scene sets `[ao] thickness`: vbao's default, a fraction of the radius.
+    let thickness = opengl3d::ao::settings::DEFAULT_THICKNESS_OF_RADIUS * 0.5;
+    // One row per scene and method, in scene order.
+    assert_eq!(report.scenes, ["demo", "room"]);
+    assert_eq!(report.rows.len(), 4);
+    for (k, row) in report.rows.iter().enumerate() {
+        let scene = if k < 2 { "demo" } else { "room" };
+        assert!(row.cameras.iter().all(|c| c.scene == scene), "row {k}");
+    }
+    // gtao against the heightfield, vbao against slabs of its default thickness, so
+    // their depth-buffer errors differ while the ray-traced truth is the same.
+    for pair in report.rows.chunks(2) {
+        let (gtao, vbao) = (&pair[0], &pair[1]);
+        assert_eq!(
+            (gtao.method.as_str(), vbao.method.as_str()),
+            ("gtao", "vbao")
+        );
+        assert_eq!(gtao.ceiling_thickness, None);
+        assert_eq!(vbao.ceiling_thickness, Some(thickness));
+        assert_ne!(gtao.depth_buffer_error.rmse, vbao.depth_buffer_error.rmse);
+        for row in pair {
+            // parts PSNR is 10·log10(1 / (RMSE_db² + RMSE_s² − 2σ²)) of each test camera, with σ²
+            // the screen-space reference's mean squared standard error (8 rays: at most 1/32 per
+            // pixel), averaged.
+            let test: Vec<_> = row.cameras.iter().filter(|c| !c.train).collect();
+            assert!(!test.is_empty());
+            let mut mean = 0.0;
+            for c in &test {
+                assert!(c.ceiling_noise_rms > 0.0 && c.ceiling_noise_rms <= (0.25f64 / 8.0).sqrt());
+                let mse = c.depth_buffer_error.rmse.powi(2) + c.sampling_error.rmse.powi(2)
+                    - 2.0 * c.ceiling_noise_rms.powi(2);
+                assert!(mse > 0.0, "{mse}");
+                let want = -10.0 * mse.log10();
+                assert!(
+                    (c.parts_psnr - want).abs() < 1e-9,
+                    "{} vs {want}",
+                    c.parts_psnr
+                );
+                mean += want / test.len() as f64;
+            }
+            assert!((row.parts_psnr - mean).abs() < 1e-9);
+            let gap = test
+                .iter()
+                .map(|c| (c.raw.psnr - c.parts_psnr).abs())
+                .fold(0.0, f64::max);
+            assert!((row.split_gap_max_db - gap).abs() < 1e-9);
+        }
+    }
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let vbao_row = format!("| room | vbao | n8 r0.5 | {thickness} m |");
+    assert!(md.contains(&vbao_row), "{vbao_row} not in {md}");
+    assert!(md.contains("| demo | gtao | n8 r0.5 | ∞ |"), "{md}");
+    assert!(md.contains("adds up") && md.contains("10·log10(1 / (RMSE_db² + RMSE_s² − 2σ²))"));
+    // The per-camera table is one per scene (their cameras differ).
+    assert!(
+        md.contains("| demo | setting |") && md.contains("| room | setting |"),
+        "{md}"
+    );
+    let json = std::fs::read_to_string(out.join("report.json")).unwrap();
+    assert!(!json.contains("null"), "{json}");
+}
