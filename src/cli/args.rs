@@ -138,7 +138,7 @@ pub struct SceneArgs {
     /// Size the engine's AO methods run at: half (the course's) or full (`sao-lesson` stays at half).
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
-    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: the radius),
+    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: half the radius),
     /// or `backface`: each pixel's own, from a depth pass of the back faces.
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
