@@ -8,23 +8,10 @@
 layout(binding=0) uniform sampler2D texDepth;      // back-face depth buffer (window depth)
 layout(binding=1) uniform sampler2D texFrontDepth; // main depth buffer (window depth)
 
-layout(location=230) uniform vec3 depthPlanes; // near, far, 1 for reversed-Z (else 0)
+#include "linear_depth.glsl"
 layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1 or 2
 
 out float outColor;
-
-float LinearDepth(float d) {
-  float n = depthPlanes.x, f = depthPlanes.y;
-  if (depthPlanes.z > 0.5) {
-    return d <= 0.0 ? f : min(n * f / (d * (f - n) + n), f);
-  }
-  if (d >= 1.0) {
-    return f;
-  }
-  float a = -2.0 * f * n / (f - n);
-  float b = (f + n) / (f - n);
-  return min(a / (2.0 * d - 1.0 - b), f);
-}
 
 void main()
 {

@@ -11,25 +11,12 @@ layout(binding=0) uniform sampler2D texOcclusion; // half size
 layout(binding=1) uniform sampler2D texDepth;     // half-size linear depth (m), level 0
 layout(binding=2) uniform sampler2D texMainDepth; // main depth buffer (window depth)
 
-layout(location=230) uniform vec3 depthPlanes; // near, far, 1 for reversed-Z (else 0)
+#include "linear_depth.glsl"
 
 out float outColor;
 
 // 5 % of the distance, as the blur's depth test (blur_edge.glsl).
 const float RELATIVE_TOLERANCE = 0.05;
-
-float LinearDepth(float d) {
-  float n = depthPlanes.x, f = depthPlanes.y;
-  if (depthPlanes.z > 0.5) {
-    return d <= 0.0 ? f : min(n * f / (d * (f - n) + n), f);
-  }
-  if (d >= 1.0) {
-    return f;
-  }
-  float a = -2.0 * f * n / (f - n);
-  float b = (f + n) / (f - n);
-  return min(a / (2.0 * d - 1.0 - b), f);
-}
 
 void main()
 {
