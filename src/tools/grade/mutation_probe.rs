@@ -21,7 +21,7 @@
 
 use super::args::Step;
 use super::measure::{as_r8, block_means};
-use super::passes::{run_blur, run_sao, Mips};
+use super::passes::{run_blur, run_sao, run_sao_pair, Mips};
 use super::rig::{build_rig, Rig, Subject};
 use super::scene::{Aabb, SynthScene};
 use super::tol;
@@ -230,18 +230,14 @@ fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
     let (w, h) = (scene.width as usize, scene.height as usize);
     let depth = scene.depth();
     let far = scene.camera.far;
-    let run = |lesson| {
-        run_sao(
-            lesson,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            params,
-            Mips::Filled,
-        )
-    };
-    let r = run(&rig.reference)?;
-    let raw = run(&rig.student)?;
+    let (r, raw) = run_sao_pair(
+        &rig.reference,
+        &rig.student,
+        &rig.meshes,
+        &scene.camera,
+        &depth,
+        params,
+    )?;
     let sky = depth.iter().filter(|d| **d >= far).count();
     let nan = raw
         .iter()

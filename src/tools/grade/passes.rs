@@ -49,3 +49,17 @@ pub fn run_blur(
     lesson.blur(meshes);
     Ok(lesson.result_texture(true).read_f32(0, 1))
 }
+
+/// The project's and the student's SAO on the same linear depth, mip chain filled as the lesson
+/// builds it: (the project's, the student's) raw outputs.
+pub fn run_sao_pair(
+    reference: &SaoLesson,
+    student: &SaoLesson,
+    meshes: &MeshBuffer,
+    camera: &crate::math::Camera,
+    depth: &[f32],
+    params: &AoSettings,
+) -> Result<(Vec<f32>, Vec<f32>)> {
+    let run = |lesson| run_sao(lesson, meshes, camera, depth, params, Mips::Filled);
+    Ok((run(reference)?, run(student)?))
+}

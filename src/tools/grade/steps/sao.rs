@@ -13,7 +13,7 @@
 use crate::ao::AoSettings;
 use crate::i18n::Text;
 use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
-use crate::tools::grade::passes::{run_sao, Mips};
+use crate::tools::grade::passes::{run_sao, run_sao_pair, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
@@ -150,18 +150,14 @@ fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Meas
         let (w, h) = (scene.width as usize, scene.height as usize);
         let depth = scene.depth();
         let far = scene.camera.far;
-        let run = |lesson| {
-            run_sao(
-                lesson,
-                &rig.meshes,
-                &scene.camera,
-                &depth,
-                params,
-                Mips::Filled,
-            )
-        };
-        let r = run(&rig.reference)?;
-        let raw = run(&rig.student)?;
+        let (r, raw) = run_sao_pair(
+            &rig.reference,
+            &rig.student,
+            &rig.meshes,
+            &scene.camera,
+            &depth,
+            params,
+        )?;
         let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
         let clean = clean_mask(&depth, w, h, far);
         let flat: Vec<bool> = (0..w * h)

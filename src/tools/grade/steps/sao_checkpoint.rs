@@ -10,7 +10,7 @@ use crate::ao::{AoSettings, SaoLesson};
 use crate::i18n::Text;
 use crate::res::ResDirs;
 use crate::tools::grade::measure::matches;
-use crate::tools::grade::passes::{run_sao, Mips};
+use crate::tools::grade::passes::run_sao_pair;
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{float_targets, Rig, Verdict};
 use crate::tools::grade::say::say;
@@ -41,21 +41,13 @@ fn render(rig: &Rig, lesson: u32, project_res: &Path, params: &AoSettings) -> Re
     let (mut student_all, mut reference_all, mut panels) = (Vec::new(), Vec::new(), Vec::new());
     for scene in sao_scenes(SAO_SIZE) {
         let depth = scene.depth();
-        let s = run_sao(
+        let (r, s) = run_sao_pair(
+            &reference,
             &rig.student,
             &rig.meshes,
             &scene.camera,
             &depth,
             params,
-            Mips::Filled,
-        )?;
-        let r = run_sao(
-            &reference,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            params,
-            Mips::Filled,
         )?;
         let n = SAO_SIZE as usize;
         panels.push(Panel::absolute(

@@ -7,7 +7,7 @@
 use crate::ao::AoSettings;
 use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
-use crate::tools::grade::passes::{run_sao, Mips};
+use crate::tools::grade::passes::run_sao_pair;
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{Aabb, SynthScene};
 use anyhow::Result;
@@ -60,17 +60,13 @@ fn spread(b: [f64; 4]) -> f64 {
 pub fn anisotropy(rig: &Rig, params: &AoSettings, size: u32) -> Result<(f64, f64)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
-    let run = |lesson| {
-        run_sao(
-            lesson,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            params,
-            Mips::Filled,
-        )
-    };
-    let s = run(&rig.student)?;
-    let r = run(&rig.reference)?;
+    let (r, s) = run_sao_pair(
+        &rig.reference,
+        &rig.student,
+        &rig.meshes,
+        &scene.camera,
+        &depth,
+        params,
+    )?;
     Ok((spread(bands(&s, &scene)), spread(bands(&r, &scene))))
 }
