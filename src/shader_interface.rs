@@ -51,11 +51,12 @@ pub mod loc {
     pub const DEBUG_VIEW_SCALE: i32 = 211;
     /// ao/blur_separable.frag, ao/blur_packed.frag: (1,0) then (0,1).
     pub const BLUR_AXIS: i32 = 210;
-    /// ao/upsample_bilateral.frag: (near, far, 1 for reversed-Z) to linearise the main depth.
+    /// ao/upsample_bilateral.frag, ao/composite_bilateral.frag: (near, far, 1 for reversed-Z) to
+    /// linearise the main depth.
     pub const UPSAMPLE_DEPTH_PLANES: i32 = 230;
     /// ao/restore_back_depth.frag: main texels per AO texel along each axis (1 or 2).
     pub const BACK_DEPTH_BLOCK: i32 = 231;
-    /// ao/composite_tint.frag: tint colour and power.
+    /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
 }
@@ -66,7 +67,7 @@ pub mod binding {
     pub const INPUT: u32 = 0;
     /// sao_blur.frag and ao/blur_separable.frag: linear depth beside the occlusion; image processing: bloom.
     pub const SECOND_INPUT: u32 = 1;
-    /// ao/upsample_bilateral.frag: the main depth buffer.
+    /// ao/upsample_bilateral.frag, ao/composite_bilateral.frag: the main depth buffer.
     pub const THIRD_INPUT: u32 = 2;
     /// standard.frag: `texShadow`.
     pub const SHADOW_MAP: u32 = 2;
@@ -219,6 +220,19 @@ pub const PROGRAMS: &[ProgramInterface] = &[
     fullscreen(
         "ao/upsample_bilateral.frag",
         &[u("depthPlanes", UPSAMPLE_DEPTH_PLANES)],
+        &[
+            s("texOcclusion", INPUT),
+            s("texDepth", SECOND_INPUT),
+            s("texMainDepth", THIRD_INPUT),
+        ],
+    ),
+    fullscreen(
+        "ao/composite_bilateral.frag",
+        &[
+            u("tint", AO_TINT),
+            u("power", AO_TINT_POWER),
+            u("depthPlanes", UPSAMPLE_DEPTH_PLANES),
+        ],
         &[
             s("texOcclusion", INPUT),
             s("texDepth", SECOND_INPUT),

@@ -79,7 +79,10 @@ impl AoPipeline {
             )?),
             composite_simple: fullscreen("simple.frag", &[])?,
             composite_tint: fullscreen("ao/composite_tint.frag", &[])?,
-            upsample: BilateralUpsample::new(fullscreen(super::upsample::SHADER, &[])?),
+            upsample: BilateralUpsample::new(
+                fullscreen(super::upsample::SHADER, &[])?,
+                fullscreen(super::upsample::COMPOSITE_SHADER, &[])?,
+            ),
         };
         p.prepare(AoMethod::SaoLesson, camera, settings)?;
         p.prepare(settings.method, camera, settings)?;
@@ -171,6 +174,7 @@ impl AoPipeline {
         v.push(&mut self.composite_simple);
         v.push(&mut self.composite_tint);
         v.push(&mut self.upsample.program);
+        v.push(&mut self.upsample.composite_program);
         for m in self.methods.values_mut() {
             v.extend(m.programs_mut());
         }

@@ -1,8 +1,12 @@
 //! Joint bilateral up-sampling of the engine's half-size AO to the main size
-//! (`Res/ao/upsample_bilateral.frag`): silhouettes keep their own occlusion instead of the linear
-//! filter's blocky halo. The lesson's `sao-lesson` keeps the course's linear filter.
+//! (`Res/ao/bilateral_upsample.glsl`): silhouettes keep their own occlusion instead of the linear
+//! filter's blocky halo. The blended composites up-sample as they blend
+//! (`Res/ao/composite_bilateral.frag`, one full-size pass and one full-size texture fewer); the AO
+//! views and the ambient-only lighting read an up-sampled texture (`Res/ao/upsample_bilateral.frag`).
+//! The lesson's `sao-lesson` keeps the course's linear filter.
 
 use super::blur::half_size_target;
+use crate::gl::pass_state::Blend;
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::shader_interface::{binding, loc};
@@ -11,9 +15,12 @@ use std::cell::RefCell;
 use std::rc::Rc;
 
 pub const SHADER: &str = "ao/upsample_bilateral.frag";
+pub const COMPOSITE_SHADER: &str = "ao/composite_bilateral.frag";
 
 pub struct BilateralUpsample {
     pub program: ProgramObject,
+    /// Up-samples and blends over the main colour in one pass.
+    pub composite_program: ProgramObject,
     /// Main-size R8 target, (re)created when the main size changes.
     target: RefCell<Option<FramebufferObject>>,
 }
@@ -28,9 +35,10 @@ pub struct UpsampleInputs<'a> {
 }
 
 impl BilateralUpsample {
-    pub fn new(program: ProgramObject) -> BilateralUpsample {
+    pub fn new(program: ProgramObject, composite_program: ProgramObject) -> BilateralUpsample {
         BilateralUpsample {
             program,
+            composite_program,
             target: RefCell::new(None),
         }
     }
@@ -52,19 +60,40 @@ impl BilateralUpsample {
         let fbo = target.as_ref().expect("created above");
         PassState::FULLSCREEN.apply(gl, None);
         self.program.use_program();
-        let reversed = if inputs.mode.reversed() { 1.0 } else { 0.0 };
-        self.program.set_vec3(
-            loc::UPSAMPLE_DEPTH_PLANES,
-            [inputs.camera.near, inputs.camera.far, reversed],
-        );
+        self.program
+            .set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
         fbo.bind();
-        inputs.occlusion.bind(binding::INPUT);
-        inputs.half_depth.bind(binding::SECOND_INPUT);
-        inputs.main_depth.bind(binding::THIRD_INPUT);
+        bind_inputs(inputs);
         meshes.draw_plane_xy();
         fbo.color_texture()
             .cloned()
             .ok_or_else(|| anyhow::anyhow!("the up-sampling target has no colour texture"))
+    }
+
+    /// Blends the up-sampled occlusion over `main_color` (the main colour without its depth
+    /// attachment: the shader reads the main depth, and a texture attached to the framebuffer being
+    /// drawn must not be sampled): colour moves toward `tint` by 1 − visibility^`power`; the lesson's
+    /// blend is tint 0, power 1. Sky pixels are left alone.
+    pub fn composite(
+        &self,
+        gl: &Gl,
+        meshes: &MeshBuffer,
+        inputs: &UpsampleInputs,
+        main_color: &FramebufferObject,
+        tint: [f32; 3],
+        power: f32,
+    ) {
+        PassState::FULLSCREEN
+            .with_blend(Blend::ALPHA)
+            .apply(gl, None);
+        let program = &self.composite_program;
+        program.use_program();
+        program.set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
+        program.set_vec3(loc::AO_TINT, tint);
+        program.set_f32(loc::AO_TINT_POWER, power);
+        main_color.bind();
+        bind_inputs(inputs);
+        meshes.draw_plane_xy();
     }
 
     pub fn textures(&self) -> Vec<Rc<Texture>> {
@@ -78,4 +107,16 @@ impl BilateralUpsample {
     pub fn release_targets(&self) {
         *self.target.borrow_mut() = None;
     }
+}
+
+/// (near, far, 1 for reversed-Z): what `linear_depth.glsl` needs to linearise the main depth.
+fn depth_planes(inputs: &UpsampleInputs) -> [f32; 3] {
+    let reversed = if inputs.mode.reversed() { 1.0 } else { 0.0 };
+    [inputs.camera.near, inputs.camera.far, reversed]
+}
+
+fn bind_inputs(inputs: &UpsampleInputs) {
+    inputs.occlusion.bind(binding::INPUT);
+    inputs.half_depth.bind(binding::SECOND_INPUT);
+    inputs.main_depth.bind(binding::THIRD_INPUT);
 }

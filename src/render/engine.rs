@@ -49,6 +49,8 @@ pub struct Engine {
     width: u32,
     height: u32,
     pub fbo_main: FramebufferObject,
+    /// The main colour alone, for passes that read the main depth while they draw.
+    fbo_main_color: FramebufferObject,
     /// Main depth buffer convention (`[output] depth`, `--depth`).
     depth_mode: DepthMode,
     /// Loaded once reversed-Z is first used; from then on every pass states its clip range.
@@ -118,6 +120,7 @@ impl Engine {
                 .get(&o.name)
                 .ok_or_else(|| anyhow!("mesh {} missing after loading", o.name))?;
         }
+        let main_fbos = create_main_fbos(gl, width, height, DepthMode::D32)?;
         let mut engine = Engine {
             gl: gl.clone(),
             meshes,
@@ -136,7 +139,8 @@ impl Engine {
             ao,
             width,
             height,
-            fbo_main: create_main_fbo(gl, width, height, DepthMode::D32)?,
+            fbo_main: main_fbos.0,
+            fbo_main_color: main_fbos.1,
             depth_mode: DepthMode::D32,
             clip_control: None,
             fbo_output: None,
@@ -179,7 +183,8 @@ impl Engine {
         let resolution = self.ao_settings.effective_resolution();
         self.ao.prepare_depth_mode(mode, resolution, &self.camera)?;
         if mode != self.depth_mode {
-            self.fbo_main = create_main_fbo(&self.gl, self.width, self.height, mode)?;
+            (self.fbo_main, self.fbo_main_color) =
+                create_main_fbos(&self.gl, self.width, self.height, mode)?;
             self.depth_mode = mode;
         }
         Ok(())
@@ -190,7 +195,8 @@ impl Engine {
         if width == 0 || height == 0 || (width, height) == (self.width, self.height) {
             return Ok(());
         }
-        self.fbo_main = create_main_fbo(&self.gl, width, height, self.depth_mode)?;
+        (self.fbo_main, self.fbo_main_color) =
+            create_main_fbos(&self.gl, width, height, self.depth_mode)?;
         self.bloom_pass.resize(&self.gl, (width, height))?;
         self.fbo_output = None;
         self.fbo_values = None;
@@ -373,6 +379,15 @@ impl Engine {
         }
         if let Some(targets) = ao_targets {
             self.run_ao(&f, targets, view)?;
+        }
+        let blend_while_upsampling = view == View::Composite
+            && !ambient_only
+            && ao_targets.is_some_and(|t| self.needs_upsample(t, view));
+        if let (true, Some(targets)) = (blend_while_upsampling, ao_targets) {
+            self.pass("bilateral composite", "ao", || {
+                self.draw_bilateral_composite(targets)
+            })?;
+        } else if let Some(targets) = ao_targets {
             let occlusion = self.full_size_occlusion(targets, view)?;
             let occlusion = occlusion.as_ref();
             if ambient_only {
@@ -501,25 +516,51 @@ impl Engine {
     /// size are up-sampled depth-aware; the lesson's SAO keeps the course's linear filter, and
     /// full-size AO needs nothing.
     fn full_size_occlusion(&self, targets: &AoTargets, view: View) -> Result<Rc<Texture>> {
-        let result = targets.result_texture(self.ao_settings.blur);
-        let half = targets.size() != self.size();
-        if !half || self.ao_settings.method == AoMethod::SaoLesson || view == View::AoRaw {
-            return Ok(result.clone());
+        if !self.needs_upsample(targets, view) {
+            return Ok(targets.result_texture(self.ao_settings.blur).clone());
         }
-        let main_depth = self
-            .fbo_main
-            .depth_texture()
-            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
-        let inputs = UpsampleInputs {
-            occlusion: result,
-            half_depth: &targets.tex_depth,
-            main_depth,
-            camera: &self.camera,
-            mode: self.depth_mode,
-        };
+        let inputs = self.upsample_inputs(targets)?;
         self.pass("bilateral upsample", "ao", || {
             self.ao.upsample.run(&self.gl, &self.meshes, &inputs)
         })
+    }
+
+    /// Whether `view` shows the AO up-sampled from half size (the engine's methods; the lesson's SAO
+    /// keeps the course's linear filter, the raw view shows the half-size texels as they are).
+    fn needs_upsample(&self, targets: &AoTargets, view: View) -> bool {
+        targets.size() != self.size()
+            && self.ao_settings.method != AoMethod::SaoLesson
+            && view != View::AoRaw
+    }
+
+    fn upsample_inputs<'a>(&'a self, targets: &'a AoTargets) -> Result<UpsampleInputs<'a>> {
+        Ok(UpsampleInputs {
+            occlusion: targets.result_texture(self.ao_settings.blur),
+            half_depth: &targets.tex_depth,
+            main_depth: self
+                .fbo_main
+                .depth_texture()
+                .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?,
+            camera: &self.camera,
+            mode: self.depth_mode,
+        })
+    }
+
+    /// The blended composites of half-size AO: up-sampled and blended in one pass.
+    fn draw_bilateral_composite(&self, targets: &AoTargets) -> Result<()> {
+        let s = &self.ao_settings;
+        let tint = if s.composite == CompositeMode::Tinted {
+            s.tint
+        } else {
+            [0.0; 3]
+        };
+        let inputs = self.upsample_inputs(targets)?;
+        let main_color = &self.fbo_main_color;
+        let (gl, meshes) = (&self.gl, &self.meshes);
+        self.ao
+            .upsample
+            .composite(gl, meshes, &inputs, main_color, tint, s.power);
+        Ok(())
     }
 
     /// Blends the occlusion over the lit image: the lesson's swizzled blend (the engine's SAO leaves
@@ -633,7 +674,13 @@ fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
 }
 
 /// The main FBO: RGBA16F colour + the mode's depth format, compare mode off (the AO passes read raw depth).
-fn create_main_fbo(gl: &Gl, width: u32, height: u32, mode: DepthMode) -> Result<FramebufferObject> {
+/// The main FBO (colour + depth) and the same colour alone.
+fn create_main_fbos(
+    gl: &Gl,
+    width: u32,
+    height: u32,
+    mode: DepthMode,
+) -> Result<(FramebufferObject, FramebufferObject)> {
     let color = Rc::new(Texture::new(
         gl,
         TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F)
@@ -644,5 +691,9 @@ fn create_main_fbo(gl: &Gl, width: u32, height: u32, mode: DepthMode) -> Result<
         TextureDesc::target("FBO(main depth)", width, height, mode.internal_format())
             .compare(false),
     )?);
-    FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)
+    let color_only = FramebufferObject::new(gl, Some(color.clone()), None, 0, 0)?;
+    Ok((
+        FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)?,
+        color_only,
+    ))
 }

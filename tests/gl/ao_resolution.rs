@@ -4,7 +4,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoResolution};
+use opengl3d::ao::{AoMethod, AoResolution, CompositeMode};
 use opengl3d::math::DepthMode;
 use opengl3d::render::View;
 use opengl3d::scene::{shapes, SceneDesc};
@@ -178,4 +178,70 @@ fn half_size_ao_is_upsampled_depth_aware_at_silhouettes() {
         bilateral < 0.9 * linear,
         "bilateral {bilateral} vs linear {linear}"
     );
+}
+
+/// The main colour (RGBA16F, rows bottom-up) after the last frame.
+fn main_colour(eng: &opengl3d::render::Engine) -> Vec<f32> {
+    eng.fbo_main.color_texture().unwrap().read_f32(0, 4)
+}
+
+#[test]
+fn the_blended_composites_darken_by_the_upsampled_occlusion() {
+    let ctx = common::context();
+    let dir = common::temp_dir("composite-while-upsampling");
+    let (w, h) = (160usize, 120usize);
+    let mut scene = common::crease_scene(
+        &dir,
+        Vec3::new(4.0, 2.0, 4.0),
+        Vec3::new(0.0, 1.0, 0.0),
+        w as u32,
+        h as u32,
+    );
+    scene.light.shadow = false;
+    scene.bloom.enabled = false;
+    scene.ao.method = AoMethod::Gtao;
+    let mut eng = common::engine(&ctx, &scene);
+    eng.ao_settings.enabled = false;
+    eng.render_image().unwrap();
+    let lit = main_colour(&eng);
+    eng.ao_settings.enabled = true;
+    // The AO view goes through the separate up-sampling pass (into R8); rows top-down.
+    let visibility = eng.render_values(View::Ao).unwrap();
+    let darkened = visibility.iter().filter(|v| **v < 0.9).count();
+    assert!(darkened > 200, "only {darkened} pixels occluded");
+    let tint = [0.9f32, 0.2, 0.1];
+    for (mode, power) in [(CompositeMode::Blend, 1.0f32), (CompositeMode::Tinted, 2.0)] {
+        eng.ao_settings.composite = mode;
+        eng.ao_settings.power = power;
+        eng.ao_settings.tint = tint;
+        eng.render_image().unwrap();
+        let out = main_colour(&eng);
+        let mut worst = 0.0f32;
+        for y in 0..h {
+            for x in 0..w {
+                let v = visibility[(h - 1 - y) * w + x];
+                let alpha = 1.0 - v.powf(power);
+                let target = if mode == CompositeMode::Blend {
+                    [0.0; 3]
+                } else {
+                    tint
+                };
+                for c in 0..3 {
+                    let i = (y * w + x) * 4 + c;
+                    let expected = lit[i] * (1.0 - alpha) + target[c] * alpha;
+                    // The view's R8 rounding (half a step of 1/255 in alpha) and RGBA16F storage.
+                    let allowed = (lit[i] + target[c]) * power / 510.0 + 2e-3 * expected + 1e-3;
+                    let err = (out[i] - expected).abs();
+                    assert!(
+                        err <= allowed,
+                        "{mode:?} at ({x}, {y}) channel {c}: {} vs lit {} x visibility {v} -> {expected}",
+                        out[i],
+                        lit[i]
+                    );
+                    worst = worst.max(err);
+                }
+            }
+        }
+        eprintln!("{mode:?}: largest difference from lit colour x visibility {worst:.5}");
+    }
 }

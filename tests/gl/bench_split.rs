@@ -21,6 +21,7 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
         methods: vec![AoMethod::Gtao, AoMethod::Vbao],
         samples: vec![8],
         radii: vec![0.5],
+        qualities: Vec::new(),
         ref_rays: 8,
         screen_rays: 8,
         ref_scale: 1,

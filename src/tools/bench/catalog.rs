@@ -61,11 +61,17 @@ pub fn method_by_name(name: &str) -> Result<AoMethod> {
 }
 
 /// Settings of `method`. `samples` / `radii` override the defaults when not empty (then the grid of
-/// both is run). Defaults: the lesson's SAO runs the full grid LESSON_SAMPLES × LESSON_RADII; the
+/// both is run); for the methods with presets (gtao, vbao) `qualities` does, as the grid of presets
+/// and radii (1 m when none is given). Defaults: the lesson's SAO runs the full grid LESSON_SAMPLES × LESSON_RADII; the
 /// other methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost
 /// grows with samples the same way, and the radius mostly moves their error); GTAO also runs its
-/// high and ultra presets at 1 m and 0.5 m.
-pub(crate) fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> Vec<Setting> {
+/// high and ultra presets at 1 m and 0.5 m, VBAO all four presets at both.
+pub(crate) fn settings_for(
+    method: AoMethod,
+    samples: &[u32],
+    radii: &[f32],
+    qualities: &[crate::ao::GtaoQuality],
+) -> Vec<Setting> {
     let grid = |s: &[u32], r: &[f32]| {
         let mut v = Vec::new();
         for &radius in r {
@@ -75,6 +81,14 @@ pub(crate) fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> 
         }
         v
     };
+    let has_presets = matches!(method, AoMethod::Gtao | AoMethod::Vbao);
+    if has_presets && !qualities.is_empty() {
+        let r: &[f32] = if radii.is_empty() { &[1.0] } else { radii };
+        return r
+            .iter()
+            .flat_map(|&radius| qualities.iter().map(move |&q| Setting::preset(q, radius)))
+            .collect();
+    }
     if !samples.is_empty() || !radii.is_empty() {
         let s: Vec<u32> = if samples.is_empty() {
             vec![11]
@@ -90,12 +104,22 @@ pub(crate) fn settings_for(method: AoMethod, samples: &[u32], radii: &[f32]) -> 
     }
     match method {
         AoMethod::SaoLesson => grid(&LESSON_SAMPLES, &LESSON_RADII),
-        AoMethod::Gtao | AoMethod::Vbao => {
+        AoMethod::Gtao => {
             // Its presets too: the issue's accuracy target is on "high".
-            let mut v = settings_for(AoMethod::Sao, &[], &[]);
+            let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
             for radius in [1.0, 0.5] {
                 v.push(Setting::preset(crate::ao::GtaoQuality::High, radius));
                 v.push(Setting::preset(crate::ao::GtaoQuality::Ultra, radius));
+            }
+            v
+        }
+        AoMethod::Vbao => {
+            // Every preset: the issue asks for the cheapest one that reaches its accuracy target.
+            let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
+            for radius in [1.0, 0.5] {
+                for q in crate::ao::GtaoQuality::ALL {
+                    v.push(Setting::preset(q, radius));
+                }
             }
             v
         }
@@ -167,22 +191,37 @@ mod tests {
 
     #[test]
     fn gtao_runs_its_presets_and_explicit_samples_replace_them() {
-        let labels: Vec<String> = settings_for(AoMethod::Gtao, &[], &[])
+        let labels: Vec<String> = settings_for(AoMethod::Gtao, &[], &[], &[])
             .iter()
             .map(Setting::label)
             .collect();
         assert!(labels.contains(&"high r1".to_string()), "{labels:?}");
         assert!(labels.contains(&"ultra r0.5".to_string()), "{labels:?}");
-        let high = settings_for(AoMethod::Gtao, &[], &[])
+        let high = settings_for(AoMethod::Gtao, &[], &[], &[])
             .into_iter()
             .find(|s| s.quality == Some(crate::ao::GtaoQuality::High))
             .unwrap();
         assert_eq!(high.samples, 2 * 3 * 6);
-        assert!(settings_for(AoMethod::Gtao, &[16], &[])
+        assert!(settings_for(AoMethod::Gtao, &[16], &[], &[])
             .iter()
             .all(|s| s.quality.is_none()));
-        assert!(settings_for(AoMethod::Sao, &[], &[])
+        assert!(settings_for(AoMethod::Sao, &[], &[], &[])
             .iter()
             .all(|s| s.quality.is_none()));
+        let vbao: Vec<String> = settings_for(AoMethod::Vbao, &[], &[], &[])
+            .iter()
+            .map(Setting::label)
+            .collect();
+        for label in ["low r1", "medium r0.5", "high r0.5", "ultra r1"] {
+            assert!(vbao.contains(&label.to_string()), "{vbao:?}");
+        }
+        let low = crate::ao::GtaoQuality::Low;
+        let chosen: Vec<String> = settings_for(AoMethod::Vbao, &[8], &[0.5, 1.0], &[low])
+            .iter()
+            .map(Setting::label)
+            .collect();
+        assert_eq!(chosen, ["low r0.5", "low r1"]);
+        // Methods without presets keep the samples grid.
+        assert_eq!(settings_for(AoMethod::Sao, &[8], &[], &[low]).len(), 1);
     }
 }

@@ -19,9 +19,9 @@ pub mod skips;
 pub mod stress;
 mod timing;
 
-use crate::ao::AoMethod;
+use crate::ao::{AoMethod, GtaoQuality};
 use crate::res::ResDirs;
-use anyhow::Result;
+use anyhow::{anyhow, Result};
 use clap::Args;
 use std::path::PathBuf;
 
@@ -53,6 +53,10 @@ pub struct BenchArgs {
     /// Radii in metres to run (replaces each method's default settings; combined with --samples).
     #[arg(long, value_delimiter = ',')]
     pub radii: Vec<f32>,
+    /// Quality presets to run for the methods that have them (gtao, vbao): low, medium, high,
+    /// ultra, comma-separated; replaces their default settings (combined with --radii, default 1 m).
+    #[arg(long = "quality", value_delimiter = ',')]
+    pub qualities: Vec<String>,
     /// Rays per pixel of the ray-traced reference (1 to 65536).
     #[arg(long, default_value_t = 256,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
@@ -94,6 +98,16 @@ impl BenchArgs {
                 .map(|n| catalog::method_by_name(n))
                 .collect::<Result<Vec<_>>>()?
         };
+        let qualities = self
+            .qualities
+            .iter()
+            .map(|n| {
+                GtaoQuality::from_name(n.trim()).ok_or_else(|| {
+                    let names = GtaoQuality::ALL.map(GtaoQuality::name).join(", ");
+                    anyhow!("unknown quality preset '{n}': use one of {names}")
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
         Ok(perf::PerfConfig {
             scenes: self.scenes.clone(),
             width: self.width,
@@ -102,6 +116,7 @@ impl BenchArgs {
             methods,
             samples: self.samples.clone(),
             radii: self.radii.clone(),
+            qualities,
             ref_rays: self.ref_rays,
             screen_rays: self.screen_rays,
             ref_scale: self.ref_scale,

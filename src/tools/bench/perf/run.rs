@@ -143,7 +143,12 @@ fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
     let plan: Vec<(AoMethod, Vec<Setting>)> = cfg
         .methods
         .iter()
-        .map(|m| (*m, catalog::settings_for(*m, &cfg.samples, &cfg.radii)))
+        .map(|m| {
+            (
+                *m,
+                catalog::settings_for(*m, &cfg.samples, &cfg.radii, &cfg.qualities),
+            )
+        })
         .collect();
     for (_, settings) in &plan {
         for s in settings {
