@@ -11,7 +11,7 @@ void main()
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
   float z = -P.z;
-  outColor = 0;
+  WriteOcclusion(0.0, z);
   if (IsSky(z)) {
     return;
   }
@@ -46,5 +46,5 @@ void main()
     }
     sum += pairOcclusion / PI;
   }
-  outColor = ApplyIntensity(clamp(sum / float(pairs), 0.0, 1.0));
+  WriteOcclusion(ApplyIntensity(clamp(sum / float(pairs), 0.0, 1.0)), z);
 }

@@ -20,6 +20,15 @@ layout(location=203) uniform float maxRadiusPixels;
 #define AO_PROJ_SCALE (aoInfo.w)
 
 layout(location=0) out float outColor;
+// (occlusion, linear depth) side by side for the packed blur (blur_packed.frag): one fetch per tap
+// instead of two. Written through WriteOcclusion only.
+layout(location=1) out vec2 outPacked;
+
+// Every method's result goes out through here: the occlusion, and the pair the blur reads.
+void WriteOcclusion(float occlusion, float z) {
+  outColor = occlusion;
+  outPacked = vec2(occlusion, z);
+}
 
 const float PI = 3.14159265;
 

@@ -10,7 +10,7 @@ void main()
 {
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
-  outColor = 0;
+  WriteOcclusion(0.0, -P.z);
   if (IsSky(-P.z)) {
     return;
   }
@@ -38,5 +38,5 @@ void main()
     }
   }
   float fraction = occluded / float(count);
-  outColor = ApplyIntensity(clamp(2.0 * fraction - 1.0, 0.0, 1.0));
+  WriteOcclusion(ApplyIntensity(clamp(2.0 * fraction - 1.0, 0.0, 1.0)), -P.z);
 }

@@ -11,7 +11,7 @@ void main()
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
   float z = -P.z;
-  outColor = 0;
+  WriteOcclusion(0.0, z);
   if (IsSky(z)) {
     return;
   }
@@ -86,5 +86,5 @@ void main()
   // 1 on an open tilted surface only over many slice angles; per pixel it lands above or below, and
   // clamping the values above 1 left a floor 2.7 % occluded on average.
   visibility = openSum > 0.0 ? clamp(visibility / openSum, 0.0, 1.0) : 1.0;
-  outColor = ApplyIntensity(1.0 - visibility);
+  WriteOcclusion(ApplyIntensity(1.0 - visibility), z);
 }

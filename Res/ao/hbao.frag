@@ -13,7 +13,7 @@ void main()
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
   float z = -P.z;
-  outColor = 0;
+  WriteOcclusion(0.0, z);
   if (IsSky(z)) {
     return;
   }
@@ -57,5 +57,5 @@ void main()
       }
     }
   }
-  outColor = ApplyIntensity(clamp(sum / float(dirs), 0.0, 1.0));
+  WriteOcclusion(ApplyIntensity(clamp(sum / float(dirs), 0.0, 1.0)), z);
 }

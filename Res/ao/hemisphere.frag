@@ -9,7 +9,7 @@ void main()
 {
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
-  outColor = 0;
+  WriteOcclusion(0.0, -P.z);
   if (IsSky(-P.z)) {
     return;
   }
@@ -39,5 +39,5 @@ void main()
     float rangeCheck = smoothstep(0.0, 1.0, AO_RADIUS / max(abs(-P.z - zs), 1e-6));
     sum += (zs <= -S.z - AO_BIAS ? 1.0 : 0.0) * rangeCheck;
   }
-  outColor = ApplyIntensity(sum / float(count));
+  WriteOcclusion(ApplyIntensity(sum / float(count)), -P.z);
 }

@@ -14,15 +14,12 @@
 
 // (occlusion, linear depth) for the engine's packed blur (ao/blur_packed.frag): one fetch per blur tap.
 // Ignored when the target has no second attachment.
-layout(location=1) out vec2 outPacked;
-
 void main()
 {
   ivec2 pix = ivec2(gl_FragCoord.xy);
   vec3 P = TexelPos(pix);
   float z = -P.z;
-  outColor = 0;
-  outPacked = vec2(0, z);
+  WriteOcclusion(0.0, z);
   if (IsSky(z)) {
     return;
   }
@@ -60,6 +57,5 @@ void main()
   }
   // Same normalisation as the lesson: intensity / r^6 / N, with the lesson's intensity of 5.
   float occlusion = min(1.0, sum / float(count) * 5.0 / (r2 * r2 * r2));
-  outColor = ApplyIntensity(occlusion);
-  outPacked = vec2(outColor, z);
+  WriteOcclusion(ApplyIntensity(occlusion), z);
 }

@@ -52,7 +52,7 @@ void main()
   ivec2 pix = ivec2(gl_FragCoord.xy);
   ivec2 size = ivec2(DepthSize());
   float z = TexelDepth(pix);
-  outColor = 0;
+  WriteOcclusion(0.0, z);
   if (IsSky(z)) {
     return;
   }
@@ -183,5 +183,5 @@ void main()
     openPart += projLen * total * (1.0 - float(bitCount(mask)) / float(SECTORS));
   }
   float visibility = weight > 0.0 ? clamp(openPart / weight, 0.0, 1.0) : 1.0;
-  outColor = ApplyIntensity(1.0 - visibility);
+  WriteOcclusion(ApplyIntensity(1.0 - visibility), z);
 }

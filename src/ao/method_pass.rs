@@ -2,6 +2,7 @@
 //! engine's method shaders share through `Res/ao/common.glsl`.
 
 use super::blur::SeparableBlur;
+use super::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{AoTargets, SAO_DEPTH_LEVELS};
 use crate::gl::preprocess::glsl_float;
@@ -103,10 +104,13 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     }
 }
 
-/// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion.
+/// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion,
+/// blurred with the packed blur.
 pub struct ShaderMethod {
     method: AoMethod,
     program: ProgramObject,
+    blur: ProgramObject,
+    packed: PackedOutput,
     /// (first, second) of `aoCounts` from the settings.
     counts: fn(&AoSettings) -> [i32; 2],
 }
@@ -120,11 +124,14 @@ impl ShaderMethod {
         res: &ResDirs,
         camera: &Camera,
     ) -> Result<ShaderMethod, ProgramError> {
-        let program =
-            ProgramObject::from_res(gl, res, "simple.vert", shader, &method_defines(camera))?;
+        let defines = method_defines(camera);
+        let program = ProgramObject::from_res(gl, res, "simple.vert", shader, &defines)?;
+        let blur = ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &defines)?;
         Ok(ShaderMethod {
             method,
             program,
+            blur,
+            packed: PackedOutput::default(),
             counts,
         })
     }
@@ -135,10 +142,12 @@ impl AoMethodPass for ShaderMethod {
         self.method
     }
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
-        vec![&mut self.program]
+        vec![&mut self.program, &mut self.blur]
     }
     fn update_defines(&mut self, camera: &Camera, _: &AoSettings) -> Result<(), ProgramError> {
-        self.program.set_defines(&method_defines(camera))
+        let defines = method_defines(camera);
+        self.program.set_defines(&defines)?;
+        self.blur.set_defines(&defines)
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
         set_common_uniforms(
@@ -149,12 +158,22 @@ impl AoMethodPass for ShaderMethod {
         );
         PassState::FULLSCREEN.apply(inputs.gl, None);
         self.program.use_program();
-        inputs.targets.fbo_sao.bind();
+        self.packed.bind_for_method(inputs.gl, inputs.targets)?;
         inputs.targets.tex_depth.bind(binding::INPUT);
         if let Some(back) = inputs.back_depth {
             back.bind(binding::SECOND_INPUT);
         }
         inputs.meshes.draw_plane_xy();
         Ok(())
+    }
+    fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
+        self.packed
+            .blur(inputs.gl, inputs.targets, inputs.meshes, &self.blur)
+    }
+    fn textures(&self) -> Vec<Rc<Texture>> {
+        self.packed.textures()
+    }
+    fn release_targets(&mut self) {
+        self.packed.release();
     }
 }

@@ -7,6 +7,7 @@ pub mod depth_chain;
 pub mod lesson;
 pub mod method;
 pub mod method_pass;
+pub mod packed;
 pub mod pipeline;
 pub mod settings;
 pub mod targets;

@@ -404,10 +404,18 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
 }
 
 #[test]
-fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
+fn every_engine_methods_packed_blur_equals_the_two_texture_separable_blur() {
     use opengl3d::ao::AoMethod;
+    for method in AoMethod::ALL {
+        if method != AoMethod::SaoLesson {
+            packed_blur_equals_the_separable_blur(method);
+        }
+    }
+}
+
+fn packed_blur_equals_the_separable_blur(method: opengl3d::ao::AoMethod) {
     let ctx = common::context();
-    let dir = common::temp_dir("packed-blur");
+    let dir = common::temp_dir(&format!("packed-blur-{}", method.name()));
     let mut scene = common::crease_scene(
         &dir,
         Vec3::new(4.0, 2.0, 4.0),
@@ -415,11 +423,11 @@ fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
         320,
         240,
     );
-    scene.ao.method = AoMethod::Sao;
+    scene.ao.method = method;
     let mut eng = common::engine(&ctx, &scene);
     eng.render_image().unwrap();
     let names: Vec<String> = eng.ao_textures().into_iter().map(|t| t.name).collect();
-    assert!(names.iter().any(|n| n == "FBO(sao packed)"), "{names:?}");
+    assert!(names.iter().any(|n| n == "FBO(ao packed)"), "{names:?}");
     let packed = eng
         .ao_targets()
         .unwrap()
@@ -439,7 +447,8 @@ fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
     let occluded = plain.iter().filter(|v| **v > 0.05).count();
     assert!(
         occluded > 100,
-        "the crease must be occluded ({occluded} texels)"
+        "{}: the crease must be occluded ({occluded} texels)",
+        method.name()
     );
     // The packed pass blurs the unquantised occlusion; the plain one its R8 copy: within 1.5/255.
     let worst = packed
@@ -447,9 +456,13 @@ fn packed_blur_of_the_engine_sao_equals_the_two_texture_separable_blur() {
         .zip(&plain)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0f32, f32::max);
-    eprintln!("packed vs plain blur: worst difference {worst}");
+    eprintln!(
+        "{}: packed vs plain blur: worst difference {worst}",
+        method.name()
+    );
     assert!(
         worst <= 1.5 / 255.0,
-        "packed vs plain blur differ by {worst}"
+        "{}: packed vs plain blur differ by {worst}",
+        method.name()
     );
 }

@@ -1,25 +1,22 @@
 //! The engine's SAO (`Res/ao/sao.frag`): the lesson's algorithm with a round disc in view space, the
 //! screen radius clamped, sky and sub-pixel discs skipped, as many mip levels as its largest disc
-//! needs, and a packed separable blur: the shader writes occlusion into the shared R8 target and the
-//! (occlusion, linear depth) pair into an RG32F target in the same pass, so each blur tap is one fetch.
+//! needs, and the packed separable blur every engine method uses (`ao::packed`).
 
-use crate::ao::blur::{half_size_target, packed_blur, SeparableBlur};
+use crate::ao::blur::SeparableBlur;
 use crate::ao::method_pass::{
     max_radius_pixels, method_defines, set_common_uniforms, AoInputs, AoMethodPass, LOG_MAX_OFFSET,
 };
+use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::texture::max_levels;
-use crate::gl::{FramebufferObject, Gl, PassState, ProgramError, ProgramObject, Texture};
+use crate::gl::{Gl, PassState, ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::shader_interface::binding;
-use anyhow::{bail, Result};
-use glow::HasContext;
-use std::cell::RefCell;
+use anyhow::Result;
 use std::rc::Rc;
 
 pub const SHADER: &str = "ao/sao.frag";
-pub const PACKED_BLUR_SHADER: &str = "ao/blur_packed.frag";
 
 /// `aoCounts` = (samples, spiral turns).
 pub fn counts(s: &AoSettings) -> [i32; 2] {
@@ -35,57 +32,10 @@ pub fn depth_levels(half_width: u32, half_height: u32) -> u32 {
     (top + 1).min(max_levels(half_width, half_height))
 }
 
-/// RG32F keeps the depth exact, so the blur's `depth >= far` sky test holds.
-struct PackedTargets {
-    /// The shared occlusion texture attached as the second target (held so it outlives this FBO,
-    /// and to notice when the shared targets were re-created).
-    shared_sao: Rc<Texture>,
-    packed: Rc<Texture>,
-    /// Attachment 0 = `packed`, 1 = the shared occlusion texture; draw buffers map the shader's
-    /// output 0 (occlusion) to attachment 1 and output 1 (the pair) to attachment 0.
-    fbo_sao_and_packed: FramebufferObject,
-    /// Between the two blur passes (RG32F).
-    fbo_tmp: FramebufferObject,
-}
-
-impl PackedTargets {
-    fn new(gl: &Gl, shared_sao: &Rc<Texture>) -> Result<PackedTargets> {
-        let size = shared_sao.size_at(0);
-        let fbo = half_size_target(gl, "FBO(sao packed)", size, glow::RG32F)?;
-        let packed = fbo
-            .color_texture()
-            .cloned()
-            .expect("created with a colour texture");
-        // SAFETY: attaching an existing texture to an FBO this function owns.
-        unsafe {
-            gl.named_framebuffer_texture(
-                Some(fbo.id()),
-                glow::COLOR_ATTACHMENT1,
-                Some(shared_sao.id()),
-                0,
-            );
-            gl.named_framebuffer_draw_buffers(
-                Some(fbo.id()),
-                &[glow::COLOR_ATTACHMENT1, glow::COLOR_ATTACHMENT0],
-            );
-            let status = gl.check_named_framebuffer_status(Some(fbo.id()), glow::FRAMEBUFFER);
-            if status != glow::FRAMEBUFFER_COMPLETE {
-                bail!("packed SAO framebuffer is incomplete (status 0x{status:x})");
-            }
-        }
-        Ok(PackedTargets {
-            shared_sao: shared_sao.clone(),
-            packed,
-            fbo_sao_and_packed: fbo,
-            fbo_tmp: half_size_target(gl, "FBO(sao packed blur tmp)", size, glow::RG32F)?,
-        })
-    }
-}
-
 pub struct SaoMethod {
     program: ProgramObject,
     blur: ProgramObject,
-    packed: RefCell<Option<PackedTargets>>,
+    packed: PackedOutput,
 }
 
 impl SaoMethod {
@@ -94,7 +44,7 @@ impl SaoMethod {
         Ok(SaoMethod {
             program: ProgramObject::from_res(gl, res, "simple.vert", SHADER, &d)?,
             blur: ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &d)?,
-            packed: RefCell::new(None),
+            packed: PackedOutput::default(),
         })
     }
 }
@@ -115,53 +65,22 @@ impl AoMethodPass for SaoMethod {
         depth_levels(w, h)
     }
     fn compute(&self, i: &AoInputs) -> Result<()> {
-        let shared = i.targets.sao_texture();
-        let current = self
-            .packed
-            .borrow()
-            .as_ref()
-            .is_some_and(|p| Rc::ptr_eq(&p.shared_sao, shared));
-        if !current {
-            *self.packed.borrow_mut() = None;
-            *self.packed.borrow_mut() = Some(PackedTargets::new(i.gl, shared)?);
-        }
         set_common_uniforms(i.gl, &self.program, i, counts(i.settings));
         PassState::FULLSCREEN.apply(i.gl, None);
         self.program.use_program();
-        let packed = self.packed.borrow();
-        packed
-            .as_ref()
-            .expect("created above")
-            .fbo_sao_and_packed
-            .bind();
+        self.packed.bind_for_method(i.gl, i.targets)?;
         i.targets.tex_depth.bind(binding::INPUT);
         i.meshes.draw_plane_xy();
         Ok(())
     }
     fn blur(&self, i: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        let packed = self.packed.borrow();
-        let Some(t) = packed
-            .as_ref()
-            .filter(|p| Rc::ptr_eq(&p.shared_sao, i.targets.sao_texture()))
-        else {
-            bail!("the engine's SAO blur ran before its SAO pass");
-        };
-        packed_blur(i.gl, &self.blur, &t.packed, &t.fbo_tmp, i.targets, i.meshes);
-        Ok(())
+        self.packed.blur(i.gl, i.targets, i.meshes, &self.blur)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
-        self.packed
-            .borrow()
-            .iter()
-            .flat_map(|p| {
-                [p.packed.clone()]
-                    .into_iter()
-                    .chain(p.fbo_tmp.color_texture().cloned())
-            })
-            .collect()
+        self.packed.textures()
     }
     fn release_targets(&mut self) {
-        *self.packed.get_mut() = None;
+        self.packed.release();
     }
 }
 
