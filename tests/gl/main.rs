@@ -27,3 +27,4 @@ mod reference_slabs;
 mod sao_pipeline;
 mod shader_interface;
 mod vbao;
+mod vbao_convergence;

@@ -28,8 +28,9 @@
 //!   origin. Along the segment both the ray's and the surface's inverse depths are piecewise affine
 //!   with breaks only at those edges, so comparing them at the edges and the two ends decides
 //!   exactly whether the ray passes behind the surface: no mips and no skipped pixels.
-//! * **Sampling.** The same per-pixel generator, stratified lattice, cosine mapping and
-//!   self-intersection offset as the ray-traced reference (directions in view space).
+//! * **Sampling.** The same per-pixel generator, stratified lattice, cosine mapping and size of
+//!   self-intersection offset as the ray-traced reference (directions in view space); the offset
+//!   goes towards the eye, not along the normal (see `shade_pixel`).
 //!
 //! Sky pixels (depth not finite or not > 0) give ao = 1, std_error = 0, depth = +inf, as in
 //! [`RefImage`]; they also never block a ray.
@@ -47,7 +48,7 @@ use super::params::{AoVariant, RefParams};
 use super::sampling;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-const SCREEN_ALGORITHM_VERSION: u32 = 1;
+const SCREEN_ALGORITHM_VERSION: u32 = 2;
 
 /// Renders the screen-space reference of `depth` with the ray-traced reference's parameters
 /// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`], the size of the
@@ -89,8 +90,11 @@ fn shade_pixel(
         return Some((1.0, 0.0, depth));
     }
     let nrm = field.normal(x, y, p);
-    // Same offset as the ray-traced reference: clears rounding at that distance.
-    let origin = p + nrm * (1e-4 * p.length().max(1.0));
+    // The ray-traced reference's offset size (clears rounding at that distance), but towards the
+    // eye along the pixel's own ray: the origin stays over the pixel's vertex, in front of every
+    // triangle that meets there. Along the normal it could cross the screen into a neighbouring
+    // triangle that rises steeply (the one bridging a concave crease) and start inside the solid.
+    let origin = p - p.normalize() * (1e-4 * p.length().max(1.0));
     let (tan, bit) = sampling::tangent_frame(nrm);
     let count = params.rays.max(1);
     let mut rng = sampling::Pcg32::for_pixel(params.seed, stream);
@@ -275,5 +279,56 @@ mod tests {
         let mut bad = buffer(2, 2, |_, _| 1.0);
         bad.linear_depth.pop();
         assert!(render_screen_space(&bad, &RefParams::default()).is_err());
+    }
+
+    /// A floor and a wall leaning back from the camera meet in a concave crease; the triangles
+    /// that bridge the crease cut in front of the corner. A wall pixel next to the crease was
+    /// lifted along its normal, which points down the screen, into the bridging triangle: its rays
+    /// started inside the solid and the pixel came out fully occluded (0) where the corner gives
+    /// about one half.
+    #[test]
+    fn pixels_beside_a_concave_crease_do_not_start_inside_the_solid() {
+        // View-space planes of a far wall-floor crease seen from above (a scene of the
+        // vbao-convergence test), as n · X = c.
+        let wall_n = DVec3::new(0.1322, -0.3248, 0.9365).normalize();
+        let wall_c = wall_n.dot(DVec3::new(-3.8602, -0.2434, -7.2281));
+        let floor_n = DVec3::new(0.0, 0.9448, 0.3278).normalize();
+        let floor_c = floor_n.dot(DVec3::new(-3.7919, -0.2435, -7.2306));
+        let (w, h) = (160u32, 120u32);
+        let t = (30.0f64).to_radians().tan();
+        let depth = buffer(w, h, |x, y| {
+            let ray = DVec3::new(
+                (2.0 * (x as f64 + 0.5) / w as f64 - 1.0) * t * w as f64 / h as f64,
+                (1.0 - 2.0 * (y as f64 + 0.5) / h as f64) * t,
+                -1.0,
+            );
+            // Depth along each plane; the visible surface of a concave corner is the nearer.
+            let hit = |n: DVec3, c: f64| {
+                let d = c / n.dot(ray);
+                if d > 0.0 {
+                    d
+                } else {
+                    f64::INFINITY
+                }
+            };
+            hit(wall_n, wall_c).min(hit(floor_n, floor_c)) as f32
+        });
+        for thickness in [0.5, f32::INFINITY] {
+            let img = render_screen_space(
+                &depth.clone().with_thickness(thickness),
+                &RefParams {
+                    radius: 1.0,
+                    rays: 64,
+                    ..Default::default()
+                },
+            )
+            .unwrap();
+            let darkest = img.ao.iter().copied().fold(1.0f32, f32::min);
+            let zeros = img.ao.iter().filter(|a| **a == 0.0).count();
+            assert!(
+                darkest > 0.3,
+                "T {thickness}: darkest pixel {darkest}, {zeros} pixels fully occluded"
+            );
+        }
     }
 }
