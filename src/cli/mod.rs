@@ -281,15 +281,16 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
     let scene = load_scene(&args.scene, res)?;
     // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
-    let thickness = match (args.scene.thickness, args.screen_space) {
+    // `backface`: each pixel's slab reaches its back face, and where there is none it has vbao's
+    // fixed thickness for this radius (`AoSettings::thickness_metres`: the scene's `[ao] thickness`
+    // set to backface leaves the default fraction of the radius).
+    let (thickness, back_faces) = match (args.scene.thickness, args.screen_space) {
         (Some(_), false) => {
             bail!("--thickness applies to the screen-space reference: add --screen-space")
         }
-        (Some(crate::ao::Thickness::Metres(t)), true) => t,
-        (Some(crate::ao::Thickness::Backface), true) => {
-            bail!("--thickness backface: the screen-space reference has no back-face pass; give a thickness in metres")
-        }
-        (None, _) => f32::INFINITY,
+        (Some(crate::ao::Thickness::Metres(t)), true) => (t, false),
+        (Some(crate::ao::Thickness::Backface), true) => (scene.ao.thickness_metres(), true),
+        (None, _) => (f32::INFINITY, false),
     };
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
@@ -315,8 +316,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         use crate::tools::reference::DepthBuffer;
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-        let depth = DepthBuffer::from_engine_with_guard_band(&mut engine, args.guard_band)?
-            .with_thickness(thickness);
+        let depth = if back_faces {
+            DepthBuffer::from_engine_with_back_faces(&mut engine, args.guard_band)?
+        } else {
+            DepthBuffer::from_engine_with_guard_band(&mut engine, args.guard_band)?
+        }
+        .with_thickness(thickness);
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
@@ -328,7 +333,9 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     }
     let sky = img.sky_mask().iter().filter(|s| **s).count();
     let kind = if args.screen_space {
-        let slabs = if thickness.is_finite() {
+        let slabs = if back_faces {
+            t!("backface_ceiling.slabs", thickness = thickness)
+        } else if thickness.is_finite() {
             t!("reference.slabs", thickness = thickness)
         } else {
             t!("reference.infinite_thickness")

@@ -247,6 +247,28 @@ impl Engine {
         self.back_faces.linear_depth()
     }
 
+    /// Linear depth (m) of the nearest back faces at the full output size and the current camera,
+    /// whatever the AO settings: the pass `vbao` reads with `thickness = "backface"` at full AO
+    /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
+    /// where no back face lies behind the pixel.
+    pub fn render_back_face_depth(&mut self) -> Result<Vec<f32>> {
+        // The opaque pass first: the back-face restore reads the front depth of each texel.
+        self.render_values(View::LinearDepth)?;
+        let front = self
+            .fbo_main
+            .depth_texture()
+            .cloned()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let f = self.frame();
+        let back = self
+            .back_faces
+            .draw(&f, &self.shadow.program, &front, self.size())?;
+        let mut v = back.read_f32(0, 1);
+        flip_rows(&mut v, self.width as usize, self.height as usize);
+        check_error(&self.gl, "reading the back-face depth")?;
+        Ok(v)
+    }
+
     /// Every GL texture the engine owns for AO now: empty until a frame runs AO, and after a resize
     /// while AO is off.
     pub fn ao_textures(&self) -> Vec<AoTextureInfo> {

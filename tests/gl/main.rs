@@ -22,6 +22,7 @@ mod lessons_ja;
 mod methods;
 mod numerics;
 mod reference_analytic;
+mod reference_backface;
 mod reference_screen;
 mod reference_slabs;
 mod sao_pipeline;

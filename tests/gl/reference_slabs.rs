@@ -18,7 +18,7 @@ use std::f64::consts::PI;
 /// metres, beyond a line at distance `a` on the wall (towards −x) and at least `c` above the wall:
 /// the unit disk that cosine-weighted directions project to, cut to the disk of radius
 /// ρ₀ = √(1 − (c/R)²) (height ≥ c at R) and to the circular segment beyond a/R, over π.
-fn slab_blocked(a: f64, c: f64, r: f64) -> f64 {
+pub(crate) fn slab_blocked(a: f64, c: f64, r: f64) -> f64 {
     let rho2 = 1.0 - (c / r).powi(2);
     if rho2 <= 0.0 {
         return 0.0;

@@ -1,6 +1,7 @@
 //! The input of the screen-space reference: a depth buffer, the projection it was rendered with,
-//! how thick its surfaces are taken to be, and how many of its pixels lie outside the visible image
-//! (a guard band rendered over a wider field of view).
+//! how thick its surfaces are taken to be (one thickness, or each pixel's own from a depth render of
+//! the back faces), and how many of its pixels lie outside the visible image (a guard band rendered
+//! over a wider field of view).
 
 use anyhow::{bail, Result};
 
@@ -23,8 +24,16 @@ pub struct DepthBuffer {
     pub near: f32,
     /// How far (linear depth, metres) behind its surface each pixel is taken to be solid:
     /// `f32::INFINITY` is the heightfield (everything behind a stored surface is solid), a finite
-    /// value the slab model `vbao` uses (see the `heightfield` module).
+    /// value the slab model `vbao` uses (see the `heightfield` module). With [`Self::back_depth`]:
+    /// the thickness of the pixels that have no back face behind them.
     pub thickness: f32,
+    /// Linear depth (m) of the nearest back face along each pixel's ray (`vbao`'s
+    /// `--thickness backface`): the pixel's slab reaches from its surface to there. Where that is
+    /// not a depth behind the surface (`f32::INFINITY`: no back face, as for an open plane or the
+    /// sky; or one not deeper than the surface), the slab is [`Self::thickness`] thick, as in
+    /// `vbao` (an infinite one: everything behind them is solid, as in the heightfield). `None`:
+    /// every slab is `thickness` thick.
+    pub back_depth: Option<Vec<f32>>,
     /// Pixels on each side that lie outside the visible image: they can occlude, but the
     /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
     pub guard_band: u32,
@@ -56,6 +65,16 @@ impl DepthBuffer {
                 "thickness {} m of the depth buffer's surfaces: use > 0 (infinity for a heightfield)",
                 self.thickness
             );
+        }
+        if let Some(back) = &self.back_depth {
+            if back.len() != n {
+                bail!(
+                    "back-face depth of {} values does not match the {}x{} depth buffer",
+                    back.len(),
+                    self.width,
+                    self.height
+                );
+            }
         }
         let g = self.guard_band as u64 * 2;
         if g > 0 && (g >= self.width as u64 || g >= self.height as u64) {
@@ -89,6 +108,7 @@ impl DepthBuffer {
             fov_y_deg: cam.fov_y_deg,
             near: cam.near,
             thickness: f32::INFINITY,
+            back_depth: None,
             guard_band: 0,
         }
     }
@@ -126,6 +146,7 @@ impl DepthBuffer {
             fov_y_deg,
             near,
             thickness: f32::INFINITY,
+            back_depth: None,
             guard_band: 0,
         };
         buf.validate()?;
@@ -159,8 +180,49 @@ impl DepthBuffer {
         engine: &mut crate::render::Engine,
         guard_band: u32,
     ) -> Result<DepthBuffer> {
+        DepthBuffer::capture(engine, guard_band, false)
+    }
+
+    /// Like [`DepthBuffer::from_engine_with_guard_band`], with [`Self::back_depth`] from the
+    /// back-face pass `vbao` reads at full AO resolution (`Engine::render_back_face_depth`), over the
+    /// same pixels. Give it the thickness of the pixels without a back face with
+    /// [`Self::with_thickness`] (`vbao`'s is `AoSettings::thickness_metres`).
+    pub fn from_engine_with_back_faces(
+        engine: &mut crate::render::Engine,
+        guard_band: u32,
+    ) -> Result<DepthBuffer> {
+        DepthBuffer::capture(engine, guard_band, true)
+    }
+
+    /// The depth buffer (and the back faces' when `back_faces`) of the engine at its camera,
+    /// `guard_band` pixels wider on each side.
+    fn capture(
+        engine: &mut crate::render::Engine,
+        guard_band: u32,
+        back_faces: bool,
+    ) -> Result<DepthBuffer> {
+        let read = |engine: &mut crate::render::Engine| -> Result<DepthBuffer> {
+            let mut buf = DepthBuffer::from_engine(engine)?;
+            if back_faces {
+                let far = engine.camera.far;
+                let back = engine.render_back_face_depth()?;
+                // The pass writes exactly `far` where no back face lies behind the pixel.
+                buf.back_depth = Some(
+                    back.into_iter()
+                        .map(|d| {
+                            if d.is_finite() && d > 0.0 && d < far {
+                                d
+                            } else {
+                                f32::INFINITY
+                            }
+                        })
+                        .collect(),
+                );
+            }
+            Ok(buf)
+        };
         if guard_band == 0 {
-            return DepthBuffer::from_engine(engine);
+            return read(engine);
         }
         let (w, h) = engine.size();
         let (gw, gh) = guard_band
@@ -185,7 +247,7 @@ impl DepthBuffer {
             engine.resize(gw, gh)?;
             engine.camera.fov_y_deg = wide.to_degrees() as f32;
             engine.sync_shader_constants()?;
-            let mut buf = DepthBuffer::from_engine(engine)?;
+            let mut buf = read(engine)?;
             buf.guard_band = guard_band;
             buf.validate()?;
             Ok(buf)
@@ -199,9 +261,9 @@ impl DepthBuffer {
         Ok(buf)
     }
 
-    /// Stable content hash (every depth value's bits and the projection; the thickness and the
-    /// guard band only when they differ from the heightfield's defaults, so that earlier cache
-    /// keys stay valid), for cache keys.
+    /// Stable content hash (every depth value's bits and the projection; the thickness, the guard
+    /// band and the back faces only when they differ from the heightfield's defaults, so that
+    /// earlier cache keys stay valid), for cache keys.
     pub(crate) fn content_hash(&self) -> u64 {
         let mut h = Fnv64::new();
         h.u32(self.width);
@@ -218,6 +280,12 @@ impl DepthBuffer {
         if self.guard_band != 0 {
             h.bytes(b"guard band");
             h.u32(self.guard_band);
+        }
+        if let Some(back) = &self.back_depth {
+            h.bytes(b"back faces");
+            for d in back {
+                h.f32(*d);
+            }
         }
         h.0
     }

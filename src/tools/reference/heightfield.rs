@@ -14,6 +14,15 @@
 //! are affine, so "behind the front" is an affine inequality and "within T of it"
 //! (1/w_ray − 1/w_surface ≤ T, times both) a quadratic one: their roots split the segment into
 //! pieces of constant sign, and testing each piece decides the segment exactly.
+//!
+//! **Back faces.** With each pixel's back depth b (the nearest back face behind it, `vbao`'s
+//! `--thickness backface`), the pixel's slab is [z, b]; a pixel without one (an open plane) keeps
+//! [z, z + T], as `vbao` falls back to its fixed thickness. The back surface is triangulated like the
+//! front, with inverse depth affine in each triangle (a planar back face is rebuilt exactly), and a
+//! triangle is solid where its three pixels' slabs overlap (deepest front ≤ shallowest back; with
+//! one thickness everywhere that is the rule above). Inside it a point is solid when it lies behind
+//! the front and in front of the back: two affine inequalities, decided exactly the same way. A
+//! triangle none of whose pixels has a back face is the fixed-thickness slab above, unchanged.
 
 use glam::DVec3;
 
@@ -29,8 +38,11 @@ pub(crate) struct Heightfield {
     sx: f64,
     sy: f64,
     pub(crate) near: f64,
-    /// Thickness of every surface in linear depth (m); `f64::INFINITY` for the heightfield.
+    /// Thickness of every surface in linear depth (m); `f64::INFINITY` for the heightfield. With
+    /// `back`: that of the pixels without a back face.
     thickness: f64,
+    /// Each pixel's back surface, when the buffer has back faces (module docs).
+    back: Option<BackSurface>,
     /// Distance from the eye beyond which no solid point lies (for unbounded rays).
     max_dist: f64,
 }
@@ -58,6 +70,15 @@ impl Heightfield {
             .filter(|d| d.is_finite() && **d > 0.0)
             .fold(0.0f64, |m, d| m.max(*d as f64));
         let thickness = buf.thickness as f64;
+        let back = buf
+            .back_depth
+            .as_ref()
+            .map(|b| BackSurface::new(&buf.linear_depth, b, thickness));
+        // With back faces, the deepest solid point is the deepest back (a fallback slab's included).
+        let max_depth = match &back {
+            Some(b) => max_depth.max(b.max_depth),
+            None => max_depth,
+        };
         // An on-screen point at distance ℓ from the eye has a depth of at least ℓ / k.
         let k = (1.0 + sx * sx + sy * sy).sqrt();
         Heightfield {
@@ -68,11 +89,12 @@ impl Heightfield {
             sy,
             near: buf.near as f64,
             thickness,
-            max_dist: if thickness.is_finite() {
+            max_dist: if thickness.is_finite() || back.is_some() {
                 (max_depth + thickness) * k
             } else {
                 max_depth * k
             },
+            back,
         }
     }
 
@@ -109,16 +131,23 @@ impl Heightfield {
     /// Inverse depth of the triangulated surface at grid point (x, y), inside [0, w−1]×[0, h−1].
     #[inline]
     fn surface(&self, x: f64, y: f64) -> f64 {
+        self.interpolate(&self.inv, x, y)
+    }
+
+    /// Per-pixel `values` interpolated linearly over the triangle holding grid point (x, y).
+    #[inline]
+    fn interpolate(&self, values: &[f64], x: f64, y: f64) -> f64 {
         let i = (x.floor() as isize).clamp(0, self.w as isize - 2) as usize;
         let j = (y.floor() as isize).clamp(0, self.h as isize - 2) as usize;
         let (fx, fy) = (x - i as f64, y - j as f64);
-        let a = self.inv_at(i, j);
-        let d = self.inv_at(i + 1, j + 1);
+        let at = |i: usize, j: usize| values[j * self.w + i];
+        let a = at(i, j);
+        let d = at(i + 1, j + 1);
         if fx >= fy {
-            let b = self.inv_at(i + 1, j);
+            let b = at(i + 1, j);
             a + fx * (b - a) + fy * (d - b)
         } else {
-            let c = self.inv_at(i, j + 1);
+            let c = at(i, j + 1);
             a + fy * (c - a) + fx * (d - c)
         }
     }
@@ -185,7 +214,7 @@ impl Heightfield {
         let Some(seg) = self.clip(o, d, t_max) else {
             return false;
         };
-        if self.thickness.is_finite() {
+        if self.thickness.is_finite() || self.back.is_some() {
             self.blocked_by_slabs(&seg)
         } else {
             self.blocked_by_heightfield(&seg)
@@ -306,11 +335,25 @@ impl Heightfield {
     /// Whether the piece of the segment from s = a.0 to b.0 (surface inverse depths a.1, b.1 at
     /// its ends, inside one triangle) passes through that triangle's slab.
     fn piece_in_slab(&self, seg: &GridSegment, a: (f64, f64), b: (f64, f64)) -> bool {
-        if !self.triangle_is_solid(self.grid_at(seg, 0.5 * (a.0 + b.0))) {
+        let corners = self.triangle_at(self.grid_at(seg, 0.5 * (a.0 + b.0)));
+        if !self.triangle_is_solid(corners) {
             return false;
         }
-        let t = self.thickness;
         let (ra, rb) = (seg.aw + a.0 * seg.dw, seg.aw + b.0 * seg.dw);
+        if let Some(back) = &self.back {
+            if corners.iter().any(|&(i, j)| back.measured[j * self.w + i]) {
+                let (ga, gb) = (
+                    back.at_grid(self, self.grid_at(seg, a.0)),
+                    back.at_grid(self, self.grid_at(seg, b.0)),
+                );
+                return piece_between(a.1 - ra, b.1 - rb, ra - ga, rb - gb);
+            }
+        }
+        let t = self.thickness;
+        if t.is_infinite() {
+            // No back face and infinitely thick: solid wherever it is behind the front.
+            return piece_between(a.1 - ra, b.1 - rb, 1.0, 1.0);
+        }
         let (fa, df, dr) = (a.1, b.1 - a.1, rb - ra);
         // u in [0, 1] along the piece: front(u) = f − r > 0 (behind the surface) and
         // within(u) = T·r·f − (f − r) >= 0 (less than T behind it).
@@ -336,25 +379,104 @@ impl Heightfield {
         cuts.iter().any(|&u| inside(u)) || cuts.windows(2).any(|p| inside(0.5 * (p[0] + p[1])))
     }
 
-    /// Whether the triangle holding grid point (x, y) is solid: its three pixels are surface and
-    /// their depths lie within the thickness of each other (module docs).
-    fn triangle_is_solid(&self, (x, y): (f64, f64)) -> bool {
+    /// The three pixels of the triangle holding grid point (x, y) (the split of `surface`).
+    fn triangle_at(&self, (x, y): (f64, f64)) -> [(usize, usize); 3] {
         let i = (x.floor() as isize).clamp(0, self.w as isize - 2) as usize;
         let j = (y.floor() as isize).clamp(0, self.h as isize - 2) as usize;
         let third = if x - i as f64 >= y - j as f64 {
-            self.inv_at(i + 1, j)
+            (i + 1, j)
         } else {
-            self.inv_at(i, j + 1)
+            (i, j + 1)
         };
-        let corners = [self.inv_at(i, j), self.inv_at(i + 1, j + 1), third];
-        if corners.iter().any(|w| *w <= 0.0) {
+        [(i, j), (i + 1, j + 1), third]
+    }
+
+    /// Whether a triangle is solid: its three pixels are surface and their slabs overlap (with one
+    /// thickness: their depths lie within it of each other; module docs).
+    pub(crate) fn triangle_is_solid(&self, corners: [(usize, usize); 3]) -> bool {
+        let inv = corners.map(|(i, j)| self.inv_at(i, j));
+        if inv.iter().any(|w| *w <= 0.0) {
             return false; // sky: no slab
         }
-        let depth = corners.map(|w| 1.0 / w);
+        let depth = inv.map(|w| 1.0 / w);
         let (lo, hi) = depth.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
             (lo.min(*z), hi.max(*z))
         });
-        hi - lo <= self.thickness
+        match &self.back {
+            Some(back) => {
+                let shallowest_back = corners
+                    .iter()
+                    .map(|&(i, j)| back.depth_at(self.w, i, j))
+                    .fold(f64::INFINITY, f64::min);
+                hi <= shallowest_back
+            }
+            None => hi - lo <= self.thickness,
+        }
+    }
+}
+
+/// Whether u in [0, 1] exists where both affine functions (given at u = 0 and u = 1) satisfy
+/// front(u) > 0 and back(u) ≥ 0: the piece of a ray between a triangle's front (ray behind it) and
+/// its back (ray in front of it), both in inverse depth.
+fn piece_between(front0: f64, front1: f64, back0: f64, back1: f64) -> bool {
+    let inside = |u: f64| -> bool {
+        front0 + u * (front1 - front0) > 0.0 && back0 + u * (back1 - back0) >= 0.0
+    };
+    let root = |v0: f64, v1: f64| if v0 != v1 { v0 / (v0 - v1) } else { f64::NAN };
+    let mut cuts: Vec<f64> = [0.0, 1.0, root(front0, front1), root(back0, back1)]
+        .into_iter()
+        .filter(|u| (0.0..=1.0).contains(u))
+        .collect();
+    cuts.sort_by(f64::total_cmp);
+    cuts.iter().any(|&u| inside(u)) || cuts.windows(2).any(|p| inside(0.5 * (p[0] + p[1])))
+}
+
+/// Each pixel's back surface: inverse depth of the back face behind it, or of its surface plus the
+/// thickness where it has none (module docs).
+struct BackSurface {
+    inv: Vec<f64>,
+    /// Whether the pixel has a back face behind it (else its slab has the set thickness).
+    measured: Vec<bool>,
+    /// Deepest back over the surface pixels (m).
+    max_depth: f64,
+}
+
+impl BackSurface {
+    fn new(front: &[f32], back: &[f32], thickness: f64) -> BackSurface {
+        let mut max_depth = 0.0f64;
+        let (inv, measured) = front
+            .iter()
+            .zip(back)
+            .map(|(&z, &b)| {
+                if !(z.is_finite() && z > 0.0) {
+                    return (0.0, false); // sky: never in a solid triangle
+                }
+                // The same test as vbao.frag: a back face deeper than the surface, else the thickness.
+                let has_back = b.is_finite() && b > z;
+                let depth = if has_back {
+                    b as f64
+                } else {
+                    z as f64 + thickness
+                };
+                max_depth = max_depth.max(depth);
+                (1.0 / depth, has_back)
+            })
+            .unzip();
+        BackSurface {
+            inv,
+            measured,
+            max_depth,
+        }
+    }
+
+    /// Depth (m) of pixel (i, j)'s back (infinite where it is infinitely thick).
+    fn depth_at(&self, w: usize, i: usize, j: usize) -> f64 {
+        1.0 / self.inv[j * w + i]
+    }
+
+    /// Inverse depth of the back surface at grid point (x, y).
+    fn at_grid(&self, field: &Heightfield, (x, y): (f64, f64)) -> f64 {
+        field.interpolate(&self.inv, x, y)
     }
 }
 

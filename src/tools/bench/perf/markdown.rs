@@ -125,8 +125,10 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
          Each method is split against the ceiling with its own model of what lies behind a depth \
          sample: `vbao` against slabs of its thickness (the solid at a pixel is [z, z + T] in linear \
-         depth; a triangle between pixels more than T apart in depth is empty), every other method \
-         against the heightfield. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
+         depth; a triangle between pixels more than T apart in depth is empty) or, with \
+         `thickness = \"backface\"`, against slabs reaching each pixel's back face (T where it has \
+         none, as `vbao` does); every other method against the heightfield (∞). The split table's \
+         ceiling column says which each row used. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
         r.reference.width,
         r.reference.height,
         r.reference.screen_rays,
@@ -284,9 +286,7 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
         "|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|---|"
     )?;
     for row in &r.rows {
-        let thickness = row
-            .ceiling_thickness
-            .map_or("∞".to_string(), |t| format!("{t} m"));
+        let thickness = &row.ceiling_label;
         writeln!(
             s,
             "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} ({}) | {} | {} |",

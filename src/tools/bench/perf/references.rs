@@ -3,7 +3,7 @@
 //! the reference cache when it has them.
 
 use super::config::PerfConfig;
-use crate::ao::{AoMethod, AoSettings};
+use crate::ao::{AoMethod, AoSettings, Thickness};
 use crate::render::Engine;
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
@@ -109,26 +109,82 @@ pub fn load_scene(
     })
 }
 
-/// Screen-space references keyed by (camera index, radius bits, thickness bits).
-pub type ScreenMap = BTreeMap<(usize, u32, u32), RefImage>;
+/// Screen-space references keyed by (camera index, radius bits, ceiling).
+pub type ScreenMap = BTreeMap<(usize, u32, CeilingKey), RefImage>;
 
-/// The thickness the ceiling of `method` gives the depth buffer's surfaces: the method's own model
-/// of what lies behind a depth sample. `vbao` takes each sample as a slab of
-/// `AoSettings::thickness_metres` (the settings' radius and `[ao] thickness`); every other method
-/// treats the depth buffer as a heightfield, infinitely thick.
-pub fn ceiling_thickness(method: AoMethod, ao: &AoSettings) -> f32 {
-    match method {
-        AoMethod::Vbao => ao.thickness_metres(),
-        _ => f32::INFINITY,
+/// A [`Ceiling`] as a map key: its kind and its thickness's bits.
+pub type CeilingKey = (u8, u32);
+
+/// The screen-space reference a method is split against: the depth buffer with the method's own
+/// model of what lies behind a depth sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Ceiling {
+    /// Infinitely thick surfaces: what the horizon methods assume.
+    Heightfield,
+    /// Every depth sample a slab this many metres thick: `vbao` with a thickness in metres.
+    Slabs(f32),
+    /// Each pixel's slab reaches the back face behind it, `fallback` metres thick where there is
+    /// none: `vbao` with `thickness = "backface"`.
+    BackFaces { fallback: f32 },
+}
+
+impl Ceiling {
+    /// The ceiling of `method` under `ao`: `vbao` takes each sample as a slab of
+    /// `AoSettings::thickness_metres` (the settings' radius and `[ao] thickness`) or, with
+    /// `backface`, reaching its back face (that thickness where there is none, as vbao.frag does);
+    /// every other method treats the depth buffer as a heightfield.
+    pub fn of(method: AoMethod, ao: &AoSettings) -> Ceiling {
+        match (method, ao.thickness) {
+            (AoMethod::Vbao, Some(Thickness::Backface)) => Ceiling::BackFaces {
+                fallback: ao.thickness_metres(),
+            },
+            (AoMethod::Vbao, _) => Ceiling::Slabs(ao.thickness_metres()),
+            _ => Ceiling::Heightfield,
+        }
+    }
+
+    pub fn key(self) -> CeilingKey {
+        match self {
+            Ceiling::Heightfield => (0, 0),
+            Ceiling::Slabs(t) => (1, t.to_bits()),
+            Ceiling::BackFaces { fallback } => (2, fallback.to_bits()),
+        }
+    }
+
+    /// The kind, as the report's JSON names it.
+    pub fn kind(self) -> &'static str {
+        match self {
+            Ceiling::Heightfield => "heightfield",
+            Ceiling::Slabs(_) => "slabs",
+            Ceiling::BackFaces { .. } => "back faces",
+        }
+    }
+
+    /// The fixed thickness (m): the slabs', or the back-face ceiling's where there is no back
+    /// face; `None` for the heightfield.
+    pub fn thickness(self) -> Option<f32> {
+        match self {
+            Ceiling::Heightfield => None,
+            Ceiling::Slabs(t) | Ceiling::BackFaces { fallback: t } => Some(t),
+        }
+    }
+
+    /// The report's label: "∞", "0.25 m", "back faces (0.25 m where none)".
+    pub fn label(self) -> String {
+        match self {
+            Ceiling::Heightfield => "∞".into(),
+            Ceiling::Slabs(t) => format!("{t} m"),
+            Ceiling::BackFaces { fallback } => format!("back faces ({fallback} m where none)"),
+        }
     }
 }
 
-/// Screen-space reference of every test camera and (radius, thickness) pair, from the engine's
-/// depth buffer at its current size (the reference's, so that the pixel centres match).
+/// Screen-space reference of every test camera and (radius, ceiling) pair, from the engine's depth
+/// buffer at its current size (the reference's, so that the pixel centres match).
 pub fn screen_references(
     engine: &mut Engine,
     sd: &SceneData,
-    ceilings: &[(f32, f32)],
+    ceilings: &[(f32, Ceiling)],
     cfg: &PerfConfig,
     pb: &ProgressBar,
     count: &mut RenderCount,
@@ -138,17 +194,32 @@ pub fn screen_references(
         engine.camera = cam.camera(&sd.desc.camera);
         engine.sync_shader_constants()?;
         let heightfield = DepthBuffer::from_engine(engine)?;
-        for &(r, thickness) in ceilings {
+        // Rendered once per camera, for the first back-face ceiling.
+        let mut with_back_faces: Option<DepthBuffer> = None;
+        for &(r, ceiling) in ceilings {
             let params = params(r, cfg.screen_rays, cfg.progress);
-            let depth = heightfield.clone().with_thickness(thickness);
+            let depth = match ceiling {
+                Ceiling::Heightfield => heightfield.clone(),
+                Ceiling::Slabs(t) => heightfield.clone().with_thickness(t),
+                Ceiling::BackFaces { fallback } => {
+                    let back = match with_back_faces.take() {
+                        Some(b) => b,
+                        None => DepthBuffer::from_engine_with_back_faces(engine, 0)?,
+                    };
+                    let depth = back.clone().with_thickness(fallback);
+                    with_back_faces = Some(back);
+                    depth
+                }
+            };
             let key = screen_cache_key(&depth, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
             if cfg.progress {
                 pb.suspend(|| {
                     eprintln!(
-                        "screen-space reference {}/{} R = {r} m, thickness {thickness} m, {}x{}, {} rays: {}",
+                        "screen-space reference {}/{} R = {r} m, ceiling {}, {}x{}, {} rays: {}",
                         sd.name,
                         cam.name,
+                        ceiling.label(),
                         depth.width,
                         depth.height,
                         cfg.screen_rays,
@@ -159,8 +230,41 @@ pub fn screen_references(
             let t = Instant::now();
             let img = pb.suspend(|| load_or_render_screen_cached(&cfg.cache, &depth, &params))?;
             count.add(hit, t);
-            out.insert((ci, r.to_bits(), thickness.to_bits()), img);
+            out.insert((ci, r.to_bits(), ceiling.key()), img);
         }
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn each_method_is_split_against_its_own_thickness_model() {
+        let ao = |thickness| AoSettings {
+            radius: 0.8,
+            thickness,
+            ..AoSettings::default()
+        };
+        let half = crate::ao::settings::DEFAULT_THICKNESS_OF_RADIUS * 0.8;
+        assert_eq!(Ceiling::of(AoMethod::Vbao, &ao(None)), Ceiling::Slabs(half));
+        assert_eq!(
+            Ceiling::of(AoMethod::Vbao, &ao(Some(Thickness::Metres(0.3)))),
+            Ceiling::Slabs(0.3)
+        );
+        let back = Ceiling::of(AoMethod::Vbao, &ao(Some(Thickness::Backface)));
+        assert_eq!(back, Ceiling::BackFaces { fallback: half });
+        for m in [AoMethod::Gtao, AoMethod::SaoLesson] {
+            let c = Ceiling::of(m, &ao(Some(Thickness::Backface)));
+            assert_eq!(
+                (c, c.thickness(), c.label()),
+                (Ceiling::Heightfield, None, "∞".into())
+            );
+        }
+        // Same thickness, different ceilings: different keys and labels.
+        assert_ne!(back.key(), Ceiling::Slabs(half).key());
+        assert_eq!(back.label(), format!("back faces ({half} m where none)"));
+        assert_eq!((back.kind(), back.thickness()), ("back faces", Some(half)));
+    }
 }

@@ -64,9 +64,14 @@ pub struct Row {
     /// reference (its sampling).
     pub depth_buffer_error: Metrics,
     pub sampling_error: Metrics,
-    /// Thickness (m) of the depth buffer's surfaces in this row's screen-space reference: the
-    /// method's own model (`vbao`: its slab thickness); `None` (left out of the JSON) for the
-    /// infinitely thick heightfield.
+    /// Which screen-space reference this row is split against, the method's own model of what
+    /// lies behind a depth sample: "heightfield" (infinitely thick), "slabs" (`vbao` with a
+    /// thickness in metres) or "back faces" (`vbao` with `thickness = "backface"`).
+    pub ceiling: &'static str,
+    /// The same as the report's tables print it ("∞", "0.25 m", "back faces (0.25 m where none)").
+    pub ceiling_label: String,
+    /// Thickness (m) of the depth buffer's surfaces in that reference: the slabs', or for back
+    /// faces that of the pixels without one; `None` (left out of the JSON) for the heightfield.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub ceiling_thickness: Option<f32>,
     /// Means over the test cameras of `CameraError::parts_psnr` and of (raw PSNR − parts PSNR);

@@ -2,7 +2,7 @@
 //! every scene, then the report files.
 
 use super::config::PerfConfig;
-use super::references::{self, RenderCount};
+use super::references::{self, Ceiling, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
 use super::{chart, markdown};
@@ -118,18 +118,18 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     Ok(report)
 }
 
-/// Every (radius, thickness) whose screen-space reference the plan's error split needs: each
-/// setting's radius with its method's thickness model (`ceiling_thickness`) under the scene's AO
+/// Every (radius, ceiling) whose screen-space reference the plan's error split needs: each
+/// setting's radius with its method's thickness model (`Ceiling::of`) under the scene's AO
 /// settings.
-fn ceilings(plan: &[(AoMethod, Vec<Setting>)], scene_ao: &AoSettings) -> Vec<(f32, f32)> {
-    let mut out: Vec<(f32, f32)> = Vec::new();
+fn ceilings(plan: &[(AoMethod, Vec<Setting>)], scene_ao: &AoSettings) -> Vec<(f32, Ceiling)> {
+    let mut out: Vec<(f32, Ceiling)> = Vec::new();
     for (method, settings) in plan {
         for s in settings {
             let ao = AoSettings {
                 radius: s.radius,
                 ..*scene_ao
             };
-            let pair = (s.radius, references::ceiling_thickness(*method, &ao));
+            let pair = (s.radius, Ceiling::of(*method, &ao));
             if !out.contains(&pair) {
                 out.push(pair);
             }

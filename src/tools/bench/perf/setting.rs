@@ -2,7 +2,7 @@
 //! the references at every bench camera.
 
 use super::config::PerfConfig;
-use super::references::{ceiling_thickness, SceneData, ScreenMap};
+use super::references::{Ceiling, SceneData, ScreenMap};
 use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
 use crate::render::{Engine, View};
@@ -47,8 +47,8 @@ pub fn run_setting(
     engine.sync_shader_constants()?;
 
     let fit = fit_on_training_cameras(sd, s, &views);
-    let thickness = ceiling_thickness(method, &engine.ao_settings);
-    let cameras = camera_errors(sd, screen, s, thickness, &views, &fit, cfg.flip)?;
+    let ceiling = Ceiling::of(method, &engine.ao_settings);
+    let cameras = camera_errors(sd, screen, s, ceiling, &views, &fit, cfg.flip)?;
     let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
     let raw = mean_metrics(&test, |c| c.raw);
     let mean_of = |f: &dyn Fn(&CameraError) -> f64| {
@@ -83,7 +83,9 @@ pub fn run_setting(
             flip: 0.0,
             ..mean_metrics(&test, |c| c.sampling_error)
         },
-        ceiling_thickness: thickness.is_finite().then_some(thickness),
+        ceiling: ceiling.kind(),
+        ceiling_label: ceiling.label(),
+        ceiling_thickness: ceiling.thickness(),
         parts_psnr: mean_of(&|c| c.parts_psnr),
         split_gap_db: mean_of(&|c| c.raw.psnr - c.parts_psnr),
         split_gap_max_db: test
@@ -193,7 +195,7 @@ fn camera_errors(
     sd: &SceneData,
     screen: &ScreenMap,
     s: &Setting,
-    thickness: f32,
+    ceiling: Ceiling,
     views: &[Vec<f32>],
     fit: &Fit,
     flip: bool,
@@ -219,7 +221,7 @@ fn camera_errors(
         // The split uses the ray-traced reference's mask too, so the three figures cover the
         // same pixels. Training cameras have no screen-space reference (the split is reported on
         // test cameras).
-        let key = (ci, s.radius.to_bits(), thickness.to_bits());
+        let key = (ci, s.radius.to_bits(), ceiling.key());
         let (depth_buffer_error, sampling_error, ceiling_noise_rms) = match screen.get(&key) {
             None => (Metrics::default(), Metrics::default(), 0.0),
             Some(ss) => {
