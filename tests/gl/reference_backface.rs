@@ -322,6 +322,7 @@ fn bench_room(out: &std::path::Path, thickness: &str) -> perf::Report {
         methods: vec![AoMethod::Vbao],
         samples: vec![8],
         radii: vec![0.5],
+        qualities: Vec::new(),
         ref_rays: 8,
         screen_rays: 8,
         ref_scale: 1,
