@@ -54,7 +54,9 @@ pub struct ReferenceArgs {
     /// With --screen-space: render the depth buffer PX pixels wider on each side (same pixel size,
     /// wider field of view), so that surfaces just off the visible screen can occlude; the output
     /// stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
-    /// (the model `vbao` uses) instead of an infinitely thick heightfield.
+    /// (the model `vbao` uses) instead of an infinitely thick heightfield; `--thickness backface`
+    /// a slab reaching the back face behind it (from a depth render with front faces culled, as
+    /// `vbao`'s), or vbao's default thickness where there is none.
     #[arg(
         long,
         value_name = "PX",

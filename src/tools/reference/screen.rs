@@ -11,7 +11,8 @@
 //! lies behind the stored surface at its screen position. With a finite
 //! [`DepthBuffer::thickness`] each surface is instead a slab that thick behind itself along its
 //! camera ray, the model `vbao` assumes (`heightfield.rs`), so the reference is the ceiling of a
-//! method with that model. A [`DepthBuffer::guard_band`] adds pixels around the visible image
+//! method with that model; with [`DepthBuffer::back_depth`] each slab reaches the back face behind
+//! its pixel (`vbao`'s `backface` thickness), the thickness applying where there is none. A [`DepthBuffer::guard_band`] adds pixels around the visible image
 //! (rendered over a wider field of view) that occlude but are not shaded.
 //!
 //! * **Surface.** Each pixel centre is lifted to view space from its linear depth. Between pixel
