@@ -226,11 +226,11 @@ fn the_blended_composites_darken_by_the_upsampled_occlusion() {
                 } else {
                     tint
                 };
-                for c in 0..3 {
+                for (c, toward) in target.iter().enumerate() {
                     let i = (y * w + x) * 4 + c;
-                    let expected = lit[i] * (1.0 - alpha) + target[c] * alpha;
+                    let expected = lit[i] * (1.0 - alpha) + toward * alpha;
                     // The view's R8 rounding (half a step of 1/255 in alpha) and RGBA16F storage.
-                    let allowed = (lit[i] + target[c]) * power / 510.0 + 2e-3 * expected + 1e-3;
+                    let allowed = (lit[i] + toward) * power / 510.0 + 2e-3 * expected + 1e-3;
                     let err = (out[i] - expected).abs();
                     assert!(
                         err <= allowed,
