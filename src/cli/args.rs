@@ -165,7 +165,8 @@ pub struct RenderArgs {
     /// Output file: .png (8-bit) or .pfm (raw floats).
     #[arg(long, default_value = "out/frame.png")]
     pub out: PathBuf,
-    /// Print each pass of the frame (name, group, ms, draw calls) as JSON on stdout.
+    /// Print each pass of the frame (name, group, ms, draw calls) as JSON on stdout, measured on a
+    /// second frame (the first compiles the shaders).
     #[arg(long)]
     pub stats: bool,
 }

@@ -151,6 +151,11 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
     engine.view = args.view;
+    if args.stats {
+        // One frame first, unmeasured: the first frame compiles every shader (Mesa compiles on
+        // first draw) and allocates the targets, which is not what a pass costs.
+        write_view(&mut engine, args.view, &args.out)?;
+    }
     engine.collect_stats = args.stats;
     write_view(&mut engine, args.view, &args.out)?;
     let msg = t!(
