@@ -29,10 +29,18 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
         warmup: 0,
         frames: 1,
         flip: false,
-        charts: false,
+        charts: true,
         progress: false,
     };
     let report = perf::run(&res, &cfg).expect("bench run");
+    // A chart of every row, and one per scene (errors are not comparable across scenes).
+    for stem in ["report", "report-demo", "report-room"] {
+        for ext in ["png", "svg"] {
+            let path = out.join(format!("{stem}.{ext}"));
+            let size = std::fs::metadata(&path).map(|m| m.len()).unwrap_or(0);
+            assert!(size > 1000, "{} missing or empty", path.display());
+        }
+    }
     // Neither scene sets `[ao] thickness`: vbao's default, a fraction of the radius.
     let thickness = opengl3d::ao::settings::DEFAULT_THICKNESS_OF_RADIUS * 0.5;
     // One row per scene and method, in scene order.

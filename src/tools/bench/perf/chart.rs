@@ -59,6 +59,7 @@ const PALETTE: [RGBColor; 8] = [
 fn draw<DB: DrawingBackend>(
     root: DrawingArea<DB, plotters::coord::Shift>,
     report: &Report,
+    title: &str,
 ) -> Result<()>
 where
     DB::ErrorType: 'static,
@@ -73,7 +74,7 @@ where
         report,
         &|r| r.total_ms,
         &format!(
-            "AO chain wall clock vs error, {}x{} ({proc})",
+            "{title}AO chain wall clock vs error, {}x{} ({proc})",
             report.width, report.height
         ),
         "AO chain, median wall ms per frame (around glFinish)",
@@ -83,7 +84,7 @@ where
         report,
         &|r| r.total_cpu_ms,
         &format!(
-            "AO chain CPU time vs error, {}x{} ({proc})",
+            "{title}AO chain CPU time vs error, {}x{} ({proc})",
             report.width, report.height
         ),
         "AO chain, median CPU ms per frame (process, all threads)",
@@ -174,21 +175,45 @@ where
     Ok(())
 }
 
-/// Writes `report.svg` and `report.png` into `out`; returns the files written.
+/// Writes `report.svg` and `report.png` into `out` (every row), and with several scenes
+/// `report-SCENE.svg` / `.png` for each (its rows only: errors are not comparable across scenes);
+/// returns the files written.
 pub fn write_charts(report: &Report, out: &Path) -> Result<Vec<PathBuf>> {
     ensure_font()?;
     if report.rows.is_empty() {
         bail!("no rows to chart");
     }
+    let mut written = write_chart_pair(report, out, "report", "")?;
+    if report.scenes.len() > 1 {
+        for scene in &report.scenes {
+            let mut one = report.clone();
+            one.rows
+                .retain(|r| r.cameras.first().is_some_and(|c| &c.scene == scene));
+            if one.rows.is_empty() {
+                continue;
+            }
+            let title = format!("{scene}: ");
+            let stem = format!("report-{scene}");
+            written.extend(write_chart_pair(&one, out, &stem, &title)?);
+        }
+    }
+    Ok(written)
+}
+
+fn write_chart_pair(report: &Report, out: &Path, stem: &str, title: &str) -> Result<Vec<PathBuf>> {
     let (w, h) = (2000u32, 760u32);
-    let svg = out.join("report.svg");
-    draw(SVGBackend::new(&svg, (w, h)).into_drawing_area(), report)
-        .with_context(|| format!("cannot write {}", svg.display()))?;
-    let png = out.join("report.png");
+    let svg = out.join(format!("{stem}.svg"));
+    draw(
+        SVGBackend::new(&svg, (w, h)).into_drawing_area(),
+        report,
+        title,
+    )
+    .with_context(|| format!("cannot write {}", svg.display()))?;
+    let png = out.join(format!("{stem}.png"));
     let mut buf = vec![0u8; (w * h * 3) as usize];
     {
         let root = BitMapBackend::with_buffer(&mut buf, (w, h)).into_drawing_area();
-        draw(root, report)?;
+        draw(root, report, title)?;
     }
     image::RgbImage::from_raw(w, h, buf)
         .ok_or_else(|| anyhow!("chart buffer size"))?
