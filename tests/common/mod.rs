@@ -165,3 +165,8 @@ pub fn fails_with<S: AsRef<std::ffi::OsStr>>(args: &[S], needles: &[&str]) -> St
     assert!(!e.contains("panicked"), "must not panic:\n{e}");
     e
 }
+
+/// Mean visibility of `img` over `pixels` (indices into its rows).
+pub fn mean_over(img: &opengl3d::tools::reference::RefImage, pixels: &[usize]) -> f64 {
+    pixels.iter().map(|i| img.ao[*i] as f64).sum::<f64>() / pixels.len().max(1) as f64
+}

@@ -11,9 +11,7 @@ use opengl3d::gl::mesh::MeshData;
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::bench::perf;
-use opengl3d::tools::reference::{
-    load_or_render_cached, render_screen_space, DepthBuffer, RefImage, Scene,
-};
+use opengl3d::tools::reference::{load_or_render_cached, render_screen_space, DepthBuffer, Scene};
 
 /// A box 0.7 m deep (front face 3 m from the camera, in the view's centre) over a one-sided
 /// ground plane, seen from the origin down −z.
@@ -109,11 +107,6 @@ fn back_faces_of_a_box_give_the_depth_each_ray_crosses_and_an_open_plane_none() 
             );
         }
     }
-}
-
-/// Mean of `img` over `pixels`.
-fn mean_over(img: &RefImage, pixels: &[usize]) -> f64 {
-    pixels.iter().map(|i| img.ao[*i] as f64).sum::<f64>() / pixels.len().max(1) as f64
 }
 
 /// A wall facing the camera at depth 5 (a box 1 m thick) and, covering the left half of the view

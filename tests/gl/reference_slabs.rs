@@ -236,11 +236,6 @@ fn crease_stays_exact_with_enough_thickness() {
     );
 }
 
-/// Mean visibility over `pixels` of `img`.
-fn mean_over(img: &RefImage, pixels: &[usize]) -> f64 {
-    pixels.iter().map(|i| img.ao[*i] as f64).sum::<f64>() / pixels.len().max(1) as f64
-}
-
 /// An open floor seen horizontally, and a pillar standing on it just beyond the right edge of the
 /// screen: without a guard band the depth buffer knows nothing of it and the floor is open; with
 /// one, the floor beside it is occluded about as much as the ray tracer finds.
