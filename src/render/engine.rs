@@ -4,6 +4,7 @@
 //! output a frame does not use are skipped.
 
 use super::frame::Frame;
+use super::main_fbo::create_main_fbos;
 use super::passes::{back_faces::BackFacePass, shadow::ShadowPass, transparent};
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
 use super::stats::{process_cpu_seconds, AoTextureInfo, PassStat};
@@ -693,29 +694,4 @@ impl Engine {
 
 fn world_bounds(data: &MeshData, m: &Mat4) -> (Vec3, Vec3) {
     transformed_bounds(data.bounds().unwrap_or((Vec3::ZERO, Vec3::ZERO)), m)
-}
-
-/// The main FBO: RGBA16F colour + the mode's depth format, compare mode off (the AO passes read raw depth).
-/// The main FBO (colour + depth) and the same colour alone.
-fn create_main_fbos(
-    gl: &Gl,
-    width: u32,
-    height: u32,
-    mode: DepthMode,
-) -> Result<(FramebufferObject, FramebufferObject)> {
-    let color = Rc::new(Texture::new(
-        gl,
-        TextureDesc::target("FBO(main color)", width, height, glow::RGBA16F)
-            .filter(glow::LINEAR, glow::LINEAR),
-    )?);
-    let depth = Rc::new(Texture::new(
-        gl,
-        TextureDesc::target("FBO(main depth)", width, height, mode.internal_format())
-            .compare(false),
-    )?);
-    let color_only = FramebufferObject::new(gl, Some(color.clone()), None, 0, 0)?;
-    Ok((
-        FramebufferObject::new(gl, Some(color), Some(depth), 0, 0)?,
-        color_only,
-    ))
 }

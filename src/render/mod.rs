@@ -2,6 +2,7 @@
 
 pub mod engine;
 pub mod frame;
+mod main_fbo;
 pub mod passes;
 pub mod stats;
 pub mod view;
