@@ -1,6 +1,7 @@
 //! The blurs of the occlusion buffer: the lesson's 9×9 bilateral blur (`sao_blur.frag`), the engine's
 //! two-pass separable bilateral blur (`ao/blur_separable.frag`) and its packed variant that reads
-//! (occlusion, depth) from one texture per tap (`ao/blur_packed.frag`, used by the engine's `sao`).
+//! (occlusion, depth) from one texture per tap (`ao/blur_packed.frag`, used by every engine method:
+//! `packed.rs`).
 
 use super::targets::AoTargets;
 use crate::gl::{
