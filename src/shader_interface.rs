@@ -11,6 +11,8 @@ pub mod loc {
     pub const VIEW_PROJECTION: i32 = 1;
     /// standard.vert: `matShadow`, the light's view-projection.
     pub const SHADOW_MATRIX: i32 = 2;
+    /// ao/surface_normal.vert: `matView` (world → view).
+    pub const VIEW_MATRIX: i32 = 3;
     /// standard.frag: `objectColor` (rgba).
     pub const OBJECT_COLOR: i32 = 100;
     /// standard.frag, sky.frag: `lightDirection` (towards the light), world space.
@@ -46,6 +48,8 @@ pub mod loc {
     pub const AO_THICKNESS: i32 = 204;
     /// ao/vbao.frag: 1 = read each tap's thickness from the back-face depth (`texBackDepth`).
     pub const AO_BACK_FACES: i32 = 205;
+    /// ao/common.glsl: 1 = normals from the surface-normal pass (`texNormal`), 0 = rebuilt from depth.
+    pub const AO_SURFACE_NORMALS: i32 = 206;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -54,7 +58,8 @@ pub mod loc {
     /// ao/upsample_bilateral.frag, ao/composite_bilateral.frag: (near, far, 1 for reversed-Z) to
     /// linearise the main depth.
     pub const UPSAMPLE_DEPTH_PLANES: i32 = 230;
-    /// ao/restore_back_depth.frag: main texels per AO texel along each axis (1 or 2).
+    /// ao/restore_back_depth.frag, ao/restore_normal.frag: main texels per AO texel along each
+    /// axis (1 or 2).
     pub const BACK_DEPTH_BLOCK: i32 = 231;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
@@ -69,6 +74,8 @@ pub mod binding {
     pub const SECOND_INPUT: u32 = 1;
     /// ao/upsample_bilateral.frag, ao/composite_bilateral.frag: the main depth buffer.
     pub const THIRD_INPUT: u32 = 2;
+    /// ao/common.glsl: `texNormal`, the surface normals at the AO size.
+    pub const SURFACE_NORMALS: u32 = 2;
     /// standard.frag: `texShadow`.
     pub const SHADOW_MAP: u32 = 2;
     /// standard.frag: occlusion for AO on the ambient term only.
@@ -125,10 +132,18 @@ const AO_METHOD_UNIFORMS: &[Uniform] = &[
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
     u("maxRadiusPixels", MAX_RADIUS_PIXELS),
+    u("aoSurfaceNormals", AO_SURFACE_NORMALS),
 ];
-const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT)];
-/// Crytek's and the hemisphere kernel's samples stay within the world radius: no screen clamp.
+const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT), s("texNormal", SURFACE_NORMALS)];
+/// The hemisphere kernel's samples stay within the world radius: no screen clamp.
 const AO_UNCLAMPED_UNIFORMS: &[Uniform] = &[
+    u("aoInfo", AO_INFO),
+    u("ndcToView", NDC_TO_VIEW),
+    u("aoCounts", AO_COUNTS),
+    u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+];
+/// Crytek's sphere reads no normal, and no screen clamp either.
+const AO_SPHERE_UNIFORMS: &[Uniform] = &[
     u("aoInfo", AO_INFO),
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
@@ -260,7 +275,11 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[s("texOcclusion", INPUT)],
     ),
     fullscreen("ao/sao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen("ao/crytek.frag", AO_UNCLAMPED_UNIFORMS, AO_METHOD_SAMPLERS),
+    fullscreen(
+        "ao/crytek.frag",
+        AO_SPHERE_UNIFORMS,
+        &[s("texDepth", INPUT)],
+    ),
     fullscreen(
         "ao/hemisphere.frag",
         AO_UNCLAMPED_UNIFORMS,
@@ -282,8 +301,13 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("maxRadiusPixels", MAX_RADIUS_PIXELS),
             u("aoThickness", AO_THICKNESS),
             u("aoBackFaces", AO_BACK_FACES),
+            u("aoSurfaceNormals", AO_SURFACE_NORMALS),
         ],
-        &[s("texDepth", INPUT), s("texBackDepth", SECOND_INPUT)],
+        &[
+            s("texDepth", INPUT),
+            s("texBackDepth", SECOND_INPUT),
+            s("texNormal", SURFACE_NORMALS),
+        ],
     ),
     fullscreen(
         "ao/restore_back_depth.frag",
@@ -292,6 +316,24 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("blockSize", BACK_DEPTH_BLOCK),
         ],
         &[s("texDepth", INPUT), s("texFrontDepth", SECOND_INPUT)],
+    ),
+    ProgramInterface {
+        vert: "ao/surface_normal.vert",
+        frag: "ao/surface_normal.frag",
+        uniforms: &[
+            u("matModel", MODEL),
+            u("matViewProjection", VIEW_PROJECTION),
+            u("matView", VIEW_MATRIX),
+        ],
+        samplers: &[],
+    },
+    fullscreen(
+        "ao/restore_normal.frag",
+        &[
+            u("depthPlanes", UPSAMPLE_DEPTH_PLANES),
+            u("blockSize", BACK_DEPTH_BLOCK),
+        ],
+        &[s("texNormal", INPUT), s("texFrontDepth", SECOND_INPUT)],
     ),
 ];
 

@@ -19,7 +19,7 @@ void main()
   if (ssR < 1.0) {
     return;
   }
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   int pairs = max(aoCounts.x, 1);
   float rot = NoiseAngle(pix);
   float sum = 0;

@@ -9,6 +9,10 @@ layout(location=200) uniform vec4 aoInfo;     // radius (m), bias (m), intensity
 layout(location=201) uniform vec2 ndcToView;  // NDC -> view space at 1 m
 layout(location=202) uniform ivec2 aoCounts;  // samples (or directions/slices), steps
 layout(location=203) uniform float maxRadiusPixels;
+// 1: each pixel's normal is the geometric one of the surface-normal pass (texNormal); 0: rebuilt from
+// the depth buffer (ReconstructNormal).
+layout(location=206) uniform int aoSurfaceNormals;
+layout(binding=2) uniform sampler2D texNormal; // octahedral view-space normals at the AO size
 
 #ifndef CAMERA_FAR
 #define CAMERA_FAR 1000.0
@@ -71,6 +75,25 @@ vec3 ReconstructNormal(ivec2 p, vec3 c) {
   vec3 n = cross(dx, dy);
   float len2 = dot(n, n);
   return len2 > 1e-30 ? n * inversesqrt(len2) : vec3(0, 0, 1);
+}
+
+// The unit vector of an octahedral code (the surface-normal pass encodes with octahedral.glsl).
+vec3 DecodeOctahedral(vec2 e) {
+  vec3 n = vec3(e, 1.0 - abs(e.x) - abs(e.y));
+  float fold = clamp(-n.z, 0.0, 1.0);
+  n.x += n.x >= 0.0 ? -fold : fold;
+  n.y += n.y >= 0.0 ? -fold : fold;
+  float len2 = dot(n, n);
+  return len2 > 1e-20 ? n * inversesqrt(len2) : vec3(0, 0, 1);
+}
+
+// The normal a method uses at texel p (position c): the triangle's own when the surface-normal pass
+// ran, else the one rebuilt from depth, which bends across creases and silhouettes.
+vec3 SurfaceNormal(ivec2 p, vec3 c) {
+  if (aoSurfaceNormals != 0) {
+    return DecodeOctahedral(texelFetch(texNormal, p, 0).xy);
+  }
+  return ReconstructNormal(p, c);
 }
 
 // A 4x4 tile of rotation angles (the "4x4 noise texture" of the seeds, as arithmetic).

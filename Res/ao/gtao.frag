@@ -19,7 +19,7 @@ void main()
   if (ssR < 1.0) {
     return;
   }
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   vec3 V = normalize(-P);
   int slices = max(aoCounts.x, 1);
   int steps = max(aoCounts.y, 1);

@@ -21,7 +21,7 @@ void main()
   if (ssR < 1.0) {
     return;
   }
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   int dirs = max(aoCounts.x, 1);
   int steps = max(aoCounts.y, 1);
   float stepPx = ssR / float(steps + 1);

@@ -13,7 +13,7 @@ void main()
   if (IsSky(-P.z)) {
     return;
   }
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   // Tangent frame rotated by the noise angle around the normal (Gram-Schmidt).
   float a = NoiseAngle(pix);
   vec3 rnd = vec3(cos(a), sin(a), 0.0);

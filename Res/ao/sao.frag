@@ -28,7 +28,7 @@ void main()
     return; // too small to see: skip the work
   }
   ssR = min(ssR, maxRadiusPixels);
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   float slopePerTexel = abs(TexelDepth(pix + ivec2(1, 0)) - z) + abs(TexelDepth(pix + ivec2(0, 1)) - z);
   float planeDistance = abs(dot(P, n));
   int count = max(aoCounts.x, 1);

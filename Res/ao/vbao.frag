@@ -61,7 +61,7 @@ void main()
   if (ssR < 1.0) {
     return;
   }
-  vec3 n = ReconstructNormal(pix, P);
+  vec3 n = SurfaceNormal(pix, P);
   vec3 V = normalize(-P);
   // The bias lifts the origin off the surface, as the ray tracer's rays leave it (no self-hits from a
   // reconstructed normal that is slightly off).

@@ -24,6 +24,17 @@ pub struct AoInputs<'a> {
     pub settings: &'a AoSettings,
     /// Linear depth of the back faces at the AO size, when the settings ask for it.
     pub back_depth: Option<&'a Texture>,
+    /// Octahedral view-space surface normals at the AO size, when the settings ask for them.
+    pub normals: Option<&'a Texture>,
+}
+
+impl AoInputs<'_> {
+    /// Binds the surface normals (when the frame has them) where `common.glsl` reads them.
+    pub fn bind_normals(&self) {
+        if let Some(n) = self.normals {
+            n.bind(binding::SURFACE_NORMALS);
+        }
+    }
 }
 
 /// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
@@ -102,6 +113,9 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     if program.has_location(loc::AO_BACK_FACES) {
         program.set_i32(loc::AO_BACK_FACES, inputs.back_depth.is_some() as i32);
     }
+    if program.has_location(loc::AO_SURFACE_NORMALS) {
+        program.set_i32(loc::AO_SURFACE_NORMALS, inputs.normals.is_some() as i32);
+    }
 }
 
 /// A method that is one shader of `Res/ao/` reading `common.glsl`'s uniforms and writing occlusion,
@@ -163,6 +177,7 @@ impl AoMethodPass for ShaderMethod {
         if let Some(back) = inputs.back_depth {
             back.bind(binding::SECOND_INPUT);
         }
+        inputs.bind_normals();
         inputs.meshes.draw_plane_xy();
         Ok(())
     }

@@ -4,6 +4,7 @@
 pub mod blur;
 pub mod composite;
 pub mod depth_chain;
+pub mod guard_band;
 pub mod lesson;
 pub mod method;
 pub mod method_pass;
@@ -15,5 +16,8 @@ pub mod upsample;
 
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
-pub use settings::{AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, Thickness};
+pub use settings::{
+    AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, GuardBand, NormalSource,
+    Thickness,
+};
 pub use targets::AoTargets;

@@ -126,6 +126,110 @@ impl AoResolution {
     }
 }
 
+/// Where the engine's methods take each pixel's normal from (`--normals`, `[ao] normals`);
+/// `sao-lesson` always rebuilds it from depth, as the course teaches.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum NormalSource {
+    /// The triangle's own normal from a pass over the geometry (a two-channel target at the AO
+    /// size): exact at creases, edges and thin parts, where AO lives.
+    #[default]
+    Geometric,
+    /// Rebuilt from neighbouring depths: no extra pass, but it bends across every crease and
+    /// silhouette.
+    Depth,
+}
+
+impl NormalSource {
+    pub const ALL: [NormalSource; 2] = [NormalSource::Geometric, NormalSource::Depth];
+    pub fn name(self) -> &'static str {
+        match self {
+            NormalSource::Geometric => "geometric",
+            NormalSource::Depth => "depth",
+        }
+    }
+    pub fn from_name(name: &str) -> Option<NormalSource> {
+        NormalSource::ALL.into_iter().find(|n| n.name() == name)
+    }
+}
+
+/// Pixels the engine's AO passes cover beyond each edge of the view (`--guard-band auto|PX`,
+/// `[ao] guard_band = "auto"` or a number; 0 = none): the depth, normals and back faces are
+/// rendered over a wider field of view at the same pixel size, so that occluders just off screen
+/// count. `sao-lesson` never uses one (the course renders the view only).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(try_from = "GuardBandValue", into = "GuardBandValue")]
+pub enum GuardBand {
+    /// None (the course's and every method's behaviour before guard bands).
+    #[default]
+    Off,
+    /// The radius's projected size at the camera's focus distance, capped (`guard_band_pixels`).
+    Auto,
+    /// A fixed margin in pixels of the output image (rounded up to even at half AO resolution).
+    Pixels(u32),
+}
+
+/// How a guard band is written in a scene file: a number or the word `auto`.
+#[derive(Clone, Debug, Serialize, Deserialize)]
+#[serde(untagged)]
+enum GuardBandValue {
+    Pixels(u32),
+    Word(String),
+}
+
+impl TryFrom<GuardBandValue> for GuardBand {
+    type Error = String;
+    fn try_from(v: GuardBandValue) -> Result<GuardBand, String> {
+        match v {
+            GuardBandValue::Pixels(p) => Ok(GuardBand::from_pixels(p)),
+            GuardBandValue::Word(w) => GuardBand::parse(&w),
+        }
+    }
+}
+
+impl From<GuardBand> for GuardBandValue {
+    fn from(g: GuardBand) -> GuardBandValue {
+        match g {
+            GuardBand::Off => GuardBandValue::Pixels(0),
+            GuardBand::Auto => GuardBandValue::Word("auto".into()),
+            GuardBand::Pixels(p) => GuardBandValue::Pixels(p),
+        }
+    }
+}
+
+/// The largest guard band, as a fraction of the output's larger side: beyond it the AO passes
+/// would cost more than twice the view's pixels for occluders that rarely matter.
+pub const GUARD_BAND_MAX_OF_SIDE: f32 = 0.25;
+
+impl GuardBand {
+    fn from_pixels(p: u32) -> GuardBand {
+        if p == 0 {
+            GuardBand::Off
+        } else {
+            GuardBand::Pixels(p)
+        }
+    }
+
+    /// "auto", or a whole number of pixels (0 = none).
+    pub fn parse(s: &str) -> Result<GuardBand, String> {
+        let s = s.trim();
+        if s == "auto" {
+            return Ok(GuardBand::Auto);
+        }
+        s.parse::<u32>()
+            .map(GuardBand::from_pixels)
+            .map_err(|_| format!("'{s}' is neither a number of pixels nor 'auto'"))
+    }
+
+    pub fn name(self) -> String {
+        match self {
+            GuardBand::Off => "0".into(),
+            GuardBand::Auto => "auto".into(),
+            GuardBand::Pixels(p) => p.to_string(),
+        }
+    }
+}
+
 /// How occlusion is applied to the image.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
@@ -185,6 +289,10 @@ pub struct AoSettings {
     pub thickness: Option<Thickness>,
     /// Size the engine's methods run at (`sao-lesson` ignores it: see `effective_resolution`).
     pub resolution: AoResolution,
+    /// Where the engine's methods take the normal from (`sao-lesson` ignores it).
+    pub normals: NormalSource,
+    /// Margin the engine's AO passes cover beyond the view (`sao-lesson` ignores it).
+    pub guard_band: GuardBand,
 }
 
 /// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
@@ -262,6 +370,8 @@ impl Default for AoSettings {
             quality: None,
             thickness: None,
             resolution: AoResolution::Half,
+            normals: NormalSource::Geometric,
+            guard_band: GuardBand::Off,
         }
     }
 }
@@ -299,6 +409,13 @@ impl AoSettings {
     /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
     pub fn uses_back_faces(&self) -> bool {
         self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
+    }
+
+    /// Whether a frame needs the surface-normal pass: an engine method that reads a normal, with
+    /// `normals = "geometric"` (the lesson's SAO and Crytek's sphere read none).
+    pub fn uses_surface_normals(&self) -> bool {
+        self.normals == NormalSource::Geometric
+            && !matches!(self.method, AoMethod::SaoLesson | AoMethod::Crytek)
     }
 
     /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
@@ -373,6 +490,18 @@ mod tests {
         for r in AoResolution::ALL {
             assert_eq!(AoResolution::from_name(r.name()), Some(r));
         }
+        for n in NormalSource::ALL {
+            assert_eq!(NormalSource::from_name(n.name()), Some(n));
+        }
+        for g in [GuardBand::Off, GuardBand::Auto, GuardBand::Pixels(80)] {
+            assert_eq!(GuardBand::parse(&g.name()), Ok(g));
+        }
+        assert!(GuardBand::parse("-3").is_err() && GuardBand::parse("wide").is_err());
+        let toml_ao = |text: &str| toml::from_str::<AoSettings>(text).map(|s| s.guard_band);
+        assert_eq!(toml_ao("guard_band = \"auto\""), Ok(GuardBand::Auto));
+        assert_eq!(toml_ao("guard_band = 64"), Ok(GuardBand::Pixels(64)));
+        assert_eq!(toml_ao("guard_band = 0"), Ok(GuardBand::Off));
+        assert!(toml_ao("guard_band = \"wide\"").is_err());
         assert_eq!(AoMethod::from_name("ssao"), None);
     }
 

@@ -3,7 +3,9 @@
 //! Numeric flags accept a leading minus so `--fov -30` reaches the range check (with a message naming
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
-use crate::ao::{AoMethod, AoResolution, CompositeMode, GtaoQuality, Thickness};
+use crate::ao::{
+    AoMethod, AoResolution, CompositeMode, GtaoQuality, GuardBand, NormalSource, Thickness,
+};
 use crate::i18n::Lang;
 use crate::math::DepthMode;
 use crate::render::View;
@@ -51,20 +53,12 @@ pub struct ReferenceArgs {
     /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
     #[arg(long)]
     pub screen_space: bool,
-    /// With --screen-space: render the depth buffer PX pixels wider on each side (same pixel size,
-    /// wider field of view), so that surfaces just off the visible screen can occlude; the output
-    /// stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
+    /// With --screen-space, `--guard-band PX|auto` renders the depth buffer wider on each side (same
+    /// pixel size, wider field of view), so that surfaces just off the visible screen can occlude;
+    /// the output stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
     /// (the model `vbao` uses) instead of an infinitely thick heightfield; `--thickness backface`
     /// a slab reaching the back face behind it (from a depth render with front faces culled, as
     /// `vbao`'s), or vbao's default thickness where there is none.
-    #[arg(
-        long,
-        value_name = "PX",
-        default_value_t = 0,
-        requires = "screen_space",
-        allow_negative_numbers = true
-    )]
-    pub guard_band: u32,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,
@@ -140,6 +134,15 @@ pub struct SceneArgs {
     /// Size the engine's AO methods run at: half (the course's) or full (`sao-lesson` stays at half).
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
+    /// Where the engine's AO methods take each pixel's normal: geometric (the triangle's own, from a
+    /// pass over the geometry; the default) or depth (rebuilt from neighbouring depths, no extra pass).
+    #[arg(long, value_parser = choice(&NormalSource::ALL, NormalSource::name))]
+    pub normals: Option<NormalSource>,
+    /// Pixels the engine's AO covers beyond each edge of the view, so that occluders just off
+    /// screen count: auto (the radius's size at the camera's focus distance, capped), a number, or
+    /// 0 (none, the default).
+    #[arg(long, value_name = "auto|PX", value_parser = GuardBand::parse)]
+    pub guard_band: Option<GuardBand>,
     /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: half the radius),
     /// or `backface`: each pixel's own, from a depth pass of the back faces.
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]

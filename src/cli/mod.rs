@@ -297,6 +297,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         (Some(crate::ao::Thickness::Backface), true) => (scene.ao.thickness_metres(), true),
         (None, _) => (f32::INFINITY, false),
     };
+    if args.scene.normals.is_some() && !args.screen_space {
+        bail!("--normals applies to the screen-space reference (the ray tracer uses each triangle's own): add --screen-space")
+    }
+    if args.scene.guard_band.is_some() && !args.screen_space {
+        bail!("--guard-band applies to the screen-space reference (the ray tracer sees the whole scene): add --screen-space")
+    }
     // One --radius flag (the scene's): the AO radius is the ray length.
     let radius = scene.ao.radius;
     if radius.is_nan() || radius <= 0.0 || args.rays == 0 || args.rays > 1 << 20 {
@@ -317,16 +323,19 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         progress: true,
     };
     let (w, h) = (scene.output.width, scene.output.height);
+    let guard_px = match scene.ao.guard_band {
+        crate::ao::GuardBand::Pixels(p) => p,
+        band => crate::ao::guard_band::guard_band_pixels(band, &cam, (w, h), radius),
+    };
     let img = if args.screen_space {
         use crate::tools::reference::DepthBuffer;
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-        let depth = if back_faces {
-            DepthBuffer::from_engine_with_back_faces(&mut engine, args.guard_band)?
-        } else {
-            DepthBuffer::from_engine_with_guard_band(&mut engine, args.guard_band)?
-        }
-        .with_thickness(thickness);
+        let what = crate::tools::reference::Capture {
+            back_faces,
+            normals: scene.ao.normals == crate::ao::NormalSource::Geometric,
+        };
+        let depth = DepthBuffer::capture(&mut engine, guard_px, what)?.with_thickness(thickness);
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
@@ -345,8 +354,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         } else {
             t!("reference.infinite_thickness")
         };
-        let guard = t!("reference.guard_band", px = args.guard_band);
-        format!("{}, {slabs}, {guard}", t!("reference.kind_screen"))
+        let guard = t!("reference.guard_band", px = guard_px);
+        let normals = t!("reference.normals", source = scene.ao.normals.name());
+        format!(
+            "{}, {slabs}, {normals}, {guard}",
+            t!("reference.kind_screen")
+        )
     } else {
         t!("reference.kind_rays").into_owned()
     };

@@ -183,6 +183,12 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     if let Some(r) = args.ao_resolution {
         desc.ao.resolution = r;
     }
+    if let Some(n) = args.normals {
+        desc.ao.normals = n;
+    }
+    if let Some(g) = args.guard_band {
+        desc.ao.guard_band = g;
+    }
     if let Some(t) = args.thickness {
         let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
         if let crate::ao::Thickness::Metres(m) = t {

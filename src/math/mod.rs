@@ -3,6 +3,7 @@
 pub mod camera;
 pub mod depth;
 pub mod frustum;
+pub mod octahedral;
 
 pub use camera::Camera;
 pub use depth::DepthMode;

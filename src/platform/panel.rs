@@ -3,7 +3,7 @@
 //! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
-use crate::ao::{AoMethod, AoResolution, CompositeMode, Thickness};
+use crate::ao::{AoMethod, AoResolution, CompositeMode, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
@@ -124,6 +124,16 @@ impl Panel {
                 })
         });
         actions.sync_shader_constants |= p.resolution != resolution;
+        if p.method != AoMethod::SaoLesson && p.method != AoMethod::Crytek {
+            let mut geometric = p.normals == NormalSource::Geometric;
+            ui.checkbox(&mut geometric, tr("panel.geometric_normals"))
+                .on_hover_text(tr("panel.geometric_normals_help"));
+            p.normals = if geometric {
+                NormalSource::Geometric
+            } else {
+                NormalSource::Depth
+            };
+        }
         if p.method == AoMethod::Vbao {
             let mut back_faces = p.thickness == Some(Thickness::Backface);
             ui.checkbox(&mut back_faces, tr("panel.backface"))

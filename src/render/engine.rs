@@ -5,10 +5,12 @@
 
 use super::frame::Frame;
 use super::main_fbo::create_main_fbos;
-use super::passes::{back_faces::BackFacePass, shadow::ShadowPass, transparent};
+use super::passes::surface::{SurfaceInputs, SurfacePasses};
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
+use super::passes::{shadow::ShadowPass, transparent};
 use super::stats::{process_cpu_seconds, AoTextureInfo, PassStat};
 use super::view::View;
+use crate::ao::guard_band::GuardTargets;
 use crate::ao::method_pass::AoInputs;
 use crate::ao::upsample::UpsampleInputs;
 use crate::ao::{composite, AoMethod, AoPipeline, AoSettings, AoTargets, CompositeMode};
@@ -28,6 +30,9 @@ use glam::{Mat4, Vec3, Vec4};
 use std::cell::RefCell;
 use std::rc::Rc;
 
+mod guard;
+mod surface;
+
 pub struct Engine {
     gl: Gl,
     res: ResDirs,
@@ -39,8 +44,10 @@ pub struct Engine {
     pub ao_settings: AoSettings,
     pub view: View,
     shadow: ShadowPass,
-    /// `vbao`'s back-face depth, run only for `thickness = "backface"`.
-    back_faces: BackFacePass,
+    /// Back-face depth and surface normals, each run only when the AO settings read it.
+    surface: SurfacePasses,
+    /// The AO targets of the view widened by a guard band (`[ao] guard_band`).
+    guard_targets: GuardTargets,
     lit: LitPass,
     sky: SkyPass,
     bloom_pass: BloomPass,
@@ -132,7 +139,8 @@ impl Engine {
             ao_settings,
             view: View::Composite,
             shadow: ShadowPass::new(gl, &res)?,
-            back_faces: BackFacePass::new(gl, &res)?,
+            surface: SurfacePasses::new(gl, &res)?,
+            guard_targets: GuardTargets::default(),
             lit: LitPass::new(gl, &res)?,
             sky: SkyPass::new(gl, &res)?,
             bloom_pass: BloomPass::new(gl, &res, (width, height))?,
@@ -207,7 +215,8 @@ impl Engine {
         // needs them creates them.
         if !self.needs_ao(self.view) {
             self.ao.release_targets();
-            self.back_faces.release_targets();
+            self.surface.release_targets();
+            self.guard_targets.release();
         }
         self.configure_ao_targets()
     }
@@ -242,41 +251,14 @@ impl Engine {
         self.ao.targets()
     }
 
-    /// Linear depth (m) of the back faces at the AO size, from the last frame that needed it
-    /// (`vbao` with `thickness = "backface"`); rows bottom-up.
-    pub fn back_face_depth(&self) -> Option<Rc<Texture>> {
-        self.back_faces.linear_depth()
-    }
-
-    /// Linear depth (m) of the nearest back faces at the full output size and the current camera,
-    /// whatever the AO settings: the pass `vbao` reads with `thickness = "backface"` at full AO
-    /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
-    /// where no back face lies behind the pixel.
-    pub fn render_back_face_depth(&mut self) -> Result<Vec<f32>> {
-        // The opaque pass first: the back-face restore reads the front depth of each texel.
-        self.render_values(View::LinearDepth)?;
-        let front = self
-            .fbo_main
-            .depth_texture()
-            .cloned()
-            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
-        let f = self.frame();
-        let back = self
-            .back_faces
-            .draw(&f, &self.shadow.program, &front, self.size())?;
-        let mut v = back.read_f32(0, 1);
-        flip_rows(&mut v, self.width as usize, self.height as usize);
-        check_error(&self.gl, "reading the back-face depth")?;
-        Ok(v)
-    }
-
     /// Every GL texture the engine owns for AO now: empty until a frame runs AO, and after a resize
     /// while AO is off.
     pub fn ao_textures(&self) -> Vec<AoTextureInfo> {
         self.ao
             .textures()
             .iter()
-            .chain(self.back_faces.textures().iter())
+            .chain(self.surface.textures().iter())
+            .chain(self.guard_targets.textures().iter())
             .map(|t| AoTextureInfo::of(t))
             .collect()
     }
@@ -296,17 +278,18 @@ impl Engine {
     pub fn hot_reload(&mut self, force: bool) -> Vec<ProgramError> {
         let mut errors = self.ao.reload(force);
         let [b0, b1, b2] = self.bloom_pass.programs_mut();
-        for p in [
+        let mut programs = self.surface.programs_mut();
+        programs.extend([
             &mut self.lit.standard,
             &mut self.shadow.program,
-            self.back_faces.program_mut(),
             &mut self.sky.program,
             &mut self.post.image,
             &mut self.post.debug,
             b0,
             b1,
             b2,
-        ] {
+        ]);
+        for p in programs {
             if force || p.sources_changed() {
                 if let Err(e) = p.reload() {
                     errors.push(e);
@@ -486,12 +469,26 @@ impl Engine {
     }
 
     /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
-    /// `view` shows).
+    /// `view` shows), over a widened view when the settings ask for a guard band.
     fn run_ao(&self, f: &Frame, targets: &AoTargets, view: View) -> Result<()> {
+        if let Some(g) = self.guard_frame(view) {
+            return self.run_guarded_ao(f, targets, view, &g);
+        }
         let depth = self
             .fbo_main
             .depth_texture()
             .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        self.restore_depth_chain(targets, depth)?;
+        if view == View::LinearDepth {
+            return Ok(());
+        }
+        let surface = self.run_surface_passes(f, depth, targets.size(), None)?;
+        self.run_method(f.camera, targets, &surface, view)?;
+        Ok(())
+    }
+
+    /// The lesson's first two passes: linear depth from `depth` and its mip chain.
+    fn restore_depth_chain(&self, targets: &AoTargets, depth: &Texture) -> Result<()> {
         let chain = &self.ao.depth_chain;
         self.pass("sao restore depth", "ao", || {
             chain.restore_linear_depth(&self.gl, targets, &self.meshes, depth, self.depth_mode)
@@ -504,35 +501,37 @@ impl Engine {
                 &self.meshes,
             )
         });
-        if view == View::LinearDepth {
-            return Ok(());
-        }
+        Ok(())
+    }
+
+    /// The method's pass and its blur (unless the view shows the raw occlusion); whether it blurred.
+    fn run_method(
+        &self,
+        camera: &Camera,
+        targets: &AoTargets,
+        surface: &SurfaceInputs,
+        view: View,
+    ) -> Result<bool> {
         let method = self.ao_settings.method;
-        let back_depth = if self.ao_settings.uses_back_faces() {
-            Some(self.pass("back-face depth", "ao", || {
-                self.back_faces
-                    .draw(f, &self.shadow.program, depth, targets.size())
-            })?)
-        } else {
-            None
-        };
         let inputs = AoInputs {
-            gl: f.gl,
-            meshes: f.meshes,
+            gl: &self.gl,
+            meshes: &self.meshes,
             targets,
-            camera: f.camera,
+            camera,
             settings: &self.ao_settings,
-            back_depth: back_depth.as_deref(),
+            back_depth: surface.back_depth.as_deref(),
+            normals: surface.normals.as_deref(),
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),
             m => (m.name(), "separable blur"),
         };
         self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
-        if self.ao_settings.blur && view != View::AoRaw {
+        let blur = self.ao_settings.blur && view != View::AoRaw;
+        if blur {
             self.pass(blur_name, "ao", || self.ao.blur(method, &inputs))?;
         }
-        Ok(())
+        Ok(blur)
     }
 
     /// The occlusion at the main size for the composite and the AO view: the engine's methods at half

@@ -50,6 +50,7 @@ impl AoTextureInfo {
             glow::R8 => 1,
             glow::R16F | glow::RG8 => 2,
             glow::R32F | glow::RG16F | glow::RGBA8 => 4,
+            glow::DEPTH_COMPONENT32 | glow::DEPTH_COMPONENT32F => 4,
             glow::RG32F | glow::RGBA16F => 8,
             _ => 16,
         };

@@ -27,5 +27,6 @@ mod reference_screen;
 mod reference_slabs;
 mod sao_pipeline;
 mod shader_interface;
+mod surface_normals;
 mod vbao;
 mod vbao_convergence;

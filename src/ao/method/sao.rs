@@ -70,6 +70,7 @@ impl AoMethodPass for SaoMethod {
         self.program.use_program();
         self.packed.bind_for_method(i.gl, i.targets)?;
         i.targets.tex_depth.bind(binding::INPUT);
+        i.bind_normals();
         i.meshes.draw_plane_xy();
         Ok(())
     }

@@ -2,8 +2,10 @@
 
 pub mod back_faces;
 pub mod bloom;
+pub mod normals;
 pub mod opaque;
 pub mod post;
 pub mod shadow;
 pub mod sky;
+pub mod surface;
 pub mod transparent;

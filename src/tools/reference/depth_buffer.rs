@@ -9,6 +9,15 @@ use super::hash::Fnv64;
 use super::image::RefImage;
 use crate::math::Camera;
 
+/// What `DepthBuffer::capture` reads from the engine besides the depth.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Capture {
+    /// The back faces' depth (`vbao`'s `--thickness backface`).
+    pub back_faces: bool,
+    /// The surface normals (`--normals geometric`).
+    pub normals: bool,
+}
+
 /// A depth buffer and the projection it was rendered with.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DepthBuffer {
@@ -34,6 +43,10 @@ pub struct DepthBuffer {
     /// `vbao` (an infinite one: everything behind them is solid, as in the heightfield). `None`:
     /// every slab is `thickness` thick.
     pub back_depth: Option<Vec<f32>>,
+    /// The surface's own normal at each pixel (view space, unit length, rows top-down), from the
+    /// engine's surface-normal pass: the ceiling of a method reading geometric normals. `None`:
+    /// normals rebuilt from the depths, as methods reading only depth must.
+    pub normals: Option<Vec<[f32; 3]>>,
     /// Pixels on each side that lie outside the visible image: they can occlude, but the
     /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
     pub guard_band: u32,
@@ -76,6 +89,16 @@ impl DepthBuffer {
                 );
             }
         }
+        if let Some(normals) = &self.normals {
+            if normals.len() != n {
+                bail!(
+                    "normals of {} pixels do not match the {}x{} depth buffer",
+                    normals.len(),
+                    self.width,
+                    self.height
+                );
+            }
+        }
         let g = self.guard_band as u64 * 2;
         if g > 0 && (g >= self.width as u64 || g >= self.height as u64) {
             bail!(
@@ -109,6 +132,7 @@ impl DepthBuffer {
             near: cam.near,
             thickness: f32::INFINITY,
             back_depth: None,
+            normals: None,
             guard_band: 0,
         }
     }
@@ -147,6 +171,7 @@ impl DepthBuffer {
             near,
             thickness: f32::INFINITY,
             back_depth: None,
+            normals: None,
             guard_band: 0,
         };
         buf.validate()?;
@@ -180,7 +205,7 @@ impl DepthBuffer {
         engine: &mut crate::render::Engine,
         guard_band: u32,
     ) -> Result<DepthBuffer> {
-        DepthBuffer::capture(engine, guard_band, false)
+        DepthBuffer::capture(engine, guard_band, Capture::default())
     }
 
     /// Like [`DepthBuffer::from_engine_with_guard_band`], with [`Self::back_depth`] from the
@@ -191,19 +216,26 @@ impl DepthBuffer {
         engine: &mut crate::render::Engine,
         guard_band: u32,
     ) -> Result<DepthBuffer> {
-        DepthBuffer::capture(engine, guard_band, true)
+        let what = Capture {
+            back_faces: true,
+            normals: false,
+        };
+        DepthBuffer::capture(engine, guard_band, what)
     }
 
-    /// The depth buffer (and the back faces' when `back_faces`) of the engine at its camera,
-    /// `guard_band` pixels wider on each side.
-    fn capture(
+    /// The depth buffer of the engine at its camera, `guard_band` pixels wider on each side, with
+    /// the back faces' depth and the surface normals when `what` asks for them.
+    pub fn capture(
         engine: &mut crate::render::Engine,
         guard_band: u32,
-        back_faces: bool,
+        what: Capture,
     ) -> Result<DepthBuffer> {
         let read = |engine: &mut crate::render::Engine| -> Result<DepthBuffer> {
             let mut buf = DepthBuffer::from_engine(engine)?;
-            if back_faces {
+            if what.normals {
+                buf.normals = Some(engine.render_surface_normals()?);
+            }
+            if what.back_faces {
                 let far = engine.camera.far;
                 let back = engine.render_back_face_depth()?;
                 // The pass writes exactly `far` where no back face lies behind the pixel.
@@ -285,6 +317,12 @@ impl DepthBuffer {
             h.bytes(b"back faces");
             for d in back {
                 h.f32(*d);
+            }
+        }
+        if let Some(normals) = &self.normals {
+            h.bytes(b"surface normals");
+            for n in normals.iter().flatten() {
+                h.f32(*n);
             }
         }
         h.0

@@ -43,6 +43,8 @@ pub(crate) struct Heightfield {
     thickness: f64,
     /// Each pixel's back surface, when the buffer has back faces (module docs).
     back: Option<BackSurface>,
+    /// Each pixel's own normal (view space), when the buffer carries the surface normals.
+    normals: Option<Vec<DVec3>>,
     /// Distance from the eye beyond which no solid point lies (for unbounded rays).
     max_dist: f64,
 }
@@ -95,6 +97,11 @@ impl Heightfield {
                 max_depth * k
             },
             back,
+            normals: buf.normals.as_ref().map(|ns| {
+                ns.iter()
+                    .map(|n| DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64))
+                    .collect()
+            }),
         }
     }
 
@@ -163,9 +170,18 @@ impl Heightfield {
         })
     }
 
-    /// Unit normal at pixel (i, j) from the depth buffer, facing the camera (see the module docs).
+    /// Unit normal at pixel (i, j), facing the camera: the surface's own when the buffer carries
+    /// normals, else rebuilt from the depth buffer (see the module docs).
     pub(crate) fn normal(&self, i: usize, j: usize, p: DVec3) -> DVec3 {
         let facing = -p.normalize_or(DVec3::Z);
+        if let Some(normals) = &self.normals {
+            // The surface's own normal, turned towards the camera as the ray tracer turns its hit.
+            return match normals[j * self.w + i].try_normalize() {
+                Some(n) if n.dot(facing) < 0.0 => -n,
+                Some(n) => n,
+                None => facing,
+            };
+        }
         let tangent = |horizontal: bool| -> Option<DVec3> {
             let at = |k: isize| -> Option<f64> {
                 let (x, y) = if horizontal {

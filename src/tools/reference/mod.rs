@@ -20,7 +20,7 @@ mod trace;
 
 pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
 pub use camera::{pixel_dir, view_direction};
-pub use depth_buffer::DepthBuffer;
+pub use depth_buffer::{Capture, DepthBuffer};
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};

@@ -164,6 +164,7 @@ mod tests {
             near: 0.1,
             thickness: f32::INFINITY,
             back_depth: None,
+            normals: None,
             guard_band: 0,
         }
     }

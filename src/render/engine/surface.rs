@@ -1,0 +1,109 @@
+//! The engine's passes over the geometry that AO reads besides the depth chain (back-face depth,
+//! surface normals), and their read-back for tests and the screen-space reference.
+
+use super::Engine;
+use crate::gl::check_error;
+use crate::gl::readback::flip_rows;
+use crate::gl::Texture;
+use crate::math::octahedral::decode_octahedral;
+use crate::render::frame::Frame;
+use crate::render::passes::surface::SurfaceInputs;
+use crate::render::view::View;
+use anyhow::{anyhow, Result};
+use std::rc::Rc;
+
+impl Engine {
+    /// Linear depth (m) of the back faces at the AO size, from the last frame that needed it
+    /// (`vbao` with `thickness = "backface"`); rows bottom-up.
+    pub fn back_face_depth(&self) -> Option<Rc<Texture>> {
+        self.surface.back_faces.linear_depth()
+    }
+
+    /// Linear depth (m) of the nearest back faces at the full output size and the current camera,
+    /// whatever the AO settings: the pass `vbao` reads with `thickness = "backface"` at full AO
+    /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
+    /// where no back face lies behind the pixel.
+    pub fn render_back_face_depth(&mut self) -> Result<Vec<f32>> {
+        // The opaque pass first: the back-face restore reads the front depth of each texel.
+        self.render_values(View::LinearDepth)?;
+        let front = self
+            .fbo_main
+            .depth_texture()
+            .cloned()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let f = self.frame();
+        let back = self
+            .surface
+            .back_faces
+            .draw(&f, &self.shadow.program, &front, self.size())?;
+        let mut v = back.read_f32(0, 1);
+        flip_rows(&mut v, self.width as usize, self.height as usize);
+        check_error(&self.gl, "reading the back-face depth")?;
+        Ok(v)
+    }
+
+    /// The surface normals (view space, unit length) at the AO size from the last frame that ran
+    /// the pass (`normals = "geometric"`); rows bottom-up.
+    pub fn surface_normals(&self) -> Option<Vec<[f32; 3]>> {
+        let codes = self.surface.normals.restored()?.read_f32(0, 2);
+        Some(
+            codes
+                .chunks_exact(2)
+                .map(|c| decode_octahedral([c[0], c[1]]))
+                .collect(),
+        )
+    }
+
+    /// The surface normals at the full output size and the current camera, whatever the AO
+    /// settings: what a method reading geometric normals at full AO resolution sees (the
+    /// screen-space reference's). View space, unit length, rows top-down.
+    pub fn render_surface_normals(&mut self) -> Result<Vec<[f32; 3]>> {
+        self.render_values(View::LinearDepth)?;
+        let front = self
+            .fbo_main
+            .depth_texture()
+            .cloned()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let f = self.frame();
+        let codes = self
+            .surface
+            .normals
+            .draw(&f, Some(&front), self.size())?
+            .read_f32(0, 2);
+        let mut v: Vec<[f32; 3]> = codes
+            .chunks_exact(2)
+            .map(|c| decode_octahedral([c[0], c[1]]))
+            .collect();
+        flip_rows(&mut v, self.width as usize, self.height as usize);
+        check_error(&self.gl, "reading the surface normals")?;
+        Ok(v)
+    }
+
+    /// The passes over the geometry that the AO settings read besides the depth chain.
+    /// `normals_drawn`: the normals, when the pass already ran this frame (a guard band's depth).
+    pub(super) fn run_surface_passes(
+        &self,
+        f: &Frame,
+        depth: &Texture,
+        ao_size: (u32, u32),
+        normals_drawn: Option<Rc<Texture>>,
+    ) -> Result<SurfaceInputs> {
+        let (s, passes) = (&self.ao_settings, &self.surface);
+        let mut out = SurfaceInputs::default();
+        if s.uses_back_faces() {
+            out.back_depth = Some(self.pass("back-face depth", "ao", || {
+                let depth_only = &self.shadow.program;
+                passes.back_faces.draw(f, depth_only, depth, ao_size)
+            })?);
+        }
+        if s.uses_surface_normals() {
+            out.normals = match normals_drawn {
+                Some(n) => Some(n),
+                None => Some(self.pass("surface normals", "ao", || {
+                    passes.normals.draw(f, Some(depth), ao_size)
+                })?),
+            };
+        }
+        Ok(out)
+    }
+}
