@@ -16,6 +16,7 @@ mod grade;
 mod grade_class;
 mod grade_class_zip;
 mod grade_mutation;
+mod guard_band;
 mod i18n;
 mod inputs;
 mod lessons_ja;

@@ -3,14 +3,15 @@
 //! the reference cache when it has them.
 
 use super::config::PerfConfig;
-use crate::ao::{AoMethod, AoSettings, Thickness};
+use crate::ao::guard_band::guard_band_pixels;
+use crate::ao::{AoMethod, AoSettings, NormalSource, Thickness};
 use crate::render::Engine;
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
     cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
-    AoVariant, DepthBuffer, RefImage, RefParams, Scene,
+    AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
 };
 use anyhow::Result;
 use indicatif::ProgressBar;
@@ -190,26 +191,37 @@ pub fn screen_references(
     count: &mut RenderCount,
 ) -> Result<ScreenMap> {
     let mut out = BTreeMap::new();
+    // The ceilings read what the scene's engine methods read: its normals and its guard band (scaled
+    // from the bench's output size to the reference's).
+    let normals = sd.desc.ao.normals == NormalSource::Geometric;
+    let ref_width = engine.size().0;
     for (ci, cam) in sd.cameras.iter().enumerate().filter(|(_, c)| !c.train) {
-        engine.camera = cam.camera(&sd.desc.camera);
+        let camera = cam.camera(&sd.desc.camera);
+        engine.camera = camera;
         engine.sync_shader_constants()?;
-        let heightfield = DepthBuffer::from_engine(engine)?;
-        // Rendered once per camera, for the first back-face ceiling.
-        let mut with_back_faces: Option<DepthBuffer> = None;
+        // Captured once per camera and (guard band, back faces).
+        let mut captured: BTreeMap<(u32, bool), DepthBuffer> = BTreeMap::new();
         for &(r, ceiling) in ceilings {
             let params = params(r, cfg.screen_rays, cfg.progress);
-            let depth = match ceiling {
-                Ceiling::Heightfield => heightfield.clone(),
-                Ceiling::Slabs(t) => heightfield.clone().with_thickness(t),
-                Ceiling::BackFaces { fallback } => {
-                    let back = match with_back_faces.take() {
-                        Some(b) => b,
-                        None => DepthBuffer::from_engine_with_back_faces(engine, 0)?,
+            let band =
+                guard_band_pixels(sd.desc.ao.guard_band, &camera, (cfg.width, cfg.height), r);
+            let guard = (band as u64 * ref_width as u64 / cfg.width.max(1) as u64) as u32;
+            let back_faces = matches!(ceiling, Ceiling::BackFaces { .. });
+            let buffer = match captured.get(&(guard, back_faces)) {
+                Some(b) => b.clone(),
+                None => {
+                    let what = Capture {
+                        back_faces,
+                        normals,
                     };
-                    let depth = back.clone().with_thickness(fallback);
-                    with_back_faces = Some(back);
-                    depth
+                    let b = DepthBuffer::capture(engine, guard, what)?;
+                    captured.insert((guard, back_faces), b.clone());
+                    b
                 }
+            };
+            let depth = match ceiling {
+                Ceiling::Heightfield => buffer,
+                Ceiling::Slabs(t) | Ceiling::BackFaces { fallback: t } => buffer.with_thickness(t),
             };
             let key = screen_cache_key(&depth, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
