@@ -101,6 +101,23 @@ fn frame_bounds(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, args: &SceneArgs) {
     if args.near.is_none() {
         c.near = near;
     }
+    // The AO radius follows the model's size as the camera does: 1 m would be nothing on a model in
+    // millimetres and everything on a terrain. A tenth of the diagonal darkens creases, feet and
+    // gaps of a model without burying it.
+    if args.radius.is_none() {
+        let (lo_r, hi_r) = crate::ao::settings::RADIUS_RANGE;
+        let radius = (0.2 * r).clamp(lo_r, hi_r);
+        let radius = (radius * 1e4).round() / 1e4;
+        desc.ao.radius = if radius > 0.0 { radius } else { lo_r };
+        eprintln!(
+            "{}",
+            t!(
+                "render.obj_radius",
+                radius = desc.ao.radius,
+                diagonal = format!("{:.4}", 2.0 * r)
+            )
+        );
+    }
 }
 
 /// Applies the flags given and returns the keys they set; range checks of flags without a scene key

@@ -431,3 +431,49 @@ fn lesson_without_a_step_lists_them_and_start_keeps_written_shaders() {
         "#version 450\n// the student's work\n"
     );
 }
+
+/// A model in millimetres (a 1 m floor with a 300 mm box on it, written ×1000): `--obj` frames it and
+/// picks the AO radius from its size, so the crease around the box darkens; with a radius of 1 unit
+/// (1 mm) it does not.
+#[test]
+fn a_model_in_millimetres_gets_a_radius_of_its_own_scale() {
+    let dir = common::temp_dir("cli-mm");
+    let mut m = shapes::ground(500.0, 4);
+    opengl3d::scene::shapes::add_box(
+        &mut m,
+        glam::Vec3::new(-150.0, 0.0, -150.0),
+        glam::Vec3::new(150.0, 300.0, 150.0),
+    );
+    let obj = dir.join("mm.obj");
+    std::fs::write(&obj, shapes::to_obj(&m, "mm")).unwrap();
+    let darkened = |extra: &[&str]| {
+        let out = dir.join("ao.pfm");
+        let mut args = vec![
+            "render",
+            "--obj",
+            obj.to_str().unwrap(),
+            "--method",
+            "vbao",
+            "--view",
+            "ao",
+            "--width",
+            "320",
+            "--height",
+            "240",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        args.extend_from_slice(extra);
+        let o = run(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let (_, _, _, v) = read_pfm(&out).unwrap();
+        (v.iter().filter(|x| **x < 0.9).count(), stderr(&o))
+    };
+    let (auto, said) = darkened(&[]);
+    assert!(said.contains("AO radius"), "{said}");
+    let (one_unit, _) = darkened(&["--radius", "1"]);
+    assert!(
+        auto > 200 && one_unit < 10,
+        "darker than 0.9: auto radius {auto}, 1 unit {one_unit}"
+    );
+}
