@@ -126,7 +126,7 @@ void main()
         if (aoBackFaces != 0) {
           // The back face behind the tap, where there is one ('far' where none: open planes, sky).
           float back = texelFetch(texBackDepth, q, 0).x;
-          thickness = back > zq && back < CAMERA_FAR ? back - zq : aoThickness;
+          thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
         }
         float d1 = min(zq + thickness, (eo + root) / ee);
         if (d1 <= d0) {

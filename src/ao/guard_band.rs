@@ -1,7 +1,9 @@
 //! The size of a guard band (`[ao] guard_band`, `--guard-band`) and the widened camera that covers it:
 //! the same pixel size and pixel centres as the view, a margin of whole pixels on each side.
 
-use super::settings::{AoResolution, GuardBand, GUARD_BAND_MAX_OF_SIDE};
+use super::settings::{
+    AoResolution, GuardBand, GUARD_BAND_AUTO_MAX_OF_SIDE, GUARD_BAND_MAX_OF_SIDE,
+};
 use super::targets::AoTargets;
 use crate::gl::{Gl, Texture};
 use crate::math::camera::fov_scale;
@@ -30,21 +32,21 @@ pub struct GuardFrame {
 /// The margin (output pixels, even so that half-size AO texels keep their 2×2 blocks) that `band`
 /// asks for with `camera`, a `size` output and AO `radius`; 0 = none.
 pub fn guard_band_pixels(band: GuardBand, camera: &Camera, size: (u32, u32), radius: f32) -> u32 {
-    let cap = (GUARD_BAND_MAX_OF_SIDE * size.0.max(size.1) as f32) as u32;
+    let side = size.0.max(size.1) as f32;
     let px = match band {
         GuardBand::Off => return 0,
-        GuardBand::Pixels(p) => p,
+        GuardBand::Pixels(p) => p.min((GUARD_BAND_MAX_OF_SIDE * side) as u32),
         GuardBand::Auto => {
+            let cap = ((GUARD_BAND_AUTO_MAX_OF_SIDE * side) as u32).max(GUARD_BAND_MIN_PIXELS);
             let focus = (camera.target - camera.eye).length().max(camera.near);
             let projected = radius * 0.5 * size.1 as f32 * fov_scale(camera.fov_y_deg) / focus;
             if !projected.is_finite() {
                 cap
             } else {
-                (projected.ceil() as u32).max(GUARD_BAND_MIN_PIXELS)
+                (projected.ceil() as u32).clamp(GUARD_BAND_MIN_PIXELS, cap)
             }
         }
     };
-    let px = px.min(cap);
     px + (px & 1)
 }
 

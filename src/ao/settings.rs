@@ -160,10 +160,10 @@ impl NormalSource {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(try_from = "GuardBandValue", into = "GuardBandValue")]
 pub enum GuardBand {
-    /// None (the course's and every method's behaviour before guard bands).
-    #[default]
+    /// None.
     Off,
     /// The radius's projected size at the camera's focus distance, capped (`guard_band_pixels`).
+    #[default]
     Auto,
     /// A fixed margin in pixels of the output image (rounded up to even at half AO resolution).
     Pixels(u32),
@@ -197,9 +197,16 @@ impl From<GuardBand> for GuardBandValue {
     }
 }
 
-/// The largest guard band, as a fraction of the output's larger side: beyond it the AO passes
-/// would cost more than twice the view's pixels for occluders that rarely matter.
+/// The largest guard band asked for in pixels, as a fraction of the output's larger side: beyond it
+/// the AO passes would cost more than twice the view's pixels for occluders that rarely matter.
 pub const GUARD_BAND_MAX_OF_SIDE: f32 = 0.25;
+
+/// The largest `auto` guard band, as a fraction of the output's larger side: 80 pixels at 1920×1080,
+/// a third more pixels for the AO passes. On the bench's training cameras (three scenes, R = 1 m,
+/// `vbao` `high`) that margin gained 0.4–0.8 dB on the courtyard and the room and nothing on thin
+/// things (docs/bench/vbao/normals-guard-band.md); nearby surfaces would ask for more, which the
+/// cost does not repay.
+pub const GUARD_BAND_AUTO_MAX_OF_SIDE: f32 = 1.0 / 24.0;
 
 impl GuardBand {
     fn from_pixels(p: u32) -> GuardBand {
@@ -303,7 +310,9 @@ pub enum Thickness {
     /// The same thickness (m) everywhere.
     Metres(f32),
     /// Each pixel's own: a depth pass of the back faces (front faces culled) gives where the
-    /// object ends; `Metres` of the default where no back face lies behind (open planes, sky).
+    /// object ends, and the slab reaches there but is never thinner than the default thickness
+    /// (the taps skip the texels between them, and a back face a few centimetres behind one texel
+    /// says nothing of the next ones); the default where no back face lies behind (open planes).
     Backface,
 }
 
@@ -371,7 +380,7 @@ impl Default for AoSettings {
             thickness: None,
             resolution: AoResolution::Half,
             normals: NormalSource::Geometric,
-            guard_band: GuardBand::Off,
+            guard_band: GuardBand::Auto,
         }
     }
 }

@@ -3,7 +3,7 @@
 //! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
-use crate::ao::{AoMethod, AoResolution, CompositeMode, NormalSource, Thickness};
+use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
@@ -132,6 +132,14 @@ impl Panel {
                 NormalSource::Geometric
             } else {
                 NormalSource::Depth
+            };
+            let mut guard = p.guard_band != GuardBand::Off;
+            ui.checkbox(&mut guard, tr("panel.guard_band"))
+                .on_hover_text(tr("panel.guard_band_help"));
+            p.guard_band = match (guard, p.guard_band) {
+                (false, _) => GuardBand::Off,
+                (true, GuardBand::Off) => GuardBand::Auto,
+                (true, g) => g,
             };
         }
         if p.method == AoMethod::Vbao {

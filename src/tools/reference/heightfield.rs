@@ -16,8 +16,10 @@
 //! pieces of constant sign, and testing each piece decides the segment exactly.
 //!
 //! **Back faces.** With each pixel's back depth b (the nearest back face behind it, `vbao`'s
-//! `--thickness backface`), the pixel's slab is [z, b]; a pixel without one (an open plane) keeps
-//! [z, z + T], as `vbao` falls back to its fixed thickness. The back surface is triangulated like the
+//! `--thickness backface`), the pixel's slab is [z, max(b, z + T)]: the back face extends a slab,
+//! never thins it below the set thickness (a tap stands for the texels up to the next one, which a
+//! back face a few centimetres behind one texel says nothing about); a pixel without one (an open
+//! plane) keeps [z, z + T], as `vbao` does. The back surface is triangulated like the
 //! front, with inverse depth affine in each triangle (a planar back face is rebuilt exactly), and a
 //! triangle is solid where its three pixels' slabs overlap (deepest front ≤ shallowest back; with
 //! one thickness everywhere that is the rule above). Inside it a point is solid when it lies behind
@@ -467,10 +469,11 @@ impl BackSurface {
                 if !(z.is_finite() && z > 0.0) {
                     return (0.0, false); // sky: never in a solid triangle
                 }
-                // The same test as vbao.frag: a back face deeper than the surface, else the thickness.
+                // The same rule as vbao.frag: a back face deeper than the surface extends the slab to
+                // it, never below the set thickness; without one, the thickness.
                 let has_back = b.is_finite() && b > z;
                 let depth = if has_back {
-                    b as f64
+                    (b as f64).max(z as f64 + thickness)
                 } else {
                     z as f64 + thickness
                 };
