@@ -7,6 +7,7 @@ mod bench_skips;
 mod bench_split;
 mod blur_stripes;
 mod cli;
+mod closed_pipe;
 #[path = "../common/mod.rs"]
 mod common;
 mod composite_modes;

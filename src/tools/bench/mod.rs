@@ -139,7 +139,7 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
             progress: true,
         };
         let report = stress::run(res, &cfg)?;
-        println!(
+        crate::outln!(
             "wrote {} and {}: {} cases, {} NaN/Inf values, {} failed checks",
             args.out.join("stress.json").display(),
             args.out.join("stress.md").display(),
@@ -161,7 +161,7 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         };
         let report = skips::run(res, &cfg)?;
         for c in &report.cases {
-            println!(
+            crate::outln!(
                 "{:<36} saves {:7.1} ms of {:7.1} (ratio {:.2}, CPU {:.2}); draw calls {} → {}",
                 c.name,
                 c.saved_ms,
@@ -172,12 +172,12 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
                 c.skipped.draw_calls
             );
         }
-        println!("wrote {}", args.out.join("skips.md").display());
+        crate::outln!("wrote {}", args.out.join("skips.md").display());
         return Ok(());
     }
     let cfg = args.perf_config()?;
     let report = perf::run(res, &cfg)?;
-    println!(
+    crate::outln!(
         "wrote {} ({} rows, {}x{}, {} s)",
         cfg.out.join("report.md").display(),
         report.rows.len(),
