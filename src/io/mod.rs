@@ -25,6 +25,34 @@ pub fn io_error(path: &Path, verb: &str, e: &std::io::Error) -> anyhow::Error {
     anyhow::anyhow!("{shown}: cannot {verb}: {cause} ({e})")
 }
 
+/// Reads `path` whole, refusing more than `limit` bytes: a larger file, or an endless one such as
+/// `/dev/zero`, is an error naming the file and the limit instead of a read that fills memory. A
+/// folder, a missing or unreadable file are errors that say which.
+pub fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read as _;
+    let shown = path.display();
+    let meta = std::fs::metadata(path).map_err(|e| io_error(path, "read", &e))?;
+    if meta.is_dir() {
+        bail!("{}", rust_i18n::t!("io.is_folder", path = shown));
+    }
+    let too_large = || {
+        let mib = limit as f64 / (1024.0 * 1024.0);
+        anyhow::anyhow!("{}", rust_i18n::t!("io.too_large", path = shown, mib = mib))
+    };
+    if meta.is_file() && meta.len() > limit {
+        return Err(too_large());
+    }
+    let file = std::fs::File::open(path).map_err(|e| io_error(path, "read", &e))?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| io_error(path, "read", &e))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
+}
+
 /// Writes `bytes` to `path` (errors as `io_error`).
 pub fn write_file(path: &Path, bytes: &[u8]) -> Result<()> {
     std::fs::write(path, bytes).map_err(|e| io_error(path, "write", &e))

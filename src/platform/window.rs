@@ -259,7 +259,8 @@ impl App {
         // Scripts (and the tests) wait for this line before touching shader files.
         crate::outln!(
             "window {}x{} on {renderer}; F1 shows or hides the parameter panel",
-            size.width, size.height
+            size.width,
+            size.height
         );
         Ok(GlWindowState {
             engine,

@@ -16,7 +16,10 @@ fn run_into_closed_pipe(args: &[&str]) -> (Option<i32>, String) {
         .stderr(Stdio::piped())
         .output()
         .expect("run opengl3d");
-    (o.status.code(), String::from_utf8_lossy(&o.stderr).into_owned())
+    (
+        o.status.code(),
+        String::from_utf8_lossy(&o.stderr).into_owned(),
+    )
 }
 
 /// Asserts exit code `want` without a panic, a backtrace or a message about stdout.
@@ -49,7 +52,10 @@ fn render_and_its_stats_into_a_closed_pipe_exit_0_and_write_the_file() {
     let out = dir.join("frame.png");
     let size = ["--width", "48", "--height", "32"];
     expect(&[&["render", "--out", s(&out)][..], &size].concat(), 0);
-    assert!(out.is_file(), "the frame is written even though stdout is closed");
+    assert!(
+        out.is_file(),
+        "the frame is written even though stdout is closed"
+    );
     let stats = dir.join("stats.png");
     expect(
         &[&["render", "--stats", "--out", s(&stats)][..], &size].concat(),

@@ -22,6 +22,8 @@ mod inputs;
 mod lessons_ja;
 mod methods;
 mod numerics;
+mod obj_corpus;
+mod obj_files;
 mod reference_analytic;
 mod reference_backface;
 mod reference_screen;

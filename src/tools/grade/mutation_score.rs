@@ -282,7 +282,13 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
 fn print_text(scores: &[StepScore], seconds: f64) {
     crate::outln!(
         "{:<14} {:>7} {:>10} {:>6} {:>10} {:>11} {:>8}",
-        "step", "mutants", "observable", "killed", "equivalent", "not-compile", "score"
+        "step",
+        "mutants",
+        "observable",
+        "killed",
+        "equivalent",
+        "not-compile",
+        "score"
     );
     for s in scores {
         crate::outln!(
