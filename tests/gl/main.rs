@@ -19,6 +19,7 @@ mod grade_class_zip;
 mod grade_mutation;
 mod i18n;
 mod inputs;
+mod inputs_limits;
 mod lessons_ja;
 mod methods;
 mod numerics;

@@ -41,8 +41,8 @@ fn decode(bytes: &[u8]) -> String {
 /// Reads `path` as an OBJ file (all objects and groups merged into one mesh).
 pub fn read_obj(path: &Path) -> Result<ObjMesh> {
     let shown = path.display().to_string();
-    let bytes = crate::io::read_capped(path, MAX_OBJ_BYTES)
-        .with_context(|| t!("obj.read_error", path = shown))?;
+    let bytes =
+        crate::io::read_capped(path, MAX_OBJ_BYTES).with_context(|| t!("obj.read_error"))?;
     if bytes.is_empty() {
         bail!("{}", t!("obj.empty", path = shown));
     }
