@@ -6,4 +6,8 @@ fn main() {
         eprintln!("error: {e:#}");
         std::process::exit(1);
     }
+    // A closed pipe (`| head`) keeps the status; output lost otherwise (a full disk) does not.
+    if opengl3d::io::stdout::failed() {
+        std::process::exit(1);
+    }
 }

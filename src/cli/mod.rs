@@ -117,7 +117,7 @@ pub fn run() -> Result<()> {
                 None => crate::res::project_res_dir().join("meshes"),
             };
             for p in crate::scene::shapes::write_demo_meshes(&dir)? {
-                println!("wrote {}", p.display());
+                crate::outln!("wrote {}", p.display());
             }
             Ok(())
         }
@@ -174,9 +174,9 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
             "wall clock around glFinish"
         };
         let json = serde_json::json!({ "renderer": ctx.renderer, "timing": timing, "passes": engine.last_stats() });
-        println!("{json}");
+        crate::outln!("{json}");
     } else {
-        println!("{msg}");
+        crate::outln!("{msg}");
     }
     Ok(())
 }
@@ -219,7 +219,7 @@ fn lesson_overview() -> String {
 
 fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
     let Some(step) = args.step.as_deref() else {
-        println!("{}", lesson_overview());
+        crate::outln!("{}", lesson_overview());
         return Ok(());
     };
     if step == "start" {
@@ -229,7 +229,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .with_context(|| t!("lesson.start_usage"))?;
         let files = crate::tools::lesson::start(dir)?;
         let shown = dir.display();
-        println!(
+        crate::outln!(
             "{}",
             t!("lesson.start_wrote", count = files.len(), dir = shown)
         );
@@ -239,16 +239,16 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .filter(|f| files.contains(&dir.join(f)))
             .collect();
         match stubs.len() {
-            0 => println!("{}", t!("lesson.start_kept_all", dir = shown)),
+            0 => crate::outln!("{}", t!("lesson.start_kept_all", dir = shown)),
             n if n == crate::tools::lesson::LESSON_SHADERS.len() => {
-                println!("{}", t!("lesson.start_all_stubs", count = n))
+                crate::outln!("{}", t!("lesson.start_all_stubs", count = n))
             }
-            _ => println!(
+            _ => crate::outln!(
                 "{}",
                 t!("lesson.start_some_stubs", stubs = stubs.join(", "))
             ),
         }
-        println!("  opengl3d lesson 2 --res {}", dir.display());
+        crate::outln!("  opengl3d lesson 2 --res {}", dir.display());
         return Ok(());
     }
     let n: u32 = step.parse().map_err(|_| {
@@ -267,14 +267,14 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             }
         }
     }
-    println!("{}", t!("lesson.showing", n = n, view = view_label(view)));
+    crate::outln!("{}", t!("lesson.showing", n = n, view = view_label(view)));
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         engine.view = view;
         write_view(&mut engine, view, &args.out)?;
-        println!("{}", t!("lesson.wrote", path = args.out.display()));
+        crate::outln!("{}", t!("lesson.wrote", path = args.out.display()));
         Ok(())
     } else {
         platform::window::run(res.clone(), scene, view, None, None)
@@ -364,7 +364,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         t!("reference.kind_rays").into_owned()
     };
     let error = format!("{:.4}", img.mean_std_error());
-    println!(
+    crate::outln!(
         "{}",
         t!(
             "reference.wrote",

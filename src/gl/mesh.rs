@@ -1,12 +1,12 @@
 //! `MeshBuffer` and `StaticMesh`: one vertex/index buffer pair holding every mesh, as in the course,
-//! with each mesh remembering where its indices start (the course's `drawParamsList`).
+//! with each mesh remembering where its indices start (the course's `drawParamsList`). OBJ files
+//! are read by `super::obj`.
 
 use super::Gl;
 use anyhow::{bail, Context as _, Result};
 use glam::Vec3;
 use glow::HasContext;
 use std::collections::HashMap;
-use std::path::Path;
 
 /// Vertex layout: location 0 position, 1 texcoord, 2 normal (the course's attribute numbers).
 #[repr(C)]
@@ -31,73 +31,6 @@ impl MeshData {
             let p = |i: u32| Vec3::from(self.vertices[i as usize].position);
             [p(t[0]), p(t[1]), p(t[2])]
         })
-    }
-
-    /// Loads an OBJ file (all models merged, triangulated). Errors name the file.
-    pub fn load_obj(path: &Path) -> Result<MeshData> {
-        let shown = path.display();
-        if !path.is_file() {
-            bail!("{shown}: OBJ file not found");
-        }
-        let opts = tobj::LoadOptions {
-            triangulate: true,
-            single_index: true,
-            ..Default::default()
-        };
-        let (models, _materials) =
-            tobj::load_obj(path, &opts).with_context(|| format!("{shown}: malformed OBJ file"))?;
-        let mut out = MeshData::default();
-        for m in &models {
-            let mesh = &m.mesh;
-            let n = mesh.positions.len() / 3;
-            let base = out.vertices.len() as u32;
-            for i in 0..n {
-                let position = [
-                    mesh.positions[3 * i],
-                    mesh.positions[3 * i + 1],
-                    mesh.positions[3 * i + 2],
-                ];
-                if position.iter().any(|v| !v.is_finite()) {
-                    bail!(
-                        "{shown}: vertex {} of '{}' is not a finite number",
-                        i + 1,
-                        m.name
-                    );
-                }
-                let texcoord = if mesh.texcoords.len() >= 2 * n {
-                    [mesh.texcoords[2 * i], mesh.texcoords[2 * i + 1]]
-                } else {
-                    [0.0; 2]
-                };
-                let normal = if mesh.normals.len() >= 3 * n {
-                    [
-                        mesh.normals[3 * i],
-                        mesh.normals[3 * i + 1],
-                        mesh.normals[3 * i + 2],
-                    ]
-                } else {
-                    [0.0; 3]
-                };
-                out.vertices.push(Vertex {
-                    position,
-                    texcoord,
-                    normal,
-                });
-            }
-            for &i in &mesh.indices {
-                if i as usize >= n {
-                    bail!("{shown}: face index {} out of range in '{}'", i + 1, m.name);
-                }
-                out.indices.push(base + i);
-            }
-            if mesh.normals.len() < 3 * n {
-                out.compute_normals(base as usize);
-            }
-        }
-        if out.indices.len() < 3 {
-            bail!("{shown}: OBJ file contains no triangles");
-        }
-        Ok(out)
     }
 
     /// Area-weighted vertex normals for vertices from `first` on (for OBJ files without normals).
@@ -303,14 +236,6 @@ impl MeshBuffer {
         };
         self.meshes.insert(name.to_string(), (mesh, data));
         Ok(mesh)
-    }
-
-    pub fn load_obj(&mut self, name: &str, path: &Path) -> Result<StaticMesh> {
-        if let Some((m, _)) = self.meshes.get(name) {
-            return Ok(*m);
-        }
-        let data = MeshData::load_obj(path)?;
-        self.add(name, data)
     }
 
     /// Bytes uploaded and copied so far.

@@ -5,6 +5,7 @@
 pub mod clip_control;
 pub mod framebuffer;
 pub mod mesh;
+pub mod obj;
 pub mod pass_state;
 pub mod preprocess;
 pub mod program;

@@ -1,6 +1,8 @@
 //! Writing frames: 8-bit PNG, and Portable Float Map for raw values. Every I/O error names its file
 //! and says which of the usual causes it is (no such folder, permission denied, a folder in the way).
 
+pub mod stdout;
+
 use anyhow::{bail, Context as _, Result};
 use std::path::Path;
 
@@ -21,6 +23,34 @@ pub fn io_error(path: &Path, verb: &str, e: &std::io::Error) -> anyhow::Error {
         _ => "I/O error".to_string(),
     };
     anyhow::anyhow!("{shown}: cannot {verb}: {cause} ({e})")
+}
+
+/// Reads `path` whole, refusing more than `limit` bytes: a larger file, or an endless one such as
+/// `/dev/zero`, is an error naming the file and the limit instead of a read that fills memory. A
+/// folder, a missing or unreadable file are errors that say which.
+pub fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>> {
+    use std::io::Read as _;
+    let shown = path.display();
+    let meta = std::fs::metadata(path).map_err(|e| io_error(path, "read", &e))?;
+    if meta.is_dir() {
+        bail!("{}", rust_i18n::t!("io.is_folder", path = shown));
+    }
+    let too_large = || {
+        let mib = limit as f64 / (1024.0 * 1024.0);
+        anyhow::anyhow!("{}", rust_i18n::t!("io.too_large", path = shown, mib = mib))
+    };
+    if meta.is_file() && meta.len() > limit {
+        return Err(too_large());
+    }
+    let file = std::fs::File::open(path).map_err(|e| io_error(path, "read", &e))?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| io_error(path, "read", &e))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_large());
+    }
+    Ok(bytes)
 }
 
 /// Writes `bytes` to `path` (errors as `io_error`).

@@ -257,9 +257,10 @@ impl App {
             Some(painter.max_texture_side()),
         );
         // Scripts (and the tests) wait for this line before touching shader files.
-        println!(
+        crate::outln!(
             "window {}x{} on {renderer}; F1 shows or hides the parameter panel",
-            size.width, size.height
+            size.width,
+            size.height
         );
         Ok(GlWindowState {
             engine,
@@ -467,7 +468,7 @@ impl App {
             .to_rgb8()
             .save(path)
             .with_context(|| format!("cannot write the screenshot {}", path.display()))?;
-        println!("wrote {} ({w}x{h})", path.display());
+        crate::outln!("wrote {} ({w}x{h})", path.display());
         Ok(())
     }
 

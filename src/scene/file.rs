@@ -7,6 +7,10 @@ use super::places::KeyPlaces;
 use anyhow::{bail, Context as _, Result};
 use std::path::{Path, PathBuf};
 
+/// The largest scene file read: scenes are a few kilobytes, so anything bigger (or endless, such as
+/// `/dev/zero`) is the wrong file.
+pub const MAX_SCENE_BYTES: u64 = 1 << 20;
+
 /// A scene as read from a file, before any flag changes it.
 #[derive(Clone, Debug)]
 pub struct SceneFile {
@@ -21,8 +25,19 @@ impl SceneFile {
     /// name a file beside the scene file resolve to that file, so a file of the same name in the
     /// working folder or in `Res/` never replaces the scene's own mesh.
     pub fn read(path: &Path) -> Result<SceneFile> {
-        let text = std::fs::read_to_string(path)
-            .with_context(|| format!("{}: cannot read scene file", path.display()))?;
+        let shown = path.display();
+        let bytes = crate::io::read_capped(path, MAX_SCENE_BYTES)
+            .with_context(|| rust_i18n::t!("scene.cannot_read"))?;
+        if bytes.is_empty() {
+            bail!("{}", rust_i18n::t!("scene.empty", path = shown));
+        }
+        let text = String::from_utf8(bytes).map_err(|e| {
+            let byte = e.utf8_error().valid_up_to();
+            anyhow::anyhow!(
+                "{}",
+                rust_i18n::t!("scene.not_utf8", path = shown, byte = byte)
+            )
+        })?;
         let mut desc: SceneDesc = toml::from_str(&text)
             .map_err(|e| anyhow::anyhow!("{}: invalid scene file: {e}", path.display()))?;
         let folder = path.parent().unwrap_or(Path::new(""));

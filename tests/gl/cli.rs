@@ -116,7 +116,7 @@ fn bad_input_gives_clear_errors() {
     std::fs::write(&no_faces, "# nothing\nv 0 0 0\n").unwrap();
     assert_fails_naming(
         &["render", "--obj", no_faces.to_str().unwrap()],
-        &["empty.obj", "no triangles"],
+        &["empty.obj", "no faces"],
     );
 
     let res = dir.join("res");

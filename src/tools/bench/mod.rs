@@ -30,9 +30,9 @@ pub struct BenchArgs {
     /// Scene files (default: the demo scene). Each is run at its own camera and three variants.
     #[arg(long = "scene")]
     pub scenes: Vec<PathBuf>,
-    #[arg(long, default_value_t = 1920)]
+    #[arg(long, default_value_t = 1920, allow_negative_numbers = true)]
     pub width: u32,
-    #[arg(long, default_value_t = 1080)]
+    #[arg(long, default_value_t = 1080, allow_negative_numbers = true)]
     pub height: u32,
     /// Output folder for report.json, report.md and the charts (stress.json and stress.md with --stress).
     #[arg(long, default_value = "out/bench")]
@@ -48,37 +48,37 @@ pub struct BenchArgs {
     #[arg(long, value_delimiter = ',')]
     pub methods: Vec<String>,
     /// Sample counts to run (replaces each method's default settings; combined with --radii).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub samples: Vec<u32>,
     /// Radii in metres to run (replaces each method's default settings; combined with --samples).
-    #[arg(long, value_delimiter = ',')]
+    #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub radii: Vec<f32>,
     /// Quality presets to run for the methods that have them (gtao, vbao): low, medium, high,
     /// ultra, comma-separated; replaces their default settings (combined with --radii, default 1 m).
     #[arg(long = "quality", value_delimiter = ',')]
     pub qualities: Vec<String>,
     /// Rays per pixel of the ray-traced reference (1 to 65536).
-    #[arg(long, default_value_t = 256,
+    #[arg(long, default_value_t = 256, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
     pub ref_rays: u32,
     /// Rays per pixel of the screen-space references (the error split; test cameras only; 1 to
     /// 65536).
-    #[arg(long, default_value_t = 64,
+    #[arg(long, default_value_t = 64, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
     pub screen_rays: u32,
     /// Render the reference at 1/N of the size and box-average the engine's output by N to compare
     /// (1 to 16).
-    #[arg(long, default_value_t = 1,
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_SCALE as i64))]
     pub ref_scale: u32,
     /// Folder of cached references.
     #[arg(long, default_value = "out/reference-cache")]
     pub cache: PathBuf,
     /// Frames rendered before timing.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
     pub warmup: u32,
     /// Frames timed (the median is reported).
-    #[arg(long, default_value_t = 7)]
+    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
     pub frames: u32,
     /// Skip the FLIP metric (reported as 0).
     #[arg(long)]
@@ -90,6 +90,13 @@ pub struct BenchArgs {
 
 impl BenchArgs {
     pub fn perf_config(&self) -> Result<perf::PerfConfig> {
+        // Named by the flag, before any scene is loaded (the plan checks each setting again).
+        if let Some(r) = self.radii.iter().find(|r| !(**r > 0.0 && **r <= 100.0)) {
+            anyhow::bail!("{}", rust_i18n::t!("bench.bad_radius", radius = r));
+        }
+        if let Some(n) = self.samples.iter().find(|n| !(1..=256).contains(*n)) {
+            anyhow::bail!("{}", rust_i18n::t!("bench.bad_samples", n = n));
+        }
         let methods = if self.methods.is_empty() {
             AoMethod::ALL.to_vec()
         } else {
@@ -139,7 +146,7 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
             progress: true,
         };
         let report = stress::run(res, &cfg)?;
-        println!(
+        crate::outln!(
             "wrote {} and {}: {} cases, {} NaN/Inf values, {} failed checks",
             args.out.join("stress.json").display(),
             args.out.join("stress.md").display(),
@@ -161,7 +168,7 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         };
         let report = skips::run(res, &cfg)?;
         for c in &report.cases {
-            println!(
+            crate::outln!(
                 "{:<36} saves {:7.1} ms of {:7.1} (ratio {:.2}, CPU {:.2}); draw calls {} → {}",
                 c.name,
                 c.saved_ms,
@@ -172,12 +179,12 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
                 c.skipped.draw_calls
             );
         }
-        println!("wrote {}", args.out.join("skips.md").display());
+        crate::outln!("wrote {}", args.out.join("skips.md").display());
         return Ok(());
     }
     let cfg = args.perf_config()?;
     let report = perf::run(res, &cfg)?;
-    println!(
+    crate::outln!(
         "wrote {} ({} rows, {}x{}, {} s)",
         cfg.out.join("report.md").display(),
         report.rows.len(),

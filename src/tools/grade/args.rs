@@ -53,7 +53,7 @@ pub struct GradeArgs {
     /// Grade the shaders lesson step N needs (1-3: restore; 4: and down-sampling; 5: and simple;
     /// 6-10: and SAO, whose occlusion is graded from step 8 on, 6-7 grading the step's debug output
     /// instead; 11-12: all five).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub lesson: Option<u32>,
     /// Grade only these steps (comma-separated or repeated); overrides --lesson.
     #[arg(long, value_enum, value_delimiter = ',')]
@@ -72,17 +72,27 @@ pub struct GradeArgs {
     pub class: Option<PathBuf>,
     /// With --class, how many students are graded at once; with --mutation-score, how many mutants
     /// (default: the number of cores).
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub jobs: Option<usize>,
     /// Measure the grader: grade every mutant of the project's lesson shaders (of --step, or all
     /// four) and print per step the fraction of the observable mutants it fails (target 95%).
     #[arg(long, conflicts_with_all = ["class", "lesson", "out"])]
     pub mutation_score: bool,
     /// With --mutation-score, only N mutants per step, evenly spread (a quick sample).
-    #[arg(long, value_name = "N", requires = "mutation_score")]
+    #[arg(
+        long,
+        value_name = "N",
+        requires = "mutation_score",
+        allow_negative_numbers = true
+    )]
     pub mutation_sample: Option<usize>,
     /// Seconds each step may take before it counts as hung (an endless loop in a shader).
-    #[arg(long, default_value_t = 20.0, value_name = "SECONDS")]
+    #[arg(
+        long,
+        default_value_t = 20.0,
+        value_name = "SECONDS",
+        allow_negative_numbers = true
+    )]
     pub timeout: f64,
     /// Also print each step's measurements on stderr.
     #[arg(long)]

@@ -285,7 +285,7 @@ pub fn run(
         .unwrap_or_else(|| PathBuf::from(DEFAULT_REPORT));
     std::fs::create_dir_all(&out)
         .with_context(|| format!("cannot create folder {}", out.display()))?;
-    println!(
+    crate::outln!(
         "{}",
         t!(
             "class.grading",
@@ -340,7 +340,7 @@ pub fn run(
         } else {
             t!("grade.fail")
         };
-        println!(
+        crate::outln!(
             "{}",
             t!(
                 "class.student_line",
@@ -353,7 +353,7 @@ pub fn run(
     }
     let all = results.iter().filter(|r| r.all_passed()).count();
     let seconds = format!("{seconds:.1}");
-    println!(
+    crate::outln!(
         "{}",
         t!(
             "class.summary",

@@ -232,7 +232,7 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
         .map_err(|e| anyhow!("cannot start {jobs} threads: {e}"))?;
     if !args.json {
         let files: Vec<&str> = steps.iter().map(|s| s.file()).collect();
-        println!(
+        crate::outln!(
             "{}",
             rust_i18n::t!(
                 "mutation.grading",
@@ -272,7 +272,7 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
             "seconds": start.elapsed().as_secs_f64(),
             "steps": scores,
         });
-        println!("{}", serde_json::to_string_pretty(&v)?);
+        crate::outln!("{}", serde_json::to_string_pretty(&v)?);
     } else {
         print_text(&scores, start.elapsed().as_secs_f64());
     }
@@ -280,12 +280,18 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
 }
 
 fn print_text(scores: &[StepScore], seconds: f64) {
-    println!(
+    crate::outln!(
         "{:<14} {:>7} {:>10} {:>6} {:>10} {:>11} {:>8}",
-        "step", "mutants", "observable", "killed", "equivalent", "not-compile", "score"
+        "step",
+        "mutants",
+        "observable",
+        "killed",
+        "equivalent",
+        "not-compile",
+        "score"
     );
     for s in scores {
-        println!(
+        crate::outln!(
             "{:<14} {:>7} {:>10} {:>6} {:>10} {:>11} {:>7.1}%{}",
             s.step,
             s.mutants,
@@ -316,10 +322,10 @@ fn print_text(scores: &[StepScore], seconds: f64) {
             let probe = r
                 .probe
                 .map_or(String::new(), |d| format!(" (probe {d:.2}× tolerance)"));
-            println!("  {what}: {} {}{probe}: {}", r.id, r.description, r.message);
+            crate::outln!("  {what}: {} {}{probe}: {}", r.id, r.description, r.message);
         }
     }
-    println!("{seconds:.1} s");
+    crate::outln!("{seconds:.1} s");
 }
 
 #[cfg(test)]

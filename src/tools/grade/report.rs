@@ -112,20 +112,20 @@ pub fn print_text(reports: &[StepReport], pictures: Option<&Path>) {
         } else {
             t!("grade.fail")
         };
-        println!("{verdict} {}: {}", r.file, r.shown_message());
+        crate::outln!("{verdict} {}: {}", r.file, r.shown_message());
     }
     let failed = reports.iter().filter(|r| !r.passed).count();
     let count = reports.len();
     if failed == 0 {
-        println!("{}", t!("grade.all_passed", count = count));
+        crate::outln!("{}", t!("grade.all_passed", count = count));
     } else {
-        println!(
+        crate::outln!(
             "{}",
             t!("grade.some_failed", failed = failed, count = count)
         );
     }
     if let Some(out) = pictures {
-        println!("{}", t!("grade.pictures", dir = out.display()));
+        crate::outln!("{}", t!("grade.pictures", dir = out.display()));
     }
 }
 

@@ -56,11 +56,11 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     }
     if !args.json {
         match student {
-            Some(d) => println!(
+            Some(d) => crate::outln!(
                 "{}",
                 t!("grade.grading_dir", dir = d.display(), count = steps.len())
             ),
-            None => println!(
+            None => crate::outln!(
                 "{}",
                 t!("grade.grading_project", dir = project_res_dir().display())
             ),
@@ -78,7 +78,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         report::print_metrics(&reports);
     }
     if args.json {
-        println!("{}", report::to_json(&reports)?);
+        crate::outln!("{}", report::to_json(&reports)?);
     } else {
         report::print_text(&reports, args.out.as_deref());
     }

@@ -130,7 +130,7 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
         Some(dir) => match submission::find(dir, step) {
             Ok(file) => file,
             Err(reason) => {
-                println!(
+                crate::outln!(
                     "{}",
                     serde_json::to_string(&StepReport::not_submitted(step, &reason))?
                 );
@@ -186,6 +186,6 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
             eprintln!("warning: cannot remove {}: {e}", args.work.display());
         }
     }
-    println!("{}", serde_json::to_string(&report)?);
+    crate::outln!("{}", serde_json::to_string(&report)?);
     Ok(())
 }
