@@ -200,14 +200,11 @@ mod tests {
             guard_band_pixels(GuardBand::Pixels(5000), &cam, size, 1.0),
             480
         );
-        let one = guard_band_pixels(GuardBand::Auto, &cam, size, 1.0);
-        let half = guard_band_pixels(GuardBand::Auto, &cam, size, 0.5);
-        // 1 m at 6.2 m with a 60° field of view over 1080 rows: about 150 pixels.
-        assert!((140..=160).contains(&one), "{one}");
-        assert!(
-            half % 2 == 0 && (half as i32 - one as i32 / 2).abs() <= 2,
-            "{half}"
-        );
-        assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 100.0), 480);
+        // 0.2 m at 6.2 m with a 60° field of view over 1080 rows: about 30 pixels; 1 m would be
+        // about 150, capped at 80 (1/24 of 1920); the smallest band is 8 pixels.
+        let small = guard_band_pixels(GuardBand::Auto, &cam, size, 0.2);
+        assert!((28..=32).contains(&small) && small % 2 == 0, "{small}");
+        assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 1.0), 80);
+        assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 1e-3), 8);
     }
 }

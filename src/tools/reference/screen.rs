@@ -220,39 +220,44 @@ mod tests {
     }
 
     #[test]
-    fn back_faces_end_each_slab_and_missing_ones_fall_back_to_the_thickness() {
+    fn back_faces_extend_slabs_never_thin_them_and_missing_ones_fall_back_to_the_thickness() {
         let deeper = DVec3::new(0.0, 0.0, -1.0);
         let o = DVec3::new(0.0, 0.0, -4.0);
         let behind = DVec3::new(0.0, 0.0, -5.7);
-        // A wall at depth 5 whose back faces lie at `back`, with a 2 m fallback thickness.
-        let wall = |back: f32| {
-            let mut b = buffer(32, 24, |_, _| 5.0).with_thickness(2.0);
+        // A wall at depth 5 whose back faces lie at `back`, with a fallback thickness `t`.
+        let wall = |back: f32, t: f32| {
+            let mut b = buffer(32, 24, |_, _| 5.0).with_thickness(t);
             b.back_depth = Some(vec![back; 32 * 24]);
             Heightfield::new(&b)
         };
-        // Back faces at 5.5: the slab is [5, 5.5], whatever the fallback.
-        assert!(wall(5.5).blocked(o, deeper, 1.2));
-        assert!(!wall(5.5).blocked(o, deeper, 0.9));
-        assert!(!wall(5.5).blocked(behind, deeper, 10.0));
-        assert!(wall(5.5).blocked(behind, -deeper, 0.3));
-        assert!(!wall(5.5).blocked(behind, -deeper, 0.15));
+        // Back faces at 5.5 beyond the 0.3 m thickness: the slab is [5, 5.5].
+        assert!(wall(5.5, 0.3).blocked(o, deeper, 1.2));
+        assert!(!wall(5.5, 0.3).blocked(o, deeper, 0.9));
+        assert!(!wall(5.5, 0.3).blocked(behind, deeper, 10.0));
+        assert!(wall(5.5, 0.3).blocked(behind, -deeper, 0.3));
+        assert!(!wall(5.5, 0.3).blocked(behind, -deeper, 0.15));
+        // Back faces at 5.1, nearer than the thickness: the slab keeps [5, 5.3].
+        let inside = DVec3::new(0.0, 0.0, -5.5);
+        assert!(wall(5.1, 0.3).blocked(inside, -deeper, 0.3));
+        assert!(!wall(5.1, 0.3).blocked(inside, -deeper, 0.15));
         // No back face (none, or none deeper than the surface): the 2 m slab [5, 7].
         for none in [f32::INFINITY, 5.0, 4.0, f32::NAN] {
-            assert!(wall(none).blocked(behind, deeper, 0.5), "back {none}");
+            assert!(wall(none, 2.0).blocked(behind, deeper, 0.5), "back {none}");
             let beyond = DVec3::new(0.0, 0.0, -7.2);
-            assert!(!wall(none).blocked(beyond, deeper, 10.0), "back {none}");
-            assert!(wall(none).blocked(beyond, -deeper, 0.3), "back {none}");
-            assert!(!wall(none).blocked(beyond, -deeper, 0.15), "back {none}");
+            assert!(!wall(none, 2.0).blocked(beyond, deeper, 10.0), "back {none}");
+            assert!(wall(none, 2.0).blocked(beyond, -deeper, 0.3), "back {none}");
+            assert!(!wall(none, 2.0).blocked(beyond, -deeper, 0.15), "back {none}");
         }
     }
 
     #[test]
     fn each_pixel_keeps_its_own_back_face() {
-        // Left half: a plate at depth 3 with its back at 3.02; right half: a wall at depth 5 with
-        // its back at 6. A ray at constant depth 4.5 from the wall's side towards the plate's passes
-        // behind the plate's back (open), one at depth 3.01 passes through the plate (blocked), and
-        // any single thickness that reaches 4.5 behind the plate blocks the first.
-        let mut b = buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(1.6);
+        // Left half: a plate at depth 3 with its back at 3.02 (a slab of the 0.5 m thickness, which
+        // a back face never thins); right half: a wall at depth 5 with its back at 6. A ray at
+        // constant depth 4.5 from the wall's side towards the plate's passes behind the plate's slab
+        // (open), one at depth 3.01 passes through the plate (blocked), and any single thickness
+        // that reaches 4.5 behind the plate blocks the first.
+        let mut b = buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(0.5);
         b.back_depth = Some(
             (0..48)
                 .flat_map(|_| (0..64).map(|x| if x < 32 { 3.02f32 } else { 6.0 }))
@@ -262,7 +267,7 @@ mod tests {
         let left = DVec3::new(-1.0, 0.0, 0.0);
         assert!(!field.blocked(DVec3::new(1.0, 0.0, -4.5), left, 2.0));
         assert!(field.blocked(DVec3::new(0.5, 0.0, -3.01), left, 1.0));
-        // The wall's slab is [5, 6], not [5, 6.6] (the fallback): open behind 6.
+        // The wall's slab is [5, 6], not [5, 5.5] (the fallback): open behind 6 only.
         let behind_wall = DVec3::new(1.0, 0.0, -6.2);
         let deeper = DVec3::new(0.0, 0.0, -1.0);
         assert!(!field.blocked(behind_wall, deeper, 10.0));
@@ -273,7 +278,7 @@ mod tests {
             &buffer(64, 48, |x, _| if x < 32 { 3.0 } else { 5.0 }).with_thickness(1.6),
         );
         assert!(uniform.blocked(DVec3::new(1.0, 0.0, -4.5), left, 2.0));
-        // A silhouette triangle (plate and wall pixels) is empty: the plate's back (3.02) is in
+        // A silhouette triangle (plate and wall pixels) is empty: the plate's slab (to 3.5) ends in
         // front of the wall's front (5).
         assert!(!field.triangle_is_solid([(31, 10), (32, 11), (32, 10)]));
         assert!(field.triangle_is_solid([(30, 10), (31, 11), (31, 10)]));
