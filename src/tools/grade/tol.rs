@@ -33,6 +33,16 @@ pub const SAO_FALLOFF_REL: f64 = 0.2;
 /// SAO: RMSE of 8×8 block means against the reference, same pixels as the mean (listing 0.021,
 /// rewrite 0.018, f·f 0.034, no max(…, 0) 0.115, flipped normal 0.21).
 pub const SAO_BLOCK_RMSE: f64 = 0.035;
+/// SAO: where the reference's occlusion (an 8×8 block mean of pixels facing the camera) lies between
+/// this and 0.5 / N, the student's ÷ the reference's tells a scaling mistake (below it the ratio is
+/// noise; above, a sum N times too strong would be clamped at 1).
+pub const SAO_SCALE_FLOOR: f64 = 0.004;
+/// SAO: the occlusion is too strong by one factor when the median of those ratios is at least this
+/// (listing MEASURE, rewrite MEASURE, no division by N MEASURE, f·f falloff MEASURE)...
+pub const SAO_SCALE_MIN: f64 = 2.0;
+/// ...and their upper quartile over their lower one is at most this (a factor: listing MEASURE; no
+/// division by N MEASURE; a wrong falloff varies with the distance: f·f MEASURE).
+pub const SAO_SCALE_SPREAD: f64 = 1.5;
 /// SAO: a raw output above this (on more than `SAO_BAD_PIXEL_FRACTION` of the pixels) is not
 /// normalised (output written in the loop: 5.9% of the pixels, up to 13.1).
 pub const SAO_RAW_MAX: f64 = 1.05;
@@ -80,6 +90,10 @@ pub const BLUR_SMOOTHING: f64 = 0.6;
 /// Blur: the most occlusion allowed in the sky. The sky's input is 0 and sky pixels must be kept as
 /// they are, so anything above about five steps of the engine's 8-bit target is leaked occlusion.
 pub const BLUR_SKY_ABS: f64 = 0.02;
+/// Blur: within the blur's reach of the texture's border, where only the outermost texels are
+/// occluded, the output may differ from the reference's by this much (listing and rewrite, both
+/// clamped: MEASURE; reads left unclamped: MEASURE).
+pub const BLUR_BORDER_ABS: f64 = 0.05;
 /// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
 /// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
 pub const BLUR_RMSE: f64 = 0.07;
@@ -98,3 +112,8 @@ pub const CHECKPOINT_BAD_FRACTION: f64 = 0.01;
 /// the mistakes differ by whole channels: red broadcast 0.98, alpha 1 0.76, `.bgra` 0.98, upside
 /// down 0.76, nearest texels on the 2× magnification 0.39.
 pub const SIMPLE_ABS: f64 = 1e-3;
+/// A program that leaves an input unread fails with the output's Inf or NaN instead when more than
+/// this fraction of what it writes is Inf or NaN: a shader writing a constant Inf writes it
+/// everywhere (1.0) and reads nothing, the compiler having dropped every input; a shader that only
+/// misses one uniform writes finite values (0.0).
+pub const NONFINITE_OVER_UNREAD: f64 = 0.5;

@@ -2,8 +2,9 @@
 //! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
 //! smoothed with its mean kept, nothing may leak into the sky, the response to a single occluded
 //! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
-//! mirror-symmetric, and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the
-//! lesson's listing has wider weights).
+//! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks),
+//! and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the lesson's listing has
+//! wider weights). The buffers are wider than high, so x and y cannot be swapped unseen.
 
 use crate::ao::AoSettings;
 use crate::i18n::Text;
@@ -17,8 +18,8 @@ use crate::tools::grade::tol;
 use anyhow::Result;
 use std::collections::BTreeMap;
 
-/// Size of the buffers in the blur step (square).
-pub const BLUR_SIZE: u32 = 128;
+/// Size of the buffers in the blur step (wider than high, so that x and y cannot be swapped unseen).
+pub const BLUR_SIZE: (u32, u32) = (160, 112);
 
 /// A hash in [0, 1) for reproducible noise.
 fn noise(x: usize, y: usize) -> f32 {
@@ -72,6 +73,41 @@ fn impulse_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
         occ[y * w + x] = 1.0;
     }
     (vec![5.0; w * h], occ)
+}
+
+/// A flat surface at 5 m, open but for its outermost ring of texels, fully occluded. Within the
+/// blur's reach of the border, taps past it read the border texel again when clamped to the
+/// texture, as the lesson asks, and nothing (or whatever the driver returns) when they are not.
+fn border_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let occ = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+                1.0
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    (vec![5.0; w * h], occ)
+}
+
+/// The largest difference between `s` and `r` within the blur's reach (8 texels) of the border:
+/// (difference, x, y).
+fn border_fault(s: &[f32], r: &[f32], w: usize, h: usize) -> (f64, usize, usize) {
+    let mut worst = (0.0f64, 0, 0);
+    for y in 0..h {
+        for x in 0..w {
+            if x.min(y).min(w - 1 - x).min(h - 1 - y) >= 8 {
+                continue;
+            }
+            let d = (s[y * w + x] - r[y * w + x]) as f64;
+            if !(d.abs() <= worst.0.abs()) {
+                worst = (d, x, y);
+            }
+        }
+    }
+    worst
 }
 
 /// The impulse responses around `IMPULSES` in `v`, each as (dx, dy) → value.
@@ -156,10 +192,13 @@ struct Runs {
     /// The impulse panel, the reference's and the student's.
     reference_c: Vec<f32>,
     raw_c: Vec<f32>,
+    /// The border panel, the reference's and the student's.
+    reference_d: Vec<f32>,
+    raw_d: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
-    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let (w, h) = (BLUR_SIZE.0 as usize, BLUR_SIZE.1 as usize);
     let scene = &sao_scenes(BLUR_SIZE)[0];
     let depth_a = scene.depth();
     let occ_a = run_sao(
@@ -178,6 +217,9 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let (depth_c, occ_c) = impulse_panel(w, h);
     let reference_c = run_blur(&rig.reference, &rig.meshes, &depth_c, &occ_c)?;
     let raw_c = run_blur(&rig.student, &rig.meshes, &depth_c, &occ_c)?;
+    let (depth_d, occ_d) = border_panel(w, h);
+    let reference_d = run_blur(&rig.reference, &rig.meshes, &depth_d, &occ_d)?;
+    let raw_d = run_blur(&rig.student, &rig.meshes, &depth_d, &occ_d)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -187,12 +229,14 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         raw_b,
         reference_c,
         raw_c,
+        reference_d,
+        raw_d,
     })
 }
 
 /// Grades the student's blur pass of `rig`.
 pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
-    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let (w, h) = (BLUR_SIZE.0 as usize, BLUR_SIZE.1 as usize);
     let far = sao_scenes(BLUR_SIZE)[0].camera.far;
     let Runs {
         depth_a,
@@ -203,6 +247,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         raw_b,
         reference_c: r_c,
         raw_c,
+        reference_d: r_d,
+        raw_d,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -212,6 +258,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         .iter()
         .chain(&raw_b)
         .chain(&raw_c)
+        .chain(&raw_d)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -255,6 +302,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         }
     }
     let rmse = (sq / cnt.max(1) as f64).sqrt();
+    let border = border_fault(&raw_d, &r_d, w, h);
     let mut metrics = BTreeMap::new();
     metrics.insert("flat_mean_in".into(), in_mean);
     metrics.insert("flat_mean_out".into(), out_mean);
@@ -267,6 +315,11 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("sky_max".into(), sky_max);
     metrics.insert("rmse".into(), rmse);
     metrics.insert("nan".into(), nan as f64);
+    metrics.insert(
+        crate::tools::grade::rig::NONFINITE_METRIC.into(),
+        nan as f64 / (4 * w * h) as f64,
+    );
+    metrics.insert("border_difference".into(), border.0);
     let panels = vec![
         Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
         Panel::absolute(w, h, r_b, s_b, Shade::Occlusion, 0.25),
@@ -332,6 +385,20 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     }
     if let Some(fault) = impulse_fault(&raw_c, &r_c, w) {
         return verdict(false, fault);
+    }
+    if border.0.abs() > tol::BLUR_BORDER_ABS {
+        let (x, y) = (border.1, border.2);
+        let (got, expected) = (f2(raw_d[y * w + x] as f64), f2(r_d[y * w + x] as f64));
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.blur_border",
+                x = x,
+                y = y,
+                got = got,
+                expected = expected
+            ),
+        );
     }
     if rmse > tol::BLUR_RMSE {
         let (x, y) = (worst.1 % w, worst.1 / w);

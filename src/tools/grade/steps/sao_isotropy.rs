@@ -13,7 +13,7 @@ use crate::tools::grade::scene::{Aabb, SynthScene};
 use anyhow::Result;
 use glam::Vec3;
 
-fn panel_scene(size: u32) -> SynthScene {
+fn panel_scene((width, height): (u32, u32)) -> SynthScene {
     SynthScene {
         name: "square panel",
         camera: Camera {
@@ -25,8 +25,8 @@ fn panel_scene(size: u32) -> SynthScene {
             Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
             Aabb::new([-1.0, -1.0, -5.0], [1.0, 1.0, -4.75]),
         ],
-        width: size,
-        height: size,
+        width,
+        height,
         probes: vec![],
     }
 }
@@ -57,7 +57,7 @@ fn spread(b: [f64; 4]) -> f64 {
 }
 
 /// The spread of the four bands, the student's and the reference's.
-pub fn anisotropy(rig: &Rig, params: &AoSettings, size: u32) -> Result<(f64, f64)> {
+pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
     let (r, s) = run_sao_pair(
