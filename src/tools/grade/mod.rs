@@ -6,7 +6,7 @@
 //! | `restore` | `sao_restore_depth.frag` | the exact (f64) inverse of the projection of the nearest of each 2×2 block, within float precision |
 //! | `down-sampling` | `sao_down_sampling.frag` | the exact min of each 2×2 block, level by level |
 //! | `simple` | `simple.frag` | the project's `Res/simple.frag`: an RGBA texture drawn at twice its size, every channel as `texture()` gives it, and the lesson's composite over an image |
-//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain (192×128): mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, weak occlusion not scaled by one factor, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
+//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain (240×160): mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, weak occlusion not scaled by one factor, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
 //! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input (160×112): RMSE, edges kept (one 0.5 m deep), flat surfaces smoothed, mean kept, the impulse response's footprint and symmetry, taps past the border clamped |
 //!
 //! Each step is graded on its own, from the project's inputs (a broken restore pass does not fail the

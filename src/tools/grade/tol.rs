@@ -38,11 +38,9 @@ pub const SAO_BLOCK_RMSE: f64 = 0.035;
 /// noise; above, a sum N times too strong would be clamped at 1).
 pub const SAO_SCALE_FLOOR: f64 = 0.004;
 /// SAO: the occlusion is too strong by one factor when the median of those ratios is at least this
-/// (listing MEASURE, rewrite MEASURE, no division by N MEASURE, f·f falloff MEASURE)...
-pub const SAO_SCALE_MIN: f64 = 2.0;
-/// ...and their upper quartile over their lower one is at most this (a factor: listing MEASURE; no
-/// division by N MEASURE; a wrong falloff varies with the distance: f·f MEASURE).
-pub const SAO_SCALE_SPREAD: f64 = 1.5;
+/// (listing 1.14, rewrite 1.12, the step-8 shader 1.00; no division by N 10.6; f·f falloff 2.23,
+/// which the falloff probe names instead; output written in the loop 2.28).
+pub const SAO_SCALE_MIN: f64 = 4.0;
 /// SAO: a raw output above this (on more than `SAO_BAD_PIXEL_FRACTION` of the pixels) is not
 /// normalised (output written in the loop: 5.9% of the pixels, up to 13.1).
 pub const SAO_RAW_MAX: f64 = 1.05;
@@ -69,9 +67,9 @@ pub const SAO_QUAD_SPREAD: f64 = 1e-3;
 /// A few quads where the two rows took different branches are forgiven.
 pub const SAO_UNEVEN_QUADS: f64 = 0.05;
 /// SAO: beside a square panel raised from a wall (seen head-on), the four sides' occlusion may
-/// spread by this fraction of its mean (project 0.067, listing 0.027, rewrite 0.075; twoPi = π, a
-/// spiral over half the circle: 0.86).
-pub const SAO_ANISOTROPY: f64 = 0.3;
+/// spread by this fraction of its mean (project 0.072, listing 0.077, rewrite 0.067; the disc left
+/// stretched, without `aspectFix`, 0.21; `ndcToView.yx` 1.08).
+pub const SAO_ANISOTROPY: f64 = 0.15;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
@@ -91,11 +89,12 @@ pub const BLUR_SMOOTHING: f64 = 0.6;
 /// they are, so anything above about five steps of the engine's 8-bit target is leaked occlusion.
 pub const BLUR_SKY_ABS: f64 = 0.02;
 /// Blur: within the blur's reach of the texture's border, where only the outermost texels are
-/// occluded, the output may differ from the reference's by this much (listing and rewrite, both
-/// clamped: MEASURE; reads left unclamped: MEASURE).
+/// occluded, the output may differ by this much from the shader's own output beside an occluded
+/// band 9 texels wide inside the texture, which is what clamped reads see (listing and rewrite:
+/// 0.000; reads left unclamped 0.48; clamped to `textureSize(…).yx - 1` 0.52).
 pub const BLUR_BORDER_ABS: f64 = 0.05;
-/// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
-/// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
+/// Blur: RMSE against the reference on a real SAO buffer (listing 0.032 with its wider
+/// weights, rewrite 0.000; no edge weight 0.072, no normalisation 0.112).
 pub const BLUR_RMSE: f64 = 0.07;
 /// sao.frag at lesson 6: the normal's y may differ from the checkpoint's by this much at a pixel...
 pub const CHECKPOINT_NORMAL_ABS: f64 = 0.02;

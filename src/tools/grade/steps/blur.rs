@@ -2,8 +2,9 @@
 //! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
 //! smoothed with its mean kept, nothing may leak into the sky, the response to a single occluded
 //! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
-//! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks),
-//! and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the lesson's listing has
+//! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks:
+//! within its reach of the border, the output must equal the shader's own beside an equally
+//! occluded band inside the texture), and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the lesson's listing has
 //! wider weights). The buffers are wider than high, so x and y cannot be swapped unseen.
 
 use crate::ao::AoSettings;
@@ -82,29 +83,57 @@ fn border_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
     let occ = (0..w * h)
         .map(|i| {
             let (x, y) = (i % w, i / w);
-            if x == 0 || y == 0 || x == w - 1 || y == h - 1 {
-                1.0
-            } else {
-                0.0
-            }
+            f32::from(u8::from(x == 0 || y == 0 || x == w - 1 || y == h - 1))
         })
         .collect();
     (vec![5.0; w * h], occ)
 }
 
-/// The largest difference between `s` and `r` within the blur's reach (8 texels) of the border:
-/// (difference, x, y).
-fn border_fault(s: &[f32], r: &[f32], w: usize, h: usize) -> (f64, usize, usize) {
-    let mut worst = (0.0f64, 0, 0);
-    for y in 0..h {
-        for x in 0..w {
-            if x.min(y).min(w - 1 - x).min(h - 1 - y) >= 8 {
-                continue;
-            }
-            let d = (s[y * w + x] - r[y * w + x]) as f64;
-            if !(d.abs() <= worst.0.abs()) {
-                worst = (d, x, y);
-            }
+/// Where `band_panel` has its bands: the columns `BAND_X - 8 ..= BAND_X` and the rows
+/// `h - BAND_FROM_TOP - 8 ..= h - BAND_FROM_TOP`.
+const BAND_X: usize = 40;
+const BAND_FROM_TOP: usize = 20;
+
+/// The same surface inside the texture: an occluded band as wide as the blur's reach plus one
+/// (9 texels) down the columns `BAND_X`, and one across the rows. Blurred, a pixel k texels beside a
+/// band sees what a pixel k texels inside the border sees when the reads past it are clamped (the
+/// border texel repeated over the blur's reach), with the shader's own weights.
+fn band_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let top = h - BAND_FROM_TOP;
+    let occ = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            f32::from(u8::from(
+                (BAND_X - 8..=BAND_X).contains(&x) || (top - 8..=top).contains(&y),
+            ))
+        })
+        .collect();
+    (vec![5.0; w * h], occ)
+}
+
+/// Compares the blur of `border_panel` (`s`) within the blur's reach of each side with the blur of
+/// `band_panel` (`bands`) beside the matching band, away from corners and the other band; returns
+/// the largest difference as (difference, x, y, expected).
+fn border_fault(s: &[f32], bands: &[f32], w: usize, h: usize) -> (f64, usize, usize, f32) {
+    let top = h - BAND_FROM_TOP;
+    let mut worst = (0.0f64, 0, 0, 0.0f32);
+    let mut compare = |x: usize, y: usize, ex: usize, ey: usize| {
+        let (got, expected) = (s[y * w + x], bands[ey * w + ex]);
+        let d = (got - expected) as f64;
+        if !(d.abs() <= worst.0.abs()) {
+            worst = (d, x, y, expected);
+        }
+    };
+    for k in 0..8 {
+        // Left and right sides, on rows clear of the corners and of the band across.
+        for y in 20..top - 20 {
+            compare(k, y, BAND_X + k, y);
+            compare(w - 1 - k, y, BAND_X - 8 - k, y);
+        }
+        // Bottom and top sides, on columns clear of the corners and of the band down.
+        for x in BAND_X + 20..w - 20 {
+            compare(x, k, x, top + k);
+            compare(x, h - 1 - k, x, top - 8 - k);
         }
     }
     worst
@@ -192,9 +221,9 @@ struct Runs {
     /// The impulse panel, the reference's and the student's.
     reference_c: Vec<f32>,
     raw_c: Vec<f32>,
-    /// The border panel, the reference's and the student's.
-    reference_d: Vec<f32>,
+    /// The student's blur of the border panel and of the band panel.
     raw_d: Vec<f32>,
+    raw_e: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
@@ -218,8 +247,9 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let reference_c = run_blur(&rig.reference, &rig.meshes, &depth_c, &occ_c)?;
     let raw_c = run_blur(&rig.student, &rig.meshes, &depth_c, &occ_c)?;
     let (depth_d, occ_d) = border_panel(w, h);
-    let reference_d = run_blur(&rig.reference, &rig.meshes, &depth_d, &occ_d)?;
     let raw_d = run_blur(&rig.student, &rig.meshes, &depth_d, &occ_d)?;
+    let (depth_e, occ_e) = band_panel(w, h);
+    let raw_e = run_blur(&rig.student, &rig.meshes, &depth_e, &occ_e)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -229,8 +259,8 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         raw_b,
         reference_c,
         raw_c,
-        reference_d,
         raw_d,
+        raw_e,
     })
 }
 
@@ -247,8 +277,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         raw_b,
         reference_c: r_c,
         raw_c,
-        reference_d: r_d,
         raw_d,
+        raw_e,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -259,6 +289,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         .chain(&raw_b)
         .chain(&raw_c)
         .chain(&raw_d)
+        .chain(&raw_e)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -302,7 +333,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         }
     }
     let rmse = (sq / cnt.max(1) as f64).sqrt();
-    let border = border_fault(&raw_d, &r_d, w, h);
+    let border = border_fault(&raw_d, &raw_e, w, h);
     let mut metrics = BTreeMap::new();
     metrics.insert("flat_mean_in".into(), in_mean);
     metrics.insert("flat_mean_out".into(), out_mean);
@@ -317,7 +348,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("nan".into(), nan as f64);
     metrics.insert(
         crate::tools::grade::rig::NONFINITE_METRIC.into(),
-        nan as f64 / (4 * w * h) as f64,
+        nan as f64 / (5 * w * h) as f64,
     );
     metrics.insert("border_difference".into(), border.0);
     let panels = vec![
@@ -388,7 +419,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     }
     if border.0.abs() > tol::BLUR_BORDER_ABS {
         let (x, y) = (border.1, border.2);
-        let (got, expected) = (f2(raw_d[y * w + x] as f64), f2(r_d[y * w + x] as f64));
+        let (got, expected) = (f2(raw_d[y * w + x] as f64), f2(border.3 as f64));
         return verdict(
             false,
             say!(

@@ -1,5 +1,5 @@
 //! The SAO step (`sao.frag`): three ray-cast box scenes (a wall on a floor with a crate; a wall
-//! seen head-on with a step; a wall seen head-on with a raised panel), 192×128, the same mip chain
+//! seen head-on with a step; a wall seen head-on with a raised panel), 240×160, the same mip chain
 //! for both shaders. Checked: NaN; values above 1 (not normalised, when clamping does not hide it);
 //! creases occluded (≥ half the reference's); open flat surfaces ≈ 0; the occlusion of a band beside
 //! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
@@ -20,7 +20,7 @@ use crate::tools::grade::tol;
 use std::collections::BTreeMap;
 
 /// Size of `texSAODepth` level 0 in the SAO step (3:2, so that x and y cannot be swapped unseen).
-pub const SAO_SIZE: (u32, u32) = (192, 128);
+pub const SAO_SIZE: (u32, u32) = (240, 160);
 
 /// A probe's or scene's name (`scene.rs`) in the language `l`.
 pub(super) fn place(l: &str, name: &str) -> String {
@@ -56,10 +56,11 @@ fn quartiles(v: &[f64]) -> Option<[f64; 3]> {
 /// divided by the sample count `samples`. Adds the quartiles to `metrics`.
 fn scaled(ratios: &[f64], samples: u32, metrics: &mut BTreeMap<String, f64>) -> Option<Text> {
     let [lo, mid, hi] = quartiles(ratios)?;
+    // The quartiles' ratio is reported only: a wrong falloff spreads the ratios about as little.
     metrics.insert("scale_blocks".into(), ratios.len() as f64);
     metrics.insert("scale_median".into(), mid);
-    metrics.insert("scale_spread".into(), hi / lo.max(1e-9));
-    if mid < tol::SAO_SCALE_MIN || hi / lo.max(1e-9) > tol::SAO_SCALE_SPREAD {
+    metrics.insert("scale_quartiles".into(), hi / lo.max(1e-9));
+    if mid < tol::SAO_SCALE_MIN {
         return None;
     }
     let times = format!("{mid:.1}");
@@ -146,6 +147,19 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         );
     }
     let scale = scaled(&block_ratios, params.samples, &mut metrics);
+    // The same occlusion in every direction: told early when it is stretched along an axis (an
+    // aspect correction wrong or missing distorts every measure after this one).
+    let (aniso_s, aniso_r, stretched) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE)
+    {
+        Ok(a) => a,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+    metrics.insert("anisotropy".into(), aniso_s);
+    metrics.insert("anisotropy_reference".into(), aniso_r);
+    let (spread, spread_reference) = (
+        format!("{:.0}", 100.0 * aniso_s),
+        format!("{:.0}", 100.0 * aniso_r),
+    );
     let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
@@ -247,6 +261,16 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
     if let Some(message) = scale {
         return verdict(false, message);
     }
+    if stretched && aniso_s > tol::SAO_ANISOTROPY {
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.sao_stretched",
+                spread = spread,
+                reference = spread_reference
+            ),
+        );
+    }
     if let Some(p) = probes.iter().find(|p| {
         p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
     }) {
@@ -343,13 +367,7 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         Err(e) => return Verdict::grader_error(&e),
     };
     let mip_use = mip_s / mip_r.max(1e-9);
-    let (aniso_s, aniso_r) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE) {
-        Ok(a) => a,
-        Err(e) => return Verdict::grader_error(&e),
-    };
     let mut metrics = metrics.clone();
-    metrics.insert("anisotropy".into(), aniso_s);
-    metrics.insert("anisotropy_reference".into(), aniso_r);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
@@ -372,16 +390,12 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         );
     }
     if aniso_s > tol::SAO_ANISOTROPY {
-        let (spread, reference) = (
-            format!("{:.0}", 100.0 * aniso_s),
-            format!("{:.0}", 100.0 * aniso_r),
-        );
         return verdict(
             false,
             say!(
                 "grade.verdict.sao_anisotropy",
                 spread = spread,
-                reference = reference
+                reference = spread_reference
             ),
         );
     }

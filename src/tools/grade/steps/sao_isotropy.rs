@@ -47,6 +47,14 @@ fn bands(occ: &[f32], scene: &SynthScene) -> [f64; 4] {
     ]
 }
 
+/// Whether the bands differ between the axes rather than within them: left ≈ right and bottom ≈ top,
+/// but the two pairs apart. That is a disc stretched along x or y, the aspect ratio uncorrected
+/// (or corrected on the wrong axis), not a spiral that favours some directions.
+fn stretched([l, r, b, t]: [f64; 4]) -> bool {
+    let between = ((l + r) - (b + t)).abs() * 0.5;
+    between > 2.0 * ((l - r).abs() + (b - t).abs()).max(1e-9) * 0.5
+}
+
 /// (max − min) / mean of the four bands' occlusion: 0 when the occlusion is isotropic.
 fn spread(b: [f64; 4]) -> f64 {
     let mean = b.iter().sum::<f64>() / 4.0;
@@ -56,8 +64,13 @@ fn spread(b: [f64; 4]) -> f64 {
     (hi - lo) / mean.max(1e-6)
 }
 
-/// The spread of the four bands, the student's and the reference's.
-pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64)> {
+/// The spread of the four bands, the student's and the reference's, and whether the student's is a
+/// stretched disc (`stretched`).
+pub fn anisotropy(
+    rig: &Rig,
+    params: &AoSettings,
+    size: (u32, u32),
+) -> Result<(f64, f64, bool)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
     let (r, s) = run_sao_pair(
@@ -68,5 +81,10 @@ pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f
         &depth,
         params,
     )?;
-    Ok((spread(bands(&s, &scene)), spread(bands(&r, &scene))))
+    let student = bands(&s, &scene);
+    Ok((
+        spread(student),
+        spread(bands(&r, &scene)),
+        stretched(student),
+    ))
 }
