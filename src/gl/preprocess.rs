@@ -428,6 +428,26 @@ mod tests {
     }
 
     #[test]
+    fn an_include_that_leads_back_is_a_cycle() {
+        let root = scratch("cycle");
+        // The shader itself.
+        let e = build_with(&root, "#include \"s.frag\"");
+        assert!(e.contains("shaders/s.frag:3: #include \"s.frag\" includes"), "{e}");
+        assert!(e.contains("an #include cycle"), "{e}");
+        // Through the file it includes, back to the shader or to that file.
+        std::fs::write(root.join("shaders/self.glsl"), "#include \"self.glsl\"\n").unwrap();
+        let e = build_with(&root, "#include \"self.glsl\"");
+        assert!(e.contains("self.glsl again: an #include cycle"), "{e}");
+        std::fs::write(root.join("shaders/a.glsl"), "#include \"s.frag\"\n").unwrap();
+        let e = build_with(&root, "#include \"a.glsl\"");
+        assert!(e.contains("shaders/s.frag:3: #include \"a.glsl\" includes"), "{e}");
+        assert!(e.contains("s.frag again: an #include cycle"), "{e}");
+        // An ordinary include still builds.
+        assert_eq!(build_with(&root, "#include \"lib/ok.glsl\""), "");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
     fn a_shader_over_one_mib_is_refused_by_name_and_size() {
         let root = scratch("big");
         let big = root.join("big.frag");
