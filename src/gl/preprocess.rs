@@ -432,7 +432,10 @@ mod tests {
         let root = scratch("cycle");
         // The shader itself.
         let e = build_with(&root, "#include \"s.frag\"");
-        assert!(e.contains("shaders/s.frag:3: #include \"s.frag\" includes"), "{e}");
+        assert!(
+            e.contains("shaders/s.frag:3: #include \"s.frag\" includes"),
+            "{e}"
+        );
         assert!(e.contains("an #include cycle"), "{e}");
         // Through the file it includes, back to the shader or to that file.
         std::fs::write(root.join("shaders/self.glsl"), "#include \"self.glsl\"\n").unwrap();
@@ -440,7 +443,10 @@ mod tests {
         assert!(e.contains("self.glsl again: an #include cycle"), "{e}");
         std::fs::write(root.join("shaders/a.glsl"), "#include \"s.frag\"\n").unwrap();
         let e = build_with(&root, "#include \"a.glsl\"");
-        assert!(e.contains("shaders/s.frag:3: #include \"a.glsl\" includes"), "{e}");
+        assert!(
+            e.contains("shaders/s.frag:3: #include \"a.glsl\" includes"),
+            "{e}"
+        );
         assert!(e.contains("s.frag again: an #include cycle"), "{e}");
         // An ordinary include still builds.
         assert_eq!(build_with(&root, "#include \"lib/ok.glsl\""), "");

@@ -549,7 +549,10 @@ fn sao_at_lesson(dir: &Path, n: &str) -> (bool, String) {
     let v = grade(Some(dir), &["--json", "--lesson", n]).json();
     check_shape(&v);
     let steps = v["steps"].as_array().unwrap();
-    let s = steps.iter().find(|s| s["step"] == "sao").expect("an sao step");
+    let s = steps
+        .iter()
+        .find(|s| s["step"] == "sao")
+        .expect("an sao step");
     (
         s["passed"].as_bool().unwrap(),
         s["message"].as_str().unwrap().to_string(),
@@ -567,7 +570,10 @@ fn lesson_8_grades_the_occlusion_without_the_smoothing_of_lesson_9() {
         "{message}"
     );
     // Lesson 9's answer is not given away.
-    assert!(!message.contains("dFdx") && !message.contains("iuv"), "{message}");
+    assert!(
+        !message.contains("dFdx") && !message.contains("iuv"),
+        "{message}"
+    );
     // At lesson 9 the smoothing is due.
     let (passed, message) = sao_at_lesson(&dir, "9");
     assert!(!passed, "{message}");
@@ -584,7 +590,8 @@ fn lesson_1_writes_no_shader_and_grades_nothing() {
     let run = grade(Some(&dir), &["--lesson", "1"]);
     assert_eq!(run.code, Some(0), "{}{}", run.stdout, run.stderr);
     assert!(
-        run.stdout.contains("lesson 1 writes no shader yet: nothing to grade"),
+        run.stdout
+            .contains("lesson 1 writes no shader yet: nothing to grade"),
         "{}",
         run.stdout
     );

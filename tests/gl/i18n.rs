@@ -111,10 +111,20 @@ fn a_missing_student_folder_is_said_in_japanese_only() {
     let o = run(&[C], &["grade", "--lang", "ja", "--res", res]);
     assert_ne!(o.status.code(), Some(0));
     let e = err(&o);
-    assert!(e.contains("フォルダーではありません（存在しません）"), "{e}");
-    assert!(!e.contains("No such file") && !e.contains("os error"), "{e}");
+    assert!(
+        e.contains("フォルダーではありません（存在しません）"),
+        "{e}"
+    );
+    assert!(
+        !e.contains("No such file") && !e.contains("os error"),
+        "{e}"
+    );
     let o = run(&[C], &["grade", "--lang", "en", "--res", res]);
-    assert!(err(&o).contains("not a folder (it does not exist)"), "{}", err(&o));
+    assert!(
+        err(&o).contains("not a folder (it does not exist)"),
+        "{}",
+        err(&o)
+    );
 }
 
 #[test]

@@ -40,7 +40,10 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
                 args.lesson.unwrap_or(1),
                 crate::tools::lesson::FIRST_SHADER_STEP,
             );
-            println!("{}", t!("grade.nothing_yet", lesson = lesson, first = first));
+            println!(
+                "{}",
+                t!("grade.nothing_yet", lesson = lesson, first = first)
+            );
         }
         return Ok(0);
     }

@@ -125,7 +125,10 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
     metrics.insert("max_raw".into(), max_raw);
     metrics.insert("block_rmse".into(), rmse);
     metrics.insert("nan_fraction".into(), nan as f64 / n);
-    metrics.insert(crate::tools::grade::rig::NONFINITE_METRIC.into(), nan as f64 / n);
+    metrics.insert(
+        crate::tools::grade::rig::NONFINITE_METRIC.into(),
+        nan as f64 / n,
+    );
     metrics.insert("over_one_fraction".into(), over as f64 / n);
     metrics.insert("negative_fraction".into(), negative as f64 / n);
     metrics.insert("sky_max".into(), sky_max);

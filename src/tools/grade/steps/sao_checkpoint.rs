@@ -151,10 +151,7 @@ pub fn sao_checkpoint(
         let per_scene = w * SAO_SIZE.1 as usize;
         let scenes = sao_scenes(SAO_SIZE);
         let scene = scenes[(i / per_scene).min(scenes.len() - 1)].name;
-        let (x, y) = (
-            (i % per_scene) % w,
-            (i % per_scene) / w,
-        );
+        let (x, y) = ((i % per_scene) % w, (i % per_scene) / w);
         let (got, expected) = (format!("{:.3}", student[i]), format!("{:.3}", reference[i]));
         let percent = format!("{:.1}", 100.0 * bad_fraction);
         say!(

@@ -66,11 +66,7 @@ fn spread(b: [f64; 4]) -> f64 {
 
 /// The spread of the four bands, the student's and the reference's, and whether the student's is a
 /// stretched disc (`stretched`).
-pub fn anisotropy(
-    rig: &Rig,
-    params: &AoSettings,
-    size: (u32, u32),
-) -> Result<(f64, f64, bool)> {
+pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64, bool)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
     let (r, s) = run_sao_pair(

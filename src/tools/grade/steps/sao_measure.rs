@@ -272,7 +272,11 @@ pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> 
 }
 
 /// How much emptying mip levels 1–3 moves the output, summed over `scenes`: (student, reference).
-pub(super) fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(f64, f64)> {
+pub(super) fn mip_change(
+    rig: &Rig,
+    params: &AoSettings,
+    scenes: &[SynthScene],
+) -> Result<(f64, f64)> {
     let (mut mip_s, mut mip_r) = (0.0f64, 0.0f64);
     for scene in scenes {
         let depth = scene.depth();
@@ -288,4 +292,3 @@ pub(super) fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) 
     }
     Ok((mip_s, mip_r))
 }
-
