@@ -1,14 +1,18 @@
 //! The SAO step (`sao.frag`): three ray-cast box scenes (a wall on a floor with a crate; a wall
 //! seen head-on with a step; a wall seen head-on with a raised panel), 240×160, the same mip chain
-//! for both shaders. Checked: NaN; values above 1 (not normalised, when clamping does not hide it);
-//! creases occluded (≥ half the reference's); open flat surfaces ≈ 0; the occlusion of a band beside
-//! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
-//! camera and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
-//! mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth edges
-//! they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing the camera
-//! end up equal); the same occlusion in every direction (`sao_isotropy`); and that far samples
-//! come from mip levels 1–3 and near ones from level 0 (the output must move when levels 1–3 are
-//! emptied, about as much as the project's does: not much less, not far more).
+//! for both shaders (`sao_measure`). Checked: NaN and Inf; values above 1 (not normalised, when
+//! clamping does not hide it); creases occluded (≥ half the reference's); weak occlusion not the
+//! reference's times one factor (a sum never divided by N); the same occlusion in every direction
+//! (`sao_isotropy`; told here when it is stretched along x or y, an aspect correction wrong or
+//! missing, which distorts every measure after it); open flat surfaces ≈ 0; the occlusion of a band
+//! beside the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels
+//! facing the camera and away from depth edges (the per-pixel noise may differ, and the lesson's
+//! listing has no mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and
+//! at depth edges they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing
+//! the camera end up equal), from the lesson that teaches it on; the direction check again, for a
+//! spread not along an axis; and that far samples come from mip levels 1–3 and near ones from
+//! level 0 (the output must move when levels 1–3 are emptied, about as much as the project's does:
+//! not much less, not far more).
 
 use super::sao_measure::{measure, mip_change, Measured, ProbeResult};
 use crate::ao::AoSettings;

@@ -2,7 +2,9 @@
 //! square panel raised in its middle: the wall is occluded along all four sides of the panel, and a
 //! shader whose samples cover the whole disc (the spiral over 2π, whatever the pixel's start angle)
 //! occludes the four bands alike. One whose samples favour some directions (a spiral over π, start
-//! angles in half the circle) darkens some sides more than others.
+//! angles in half the circle) darkens some sides more than others. One whose disc or rebuilt
+//! positions are stretched along x or y (`aspectFix` left out, `ndcToView` swapped: seen because the
+//! step's target is wider than high) occludes left and right unlike below and above.
 
 use crate::ao::AoSettings;
 use crate::math::Camera;
