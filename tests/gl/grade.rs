@@ -584,6 +584,39 @@ fn lesson_8_grades_the_occlusion_without_the_smoothing_of_lesson_9() {
     assert!(passed, "{message}");
 }
 
+/// A student who has done lessons 1 to `n` and nothing more passes `grade --lesson n`, for every n:
+/// each file as that lesson leaves it (`sao.frag` with lesson 6's or 7's debug output, then without
+/// the smoothing at 8), the others not written yet.
+#[test]
+fn every_lesson_passes_a_student_who_did_just_that_lesson() {
+    for n in 2..=12u32 {
+        let dir = temp_dir(&format!("grade-through-lesson-{n}"));
+        let sao = match n {
+            ..=5 => None,
+            6 => Some("sao-lesson-6"),
+            7 => Some("sao-lesson-7"),
+            8 => Some("sao-lesson-8"),
+            _ => Some("listing-sao"),
+        };
+        let written = [
+            (2, Some("listing-restore"), "sao_restore_depth.frag"),
+            (4, Some("listing-down-sampling"), "sao_down_sampling.frag"),
+            (5, Some("listing-simple"), "simple.frag"),
+            (6, sao, "sao.frag"),
+            (11, Some("listing-blur"), "sao_blur.frag"),
+        ];
+        for (from, m, f) in written {
+            if let (true, Some(m)) = (n >= from, m) {
+                std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
+            }
+        }
+        let n = n.to_string();
+        let v = grade(Some(&dir), &["--json", "--lesson", &n]).json();
+        check_shape(&v);
+        assert_eq!(v["passed"], true, "lesson {n}: {v}");
+    }
+}
+
 #[test]
 fn lesson_1_writes_no_shader_and_grades_nothing() {
     let dir = temp_dir("grade-lesson-1");

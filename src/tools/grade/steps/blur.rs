@@ -4,8 +4,9 @@
 //! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
 //! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks:
 //! within its reach of the border, the output must equal the shader's own beside an equally
-//! occluded band inside the texture), and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the lesson's listing has
-//! wider weights). The buffers are wider than high, so x and y cannot be swapped unseen.
+//! occluded band inside the texture), and the RMSE against the project's `sao_blur.frag` is bounded
+//! (loosely: the lesson's listing has wider weights). The buffers are wider than high, so x and y
+//! cannot be swapped unseen.
 
 use crate::ao::AoSettings;
 use crate::i18n::Text;
