@@ -121,7 +121,8 @@ fn border_fault(s: &[f32], bands: &[f32], w: usize, h: usize) -> (f64, usize, us
     let mut compare = |x: usize, y: usize, ex: usize, ey: usize| {
         let (got, expected) = (s[y * w + x], bands[ey * w + ex]);
         let d = (got - expected) as f64;
-        if !(d.abs() <= worst.0.abs()) {
+        // A NaN is the worst difference there is.
+        if d.abs() > worst.0.abs() || (d.is_nan() && !worst.0.is_nan()) {
             worst = (d, x, y, expected);
         }
     };
