@@ -91,6 +91,24 @@ impl Text {
     }
 }
 
+/// Why an I/O operation failed, in the language `locale`: the common kinds in words of that
+/// language, any other as a generic phrase with the system's own message (which is English).
+pub fn io_cause(e: &std::io::Error, locale: &str) -> String {
+    use std::io::ErrorKind as K;
+    let key = match e.kind() {
+        K::NotFound => "io.not_found",
+        K::PermissionDenied => "io.permission_denied",
+        K::AlreadyExists => "io.already_exists",
+        K::NotADirectory => "io.not_a_directory",
+        K::IsADirectory => "io.is_a_directory",
+        K::InvalidData => "io.invalid_data",
+        K::StorageFull => "io.storage_full",
+        K::ReadOnlyFilesystem => "io.read_only",
+        _ => return rust_i18n::t!("io.other", locale = locale, error = e).into_owned(),
+    };
+    rust_i18n::t!(key, locale = locale).into_owned()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -26,7 +26,10 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => {
             bail!("{}", t!("cli.res_missing", dir = shown))
         }
-        Err(e) => bail!("{}", t!("cli.res_unreadable", dir = shown, error = e)),
+        Err(e) => {
+            let error = crate::i18n::io_cause(&e, &rust_i18n::locale());
+            bail!("{}", t!("cli.res_unreadable", dir = shown, error = error))
+        }
         Ok(m) if !m.is_dir() => bail!("{}", t!("cli.res_is_file", dir = shown)),
         Ok(_) => {}
     }
@@ -59,7 +62,11 @@ fn has_file(dir: &Path, wanted: &dyn Fn(&str) -> bool) -> Result<bool> {
     let cannot_list = |d: &Path, e: std::io::Error| {
         anyhow::anyhow!(
             "{}",
-            t!("cli.res_cannot_list", dir = d.display(), error = e)
+            t!(
+                "cli.res_cannot_list",
+                dir = d.display(),
+                error = crate::i18n::io_cause(&e, &rust_i18n::locale())
+            )
         )
     };
     let read = |d: &Path| std::fs::read_dir(d).map_err(|e| cannot_list(d, e));

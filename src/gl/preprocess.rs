@@ -241,6 +241,7 @@ pub fn prepare_source_with_includes(
         let ascii = ascii_only(line);
         if let Some(name) = include_target(&ascii) {
             let path = resolve_include(&src.path, i + 1, name)?;
+            include_cycle(&src.path, i + 1, name, &path)?;
             let inc = ShaderSource::load(&path)?;
             includes.push(path);
             out.push_str(&format!("#line 1 {}\n", includes.len()));
@@ -268,6 +269,46 @@ pub fn prepare_source_with_includes(
         });
     }
     Ok((out, includes))
+}
+
+/// Whether `#include "name"` on line `line` of `shader`, resolved to `included`, closes a cycle:
+/// `included` is the shader itself, or one of its own `#include` lines leads back to the shader or to
+/// itself. Expanded, such a file would bring a second `#version` (or an `#include` the compiler does
+/// not know) into the middle of the source, and the compiler's message would blame that instead.
+fn include_cycle(
+    shader: &Path,
+    line: usize,
+    name: &str,
+    included: &Path,
+) -> Result<(), ProgramError> {
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    let cycle = |target: &Path| ProgramError::IncludeCycle {
+        path: shader.display().to_string(),
+        line,
+        name: name.to_string(),
+        target: target.display().to_string(),
+    };
+    if same(shader, included) {
+        return Err(cycle(shader));
+    }
+    // One level down is enough: the engine expands includes one level deep.
+    let Ok(inner) = ShaderSource::load(included) else {
+        return Ok(());
+    };
+    for (k, l) in inner.text.lines().enumerate() {
+        let Some(inner_name) = include_target(l) else {
+            continue;
+        };
+        if let Ok(target) = resolve_include(included, k + 1, inner_name) {
+            if same(&target, shader) || same(&target, included) {
+                return Err(cycle(&target));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// Turns a driver log ("0:12(5): error: ...") into "path:12:5: error: ..." lines.
@@ -383,6 +424,32 @@ mod tests {
         let e = build_with(&root, "#include \"lib/none.glsl\"");
         assert!(e.contains("lib/none.glsl (included at "), "{e}");
         assert!(e.contains("shaders/s.frag:3)"), "{e}");
+        std::fs::remove_dir_all(&root).unwrap();
+    }
+
+    #[test]
+    fn an_include_that_leads_back_is_a_cycle() {
+        let root = scratch("cycle");
+        // The shader itself.
+        let e = build_with(&root, "#include \"s.frag\"");
+        assert!(
+            e.contains("shaders/s.frag:3: #include \"s.frag\" includes"),
+            "{e}"
+        );
+        assert!(e.contains("an #include cycle"), "{e}");
+        // Through the file it includes, back to the shader or to that file.
+        std::fs::write(root.join("shaders/self.glsl"), "#include \"self.glsl\"\n").unwrap();
+        let e = build_with(&root, "#include \"self.glsl\"");
+        assert!(e.contains("self.glsl again: an #include cycle"), "{e}");
+        std::fs::write(root.join("shaders/a.glsl"), "#include \"s.frag\"\n").unwrap();
+        let e = build_with(&root, "#include \"a.glsl\"");
+        assert!(
+            e.contains("shaders/s.frag:3: #include \"a.glsl\" includes"),
+            "{e}"
+        );
+        assert!(e.contains("s.frag again: an #include cycle"), "{e}");
+        // An ordinary include still builds.
+        assert_eq!(build_with(&root, "#include \"lib/ok.glsl\""), "");
         std::fs::remove_dir_all(&root).unwrap();
     }
 

@@ -13,6 +13,18 @@ pub enum ProgramError {
     NoVersion { path: String },
     #[error("{}", .messages.join("\n"))]
     Compile { path: String, messages: Vec<String> },
+    /// `#include "{name}"` on line `line` of `path` leads back to `target`, a file already being
+    /// expanded (the shader itself, or the included file).
+    #[error(
+        "{path}:{line}: #include \"{name}\" includes {target} again: an #include cycle (a file \
+         cannot include itself, directly or through the file it includes)"
+    )]
+    IncludeCycle {
+        path: String,
+        line: usize,
+        name: String,
+        target: String,
+    },
     #[error("{vert} + {frag}: link error: {log}")]
     Link {
         vert: String,

@@ -25,7 +25,8 @@ fn error_file(e: &ProgramError) -> Option<PathBuf> {
         ProgramError::Io { path, .. }
         | ProgramError::Encoding { path }
         | ProgramError::NoVersion { path }
-        | ProgramError::Compile { path, .. } => Some(PathBuf::from(path)),
+        | ProgramError::Compile { path, .. }
+        | ProgramError::IncludeCycle { path, .. } => Some(PathBuf::from(path)),
         ProgramError::Link { frag, .. } => Some(PathBuf::from(frag)),
         ProgramError::NotFound(_) | ProgramError::Gl(_) => None,
     }

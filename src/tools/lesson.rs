@@ -23,6 +23,10 @@ pub const LESSON_SHADERS: [&str; 5] = [
 /// The step from which `sao.frag`, begun in step 6, computes the occlusion (steps 6 and 7 write its
 /// start and show debug views).
 pub const SAO_COMPLETE_STEP: u32 = 8;
+/// The step that adds the 2×2 smoothing to `sao.frag` (after the occlusion of `SAO_COMPLETE_STEP`).
+pub const SAO_SMOOTHING_STEP: u32 = 9;
+/// The first step that has the student write a shader (the restore pass); step 1 is maths only.
+pub const FIRST_SHADER_STEP: u32 = 2;
 
 /// What step `n` shows: steps 1–5 the linear depth (restore + down-sampling only), 6–10 the raw SAO
 /// buffer, 11 the blurred buffer, 12 the composite.

@@ -159,7 +159,7 @@ fails! {
     restore_with_max_fails: "restore-max" => ["max instead of min"],
     restore_without_times_two_fails: "restore-no-x2" => ["gl_FragCoord.xy) * 2"],
     restore_with_the_debug_scale_left_fails: "restore-debug-scale" => ["0.01", "got 0.100"],
-    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "2D − 1"],
+    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "a typo in the course's printed text", "2D − 1"],
     restore_not_text_is_rejected_by_name: "restore-not-text" => ["restore-not-text/sao_restore_depth.frag", "neither UTF-8, UTF-16 nor Shift-JIS"],
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
@@ -187,6 +187,13 @@ fails! {
     sao_without_the_2x2_smoothing_fails: "sao-no-smoothing" => ["2×2 smoothing"],
     sao_with_the_2x2_smoothing_of_the_wrong_sign_fails: "sao-smoothing-wrong-sign" => ["2×2 smoothing"],
     sao_with_the_mip_level_inverted_fails: "sao-mip-level-inverted" => ["flat and open but occluded"],
+    blur_without_its_clamp_fails_at_the_border: "blur-no-clamp" => ["reads past the texture's border", "clamp(uv + ivec2(x, y) * blurScale"],
+    blur_clamped_to_the_transposed_size_fails: "blur-clamp-swapped" => ["reads past the texture's border"],
+    sao_with_ndc_to_view_swapped_fails: "sao-ndc-swapped" => ["stretched along x or y", "x by ndcToView.x"],
+    sao_without_the_aspect_fix_fails: "sao-no-aspect-fix" => ["stretched along x or y", "aspectFix = (height / width, 1)"],
+    sao_never_divided_by_the_sample_count_is_too_strong: "sao-no-divide" => ["too strong", "about the sample count (11)", "not divided by samplingCount"],
+    sao_writing_inf_is_told_so: "sao-writes-inf" => ["writes Inf or NaN", "Inf at 100.0%"],
+    sao_including_itself_is_an_include_cycle: "sao-include-self" => ["sao-include-self/sao.frag:3: #include \"sao.frag\"", "#include cycle"],
 }
 
 #[test]
@@ -515,9 +522,118 @@ fn lessons_6_and_7_check_the_start_of_sao_and_say_when_it_is_graded() {
     let v = run.json();
     assert_eq!(run.code, Some(1), "{v}");
     assert_eq!(v["steps"][3]["passed"], false, "{v}");
-    // --step grades the file in full, whatever --lesson says.
-    let run = grade(Some(&dir), &["--json", "--lesson", "6", "--step", "sao"]);
-    assert_eq!(run.code, Some(1), "{}", run.stdout);
+    // --step grades a file in full, which --lesson does not: the two cannot go together.
+    let run = grade(Some(&dir), &["--json", "--lesson", "7", "--step", "sao"]);
+    assert_eq!(run.code, Some(2), "{}", run.stdout);
+    assert!(run.stdout.is_empty(), "{}", run.stdout);
+    assert!(
+        run.stderr.contains("cannot be used with")
+            && run.stderr.contains("--step")
+            && run.stderr.contains("--lesson"),
+        "{}",
+        run.stderr
+    );
+}
+
+/// A student at lesson 8 or 9: the other files are the listings, `sao.frag` is `sao`'s.
+fn lesson_8_folder(name: &str, sao: &str) -> PathBuf {
+    let dir = lesson_6_folder(name, sao);
+    std::fs::remove_file(dir.join("sao_restore_depth.frag")).unwrap();
+    std::fs::remove_file(dir.join("sao_down_sampling.frag")).unwrap();
+    std::fs::remove_file(dir.join("simple.frag")).unwrap();
+    dir
+}
+
+/// The SAO verdict of `grade --lesson N` on `dir` (whose other steps are not submitted).
+fn sao_at_lesson(dir: &Path, n: &str) -> (bool, String) {
+    let v = grade(Some(dir), &["--json", "--lesson", n]).json();
+    check_shape(&v);
+    let steps = v["steps"].as_array().unwrap();
+    let s = steps
+        .iter()
+        .find(|s| s["step"] == "sao")
+        .expect("an sao step");
+    (
+        s["passed"].as_bool().unwrap(),
+        s["message"].as_str().unwrap().to_string(),
+    )
+}
+
+#[test]
+fn lesson_8_grades_the_occlusion_without_the_smoothing_of_lesson_9() {
+    // sao.frag as lesson 8 has it: occlusion clamped, no 2×2 smoothing yet.
+    let dir = lesson_8_folder("grade-lesson-8", "sao-lesson-8");
+    let (passed, message) = sao_at_lesson(&dir, "8");
+    assert!(passed, "{message}");
+    assert!(
+        message.contains("the 2×2 smoothing is graded from lesson 9 on"),
+        "{message}"
+    );
+    // Lesson 9's answer is not given away.
+    assert!(
+        !message.contains("dFdx") && !message.contains("iuv"),
+        "{message}"
+    );
+    // At lesson 9 the smoothing is due.
+    let (passed, message) = sao_at_lesson(&dir, "9");
+    assert!(!passed, "{message}");
+    assert!(message.contains("2×2 smoothing is missing"), "{message}");
+    // A finished shader passes at lesson 8 too.
+    let dir = lesson_8_folder("grade-lesson-8-finished", "listing-sao");
+    let (passed, message) = sao_at_lesson(&dir, "8");
+    assert!(passed, "{message}");
+}
+
+/// A student who has done lessons 1 to `n` and nothing more passes `grade --lesson n`, for every n:
+/// each file as that lesson leaves it (`sao.frag` with lesson 6's or 7's debug output, then without
+/// the smoothing at 8), the others not written yet.
+#[test]
+fn every_lesson_passes_a_student_who_did_just_that_lesson() {
+    for n in 2..=12u32 {
+        let dir = temp_dir(&format!("grade-through-lesson-{n}"));
+        let sao = match n {
+            ..=5 => None,
+            6 => Some("sao-lesson-6"),
+            7 => Some("sao-lesson-7"),
+            8 => Some("sao-lesson-8"),
+            _ => Some("listing-sao"),
+        };
+        let written = [
+            (2, Some("listing-restore"), "sao_restore_depth.frag"),
+            (4, Some("listing-down-sampling"), "sao_down_sampling.frag"),
+            (5, Some("listing-simple"), "simple.frag"),
+            (6, sao, "sao.frag"),
+            (11, Some("listing-blur"), "sao_blur.frag"),
+        ];
+        for (from, m, f) in written {
+            if let (true, Some(m)) = (n >= from, m) {
+                std::fs::copy(mutant(m).join(f), dir.join(f)).unwrap();
+            }
+        }
+        let n = n.to_string();
+        let v = grade(Some(&dir), &["--json", "--lesson", &n]).json();
+        check_shape(&v);
+        assert_eq!(v["passed"], true, "lesson {n}: {v}");
+    }
+}
+
+#[test]
+fn lesson_1_writes_no_shader_and_grades_nothing() {
+    let dir = temp_dir("grade-lesson-1");
+    let run = grade(Some(&dir), &["--lesson", "1"]);
+    assert_eq!(run.code, Some(0), "{}{}", run.stdout, run.stderr);
+    assert!(
+        run.stdout
+            .contains("lesson 1 writes no shader yet: nothing to grade"),
+        "{}",
+        run.stdout
+    );
+    assert!(!run.stdout.contains("FAIL"), "{}", run.stdout);
+    let v = grade(Some(&dir), &["--json", "--lesson", "1"]).json();
+    check_shape(&v);
+    assert_eq!(v["passed"], true);
+    assert_eq!(v["steps"].as_array().unwrap().len(), 0);
+    assert_eq!(lesson_steps("2"), ["restore"]);
 }
 
 #[test]

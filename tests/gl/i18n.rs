@@ -105,6 +105,29 @@ fn grading_an_empty_folder_says_not_submitted_in_japanese() {
 }
 
 #[test]
+fn a_missing_student_folder_is_said_in_japanese_only() {
+    let missing = common::temp_dir("i18n-grade-missing").join("nosuch");
+    let res = missing.to_str().unwrap();
+    let o = run(&[C], &["grade", "--lang", "ja", "--res", res]);
+    assert_ne!(o.status.code(), Some(0));
+    let e = err(&o);
+    assert!(
+        e.contains("フォルダーではありません（存在しません）"),
+        "{e}"
+    );
+    assert!(
+        !e.contains("No such file") && !e.contains("os error"),
+        "{e}"
+    );
+    let o = run(&[C], &["grade", "--lang", "en", "--res", res]);
+    assert!(
+        err(&o).contains("not a folder (it does not exist)"),
+        "{}",
+        err(&o)
+    );
+}
+
+#[test]
 fn json_keeps_english_and_adds_the_localised_message() {
     let dir = common::temp_dir("i18n-grade-json");
     let res = dir.to_str().unwrap();

@@ -50,13 +50,13 @@ impl Step {
 
 #[derive(Args, Debug, Clone)]
 pub struct GradeArgs {
-    /// Grade the shaders lesson step N needs (1-3: restore; 4: and down-sampling; 5: and simple;
-    /// 6-10: and SAO, whose occlusion is graded from step 8 on, 6-7 grading the step's debug output
-    /// instead; 11-12: all five).
+    /// Grade the shaders lesson step N has written, as far as it has taught them (1: none yet;
+    /// 2-3: restore; 4: and down-sampling; 5: and simple; 6-10: and SAO, 6-7 grading the step's
+    /// debug output, 8 the occlusion without the 2x2 smoothing of 9; 11-12: all five).
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub lesson: Option<u32>,
-    /// Grade only these steps (comma-separated or repeated); overrides --lesson.
-    #[arg(long, value_enum, value_delimiter = ',')]
+    /// Grade only these steps (comma-separated or repeated), each in full; not with --lesson.
+    #[arg(long, value_enum, value_delimiter = ',', conflicts_with = "lesson")]
     pub step: Vec<Step>,
     /// Print the verdicts as JSON: {"passed": bool, "steps": [{"step", "file", "passed", "submitted",
     /// "message"}]}; the keys and "message" stay English, and a message also written in Japanese
@@ -120,10 +120,10 @@ pub struct GradeStepArgs {
     pub probe: bool,
 }
 
-/// The lesson step the children are told about: `--lesson N`, unless `--step` chose the steps (then
-/// each is graded in full).
+/// The lesson step the children are told about: `--lesson N` (`--step`, which cannot come with it,
+/// grades each step in full).
 pub fn lesson_of(args: &GradeArgs) -> Option<u32> {
-    args.lesson.filter(|_| args.step.is_empty())
+    args.lesson
 }
 
 /// The steps `args` select, in the lesson's order.
@@ -137,6 +137,10 @@ pub fn selected_steps(args: &GradeArgs) -> Result<Vec<Step>> {
                 "{}",
                 rust_i18n::t!("lesson.no_such_step", n = n, steps = steps)
             );
+        }
+        // Step 1 shows the stub it starts from: the restore pass is written from step 2 on.
+        if n < crate::tools::lesson::FIRST_SHADER_STEP {
+            return Ok(Vec::new());
         }
         crate::tools::lesson::shaders_for_step(n)
             .iter()

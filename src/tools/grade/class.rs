@@ -72,7 +72,11 @@ fn students(dir: &Path) -> Result<Vec<Student>> {
             Ok(_) => eprintln!("{}", t!("class.skipping", path = path.display())),
             Err(e) => eprintln!(
                 "{}",
-                t!("class.cannot_read", path = path.display(), error = e)
+                t!(
+                    "class.cannot_read",
+                    path = path.display(),
+                    error = crate::i18n::io_cause(&e, &rust_i18n::locale())
+                )
             ),
         }
     }

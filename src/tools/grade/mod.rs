@@ -6,23 +6,32 @@
 //! | `restore` | `sao_restore_depth.frag` | the exact (f64) inverse of the projection of the nearest of each 2×2 block, within float precision |
 //! | `down-sampling` | `sao_down_sampling.frag` | the exact min of each 2×2 block, level by level |
 //! | `simple` | `simple.frag` | the project's `Res/simple.frag`: an RGBA texture drawn at twice its size, every channel as `texture()` gives it, and the lesson's composite over an image |
-//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain: mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
-//! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input: RMSE, edges kept (one 0.5 m deep), flat surfaces smoothed, mean kept, the impulse response's footprint and symmetry |
+//! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain (240×160): mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, weak occlusion not scaled by one factor, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
+//! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input (160×112): RMSE, edges kept (one 0.5 m deep), flat surfaces smoothed, mean kept, the impulse response's footprint and symmetry, taps past the border clamped |
 //!
 //! Each step is graded on its own, from the project's inputs (a broken restore pass does not fail the
 //! SAO step). With `--res DIR`, a step whose file is missing from DIR (or misnamed, a folder, a
 //! link out of DIR, unreadable) fails as "not submitted" (`submitted: false` in `--json`): it is
 //! never graded on the project's file. Without `--res` the project grades its own files.
-//! `--lesson N` grades the files lesson step N needs (the same as `opengl3d lesson N`: steps 1–3
-//! the restore pass, 4 also down-sampling, 5 also `simple.frag`, 6–10 also SAO, 11–12 all five);
-//! `--step` picks steps by name. Lessons 6 and 7 write only the start of `sao.frag` and show it
-//! through a debug output (the normal's y; the last tap's mip level ÷ 3): there that output is graded
-//! against the project's checkpoint (`Res/lesson-checkpoints/N/sao.frag`, `steps/sao_checkpoint`),
-//! and the verdict says that the occlusion is graded from lesson 8 on.
+//! `--lesson N` grades what lesson step N has written, as far as it has taught it: the files that
+//! `opengl3d lesson N` needs (steps 2–3 the restore pass, 4 also down-sampling, 5 also `simple.frag`,
+//! 6–10 also SAO, 11–12 all five), none at step 1 (maths only: the restore pass is still the stub).
+//! Lessons 6 and 7 write only the start of `sao.frag` and show it through a debug output (the
+//! normal's y; the last tap's mip level ÷ 3): there that output is graded against the project's
+//! checkpoint (`Res/lesson-checkpoints/N/sao.frag`, `steps/sao_checkpoint`), and the verdict says
+//! that the occlusion is graded from lesson 8 on. Lesson 8 completes the occlusion without the 2×2
+//! smoothing, which lesson 9 adds: at 8 the smoothing is neither asked for nor explained. A verdict
+//! never gives a later lesson's answer. `--step` picks steps by name and grades each in full; it
+//! cannot go with `--lesson`.
+//!
+//! Every target with an x/y distinction is wider than high (the restore and down-sampling passes,
+//! SAO, the blur, `simple.frag`), so that swapped or dropped aspect corrections show.
 //!
 //! Before rendering, the student's program is checked against the lesson's interface
 //! (`shader_interface::PROGRAMS`, in `interface`): a uniform without its `layout(location=N)`, of
-//! another type, unread, or a sampler on another unit fails with the declaration to write. Every
+//! another type, or a sampler on another unit fails with the declaration to write; one left unread
+//! fails so too after rendering, unless the output is mostly Inf or NaN (then that is said: a
+//! shader writing a constant Inf reads nothing, its inputs dropped by the compiler). Every
 //! message is a `grade.verdict.*` key of `locales/*.yml` (`say!`), in English and the chosen language.
 //!
 //! Every step runs in a child process (`opengl3d grade-step STEP`, hidden) with a time limit, so a

@@ -6,7 +6,7 @@
 //! The input is a box scene (a room corner with stairs, a pillar, a ramp and sky) seen obliquely on
 //! a non-square 208×120 target (416×240 for the depth buffer), so that slopes, depth edges, creases
 //! and the aspect ratio all show; every size divides by 8, so that no level of the mip chain reads
-//! past its edge (the lesson's listings do not clamp, and must not be called wrong for it).
+//! past its edge.
 //!
 //! What is compared, per step, with the tolerance the step itself uses:
 //! - `restore`: every restored distance, in units of its float-precision bound (`tol::RESTORE_ULPS`);
@@ -15,9 +15,9 @@
 //!   compares: facing the camera, away from depth edges (`tol::SAO_BLOCK_RMSE`), and NaN
 //!   (`tol::SAO_BAD_PIXEL_FRACTION`);
 //! - `simple`: the copy and the composite of another texture than the step's (`tol::SIMPLE_ABS`);
-//! - `blur`: the RMSE over non-sky pixels at least 9 texels from the border (the blur's reach; the
-//!   listing reads past the border unclamped, on purpose) (`tol::BLUR_RMSE`), and any change in the
-//!   sky (`tol::BLUR_SKY_ABS`).
+//! - `blur`: the RMSE over non-sky pixels at least 9 texels from the border (the blur's reach: the
+//!   step checks the border on its own) (`tol::BLUR_RMSE`), and any change in the sky
+//!   (`tol::BLUR_SKY_ABS`).
 
 use super::args::Step;
 use super::measure::{as_r8, block_means};
@@ -35,8 +35,9 @@ use std::path::Path;
 
 /// Size of the probe's SAO buffers (level 0 of `texSAODepth`); the depth buffer is twice as large.
 pub const PROBE_SIZE: (u32, u32) = (208, 120);
-/// The SAO step's probe is square: the lesson's disc is round in texture coordinates, the port's on
-/// screen, and both are right (on a square target they agree).
+/// The SAO step's probe is square: its frontal scene is framed for it, and on it the lesson's
+/// listing (no mip bias, no edge guard) stays within the step's tolerance. The step's own rig is
+/// wider than high, where the aspect corrections are checked.
 pub const SAO_PROBE_SIZE: (u32, u32) = (144, 144);
 
 /// A difference too large to tell apart (NaN, Inf): finite so that it survives JSON.

@@ -14,6 +14,10 @@ use std::collections::BTreeMap;
 use std::path::Path;
 use std::rc::Rc;
 
+/// The metric in which a step reports the fraction of its outputs that are NaN or Inf (what a
+/// shader that reads none of its inputs may write: see `run_step`).
+pub const NONFINITE_METRIC: &str = "nonfinite_fraction";
+
 /// The outcome of one step.
 pub struct Verdict {
     pub passed: bool,
@@ -109,6 +113,21 @@ fn build_error_message(e: &anyhow::Error, subject: &Subject) -> Text {
         Some(ProgramError::Link { log, .. }) => {
             let log = subject.rewrite(&log.replace('\n', " | "));
             say!("grade.verdict.does_not_link", log = log)
+        }
+        Some(ProgramError::IncludeCycle {
+            path,
+            line,
+            name,
+            target,
+        }) => {
+            let at = subject.rewrite(&format!("{path}:{line}"));
+            let target = subject.rewrite(target);
+            say!(
+                "grade.verdict.include_cycle",
+                at = at,
+                name = name,
+                target = target
+            )
         }
         Some(other) => {
             // Already a sentence naming the file and line (an #include refused, a file too big).

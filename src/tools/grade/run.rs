@@ -30,6 +30,23 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if args.jobs.is_some() && args.class.is_none() {
         bail!("{}", t!("mutation.jobs_alone"));
     }
+    if steps.is_empty() {
+        // `--lesson 1`: that step is maths only, and the restore pass is still the stub it starts
+        // from, so there is nothing to grade yet (and nothing has failed).
+        if args.json {
+            println!("{}", report::to_json(&[])?);
+        } else {
+            let (lesson, first) = (
+                args.lesson.unwrap_or(1),
+                crate::tools::lesson::FIRST_SHADER_STEP,
+            );
+            println!(
+                "{}",
+                t!("grade.nothing_yet", lesson = lesson, first = first)
+            );
+        }
+        return Ok(0);
+    }
     if let Some(dir) = &args.class {
         if let Some(res) = student {
             bail!(
@@ -47,7 +64,14 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         match std::fs::metadata(dir) {
             Ok(m) if m.is_dir() => {}
             Ok(_) => bail!("{}", t!("grade.res_not_folder", dir = dir.display())),
-            Err(e) => bail!("{} ({e})", t!("grade.res_not_folder", dir = dir.display())),
+            Err(e) => {
+                // The cause in the chosen language: the system's own message is English.
+                let cause = crate::i18n::io_cause(&e, &rust_i18n::locale());
+                bail!(
+                    "{}",
+                    t!("grade.res_unusable", dir = dir.display(), cause = cause)
+                )
+            }
         }
     }
     if let Some(out) = &args.out {

@@ -35,48 +35,57 @@ fn program_of(rig: &Rig, step: Step) -> &ProgramObject {
 /// Grades one step; `subject.work_dir` holds a copy of the graded file. `begun`: the lesson step that
 /// has written only the start of the file (`sao.frag` in lessons 6–7) and what that start reads, so
 /// it is checked for building, keeping its interface and reading those, and for that lesson's debug
-/// output instead of the occlusion.
+/// output instead of the occlusion. `at_lesson`: the lesson step graded (`--lesson N`), for a file
+/// that a later step finishes (`sao.frag`'s smoothing); `None` grades every file finished.
 fn grade(
     step: Step,
     subject: &Subject,
     project_res: &Path,
     begun: Option<(u32, lesson::Begun)>,
+    at_lesson: Option<u32>,
 ) -> Verdict {
     let camera = Camera::default();
     let params = AoSettings::default();
     let main_size = match step {
         Step::Restore | Step::DownSampling => steps::MAIN_SIZE,
         Step::Simple => (2 * steps::SIMPLE_SIZE.0, 2 * steps::SIMPLE_SIZE.1),
-        Step::Sao => (2 * steps::SAO_SIZE, 2 * steps::SAO_SIZE),
-        Step::Blur => (2 * steps::BLUR_SIZE, 2 * steps::BLUR_SIZE),
+        Step::Sao => (2 * steps::SAO_SIZE.0, 2 * steps::SAO_SIZE.1),
+        Step::Blur => (2 * steps::BLUR_SIZE.0, 2 * steps::BLUR_SIZE.1),
     };
     let rig = match build_rig(subject, project_res, main_size, &camera, &params) {
         Ok(r) => r,
         Err(v) => return v,
     };
-    // A begun file's unread uniforms are told only when its debug output is wrong: a checkpoint
-    // line left out makes the whole start unread, and then that is the message.
-    let written = match begun {
-        Some(_) => Written::Begun(&[]),
-        None => Written::Complete,
-    };
-    if let Some(problem) =
-        interface::check(&rig.gl, program_of(&rig, step).id(), step.file(), written)
-    {
+    // What the program declares must be where the engine sets it, before anything is rendered.
+    let program = program_of(&rig, step).id();
+    if let Some(problem) = interface::check(&rig.gl, program, step.file(), Written::Begun(&[])) {
         return Verdict::fail(problem);
     }
+    // What it leaves unread is told after rendering: a begun file's only when its debug output is
+    // wrong (a checkpoint line left out makes the whole start unread, and then that is the message),
+    // and a complete file's unless its output is Inf or NaN (a shader writing a constant Inf reads
+    // none of its inputs: the compiler drops them, and the unread input is not the cause).
+    let unread = match begun {
+        Some(_) => None,
+        None => interface::check(&rig.gl, program, step.file(), Written::Complete),
+    };
     let mut v = match (step, begun) {
         (_, Some((lesson, b))) => {
-            let program = program_of(&rig, step).id();
             let unread = interface::check(&rig.gl, program, step.file(), Written::Begun(b.reads));
             steps::sao_checkpoint(&rig, lesson, project_res, &params, unread)
         }
         (Step::Restore, None) => steps::restore(&rig, &camera),
         (Step::DownSampling, None) => steps::down_sampling(&rig),
         (Step::Simple, None) => steps::simple(&rig),
-        (Step::Sao, None) => steps::sao(&rig, &params),
+        (Step::Sao, None) => steps::sao(&rig, &params, at_lesson),
         (Step::Blur, None) => steps::blur(&rig, &params),
     };
+    if let Some(problem) = unread {
+        let nonfinite = v.metrics.get(super::rig::NONFINITE_METRIC).copied();
+        if v.passed || !nonfinite.is_some_and(|f| f > super::tol::NONFINITE_OVER_UNREAD) {
+            return Verdict::fail(problem);
+        }
+    }
     // A GL error means some call of the step did nothing, so its measurements may not be what they
     // claim: say so with the verdict.
     if let Some(e) = crate::gl::take_error(&rig.gl) {
@@ -159,7 +168,7 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
                     .filter(|b| b.file == step.file())
                     .map(|b| (n, b))
             });
-            let v = grade(step, &subject, &project, begun);
+            let v = grade(step, &subject, &project, begun, args.lesson);
             report.passed = v.passed;
             report.metrics = v.metrics;
             let mut message = v.message;

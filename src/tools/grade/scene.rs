@@ -134,9 +134,10 @@ fn floor() -> Aabb {
     Aabb::new([-60.0, -1.0, -60.0], [60.0, 0.0, 60.0])
 }
 
-/// The grader's SAO scenes (square, so that the lesson's disc, which is round in texture coordinates,
-/// is round on screen too).
-pub fn sao_scenes(size: u32) -> Vec<SynthScene> {
+/// The grader's SAO scenes at `width`×`height`. Wider than high, as a screen is: the lesson's disc is
+/// round on screen only through `aspectFix`, and positions are rebuilt right only through both
+/// components of `ndcToView` (on a square target both mistakes go unseen).
+pub fn sao_scenes((width, height): (u32, u32)) -> Vec<SynthScene> {
     let camera = |eye: [f32; 3], target: [f32; 3]| Camera {
         eye: Vec3::from(eye),
         target: Vec3::from(target),
@@ -152,8 +153,8 @@ pub fn sao_scenes(size: u32) -> Vec<SynthScene> {
                 Aabb::new([-1.0, 0.0, -60.0], [0.0, 3.0, 60.0]),
                 Aabb::new([1.2, 0.0, -1.6], [2.2, 0.9, -0.6]),
             ],
-            width: size,
-            height: size,
+            width,
+            height,
             probes: vec![
                 Probe {
                     name: "open floor",
@@ -184,8 +185,8 @@ pub fn sao_scenes(size: u32) -> Vec<SynthScene> {
                 Aabb::new([-60.0, 0.0, -5.0], [60.0, 3.2, -4.0]),
                 Aabb::new([-1.5, 0.0, -5.0], [1.0, 0.7, -3.4]),
             ],
-            width: size,
-            height: size,
+            width,
+            height,
             probes: vec![
                 Probe {
                     name: "open wall",
@@ -216,8 +217,8 @@ pub fn sao_scenes(size: u32) -> Vec<SynthScene> {
                 Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
                 Aabb::new([-60.0, -60.0, -5.0], [0.0, 60.0, -4.75]),
             ],
-            width: size,
-            height: size,
+            width,
+            height,
             probes: vec![
                 Probe {
                     name: "wall beside the panel",

@@ -19,7 +19,7 @@ pub fn find(dir: &Path, step: Step) -> Result<PathBuf, Text> {
                 "grade.cannot_read",
                 locale = l,
                 path = shown_path,
-                error = e
+                error = crate::i18n::io_cause(e, l)
             )
             .into()
         })
@@ -66,7 +66,7 @@ pub fn find(dir: &Path, step: Step) -> Result<PathBuf, Text> {
                     "grade.cannot_read_folder",
                     locale = l,
                     dir = shown_dir,
-                    error = e
+                    error = crate::i18n::io_cause(&e, l)
                 )
                 .into()
             }))

@@ -17,31 +17,39 @@ pub const MISTAKE_MATCH_REL: f64 = 1e-3;
 /// a few texels where two mistakes coincide, or float rounding flips a min, do not hide the match.
 pub const MISTAKE_MATCH_FRACTION: f64 = 0.9;
 /// SAO: an open, flat surface may show at most the reference's occlusion (itself at most this)
-/// plus this. Listing: 0.008 on the open floor (reference 0); a zero bias gives 0.28.
+/// plus this. Listing: 0.004 on the open floor (reference 0); a zero bias gives 0.33.
 pub const SAO_OPEN_ABS: f64 = 0.05;
 /// SAO: a crease must reach at least this fraction of the reference's occlusion (reference
-/// 0.76–0.84; listing ≥ 0.73, rewrite ≥ 0.66; flipped normal ≤ 0.08, no max(…, 0) 0.04–0.42)...
+/// 0.71–0.84; listing ≥ 0.73, rewrite ≥ 0.63; flipped normal ≤ 0.10, no max(…, 0) 0.15–0.33)...
 pub const SAO_CREASE_FRACTION: f64 = 0.5;
 /// ...and at least this much.
 pub const SAO_CREASE_MIN: f64 = 0.08;
 /// SAO: mean occlusion over pixels facing the camera, away from depth edges, relative to the
-/// reference (listing +10%, rewrite +8%, f·f falloff +36%, no max(…, 0) −94%).
+/// reference (listing +11%, rewrite +11%, f·f falloff +37%, no max(…, 0) −91%).
 pub const SAO_MEAN_REL: f64 = 0.25;
-/// SAO: mean occlusion of the band beside a step, relative to the reference (listing +8%,
-/// rewrite +3%, f·f falloff +42%, output written in the loop +91%).
+/// SAO: mean occlusion of the band beside a step, relative to the reference (listing +3%,
+/// rewrite −1%, f·f falloff +36%, output written in the loop +81%).
 pub const SAO_FALLOFF_REL: f64 = 0.2;
 /// SAO: RMSE of 8×8 block means against the reference, same pixels as the mean (listing 0.021,
-/// rewrite 0.018, f·f 0.034, no max(…, 0) 0.115, flipped normal 0.21).
+/// rewrite 0.018, f·f 0.029, no max(…, 0) 0.102, flipped normal 0.20).
 pub const SAO_BLOCK_RMSE: f64 = 0.035;
+/// SAO: where the reference's occlusion (an 8×8 block mean of pixels facing the camera) lies between
+/// this and 0.5 / N, the student's ÷ the reference's tells a scaling mistake (below it the ratio is
+/// noise; above, a sum N times too strong would be clamped at 1).
+pub const SAO_SCALE_FLOOR: f64 = 0.004;
+/// SAO: the occlusion is too strong by one factor when the median of those ratios is at least this
+/// (listing 1.14, rewrite 1.12, the step-8 shader 1.00; no division by N 10.6; f·f falloff 2.23,
+/// which the falloff probe names instead; output written in the loop 2.28).
+pub const SAO_SCALE_MIN: f64 = 4.0;
 /// SAO: a raw output above this (on more than `SAO_BAD_PIXEL_FRACTION` of the pixels) is not
-/// normalised (output written in the loop: 5.9% of the pixels, up to 13.1).
+/// normalised (output written in the loop: 4.5% of the pixels, up to 14.3).
 pub const SAO_RAW_MAX: f64 = 1.05;
 /// SAO: the fraction of the non-sky pixels that may be NaN, or above `SAO_RAW_MAX`, before the
 /// output counts as broken: a few pixels where a degenerate normal slips through are forgiven, a
-/// systematic mistake (5.9% above 1 for the output written in the loop) is not.
+/// systematic mistake (4.5% above 1 for the output written in the loop) is not.
 pub const SAO_BAD_PIXEL_FRACTION: f64 = 0.01;
 /// SAO: emptying mip levels 1–3 must move the student's output by at least this fraction of
-/// what it moves the project's (listing 1.24, rewrite 1.25; every sample from level 0: 0)...
+/// what it moves the project's (listing 1.41, rewrite 1.45; every sample from level 0: 0)...
 pub const SAO_MIP_USE: f64 = 0.25;
 /// ...and at most this (near samples reading levels 1–3 too: mip level inverted 5.0, level 0
 /// never read 12.6)...
@@ -55,13 +63,14 @@ pub const SAO_MIP_CHANGE_MIN: f64 = 0.001;
 /// target is 0.004).
 pub const SAO_QUAD_SPREAD: f64 = 1e-3;
 /// SAO: the fraction of such quads that may be uneven: the project, both listings and the rewrite
-/// leave none; without the smoothing, or with its sign wrong, 19% are (the rest are open, all 0).
+/// leave none; without the smoothing (the step-8 shader too), or with its sign wrong, 15% are (the
+/// rest are open, all 0).
 /// A few quads where the two rows took different branches are forgiven.
 pub const SAO_UNEVEN_QUADS: f64 = 0.05;
 /// SAO: beside a square panel raised from a wall (seen head-on), the four sides' occlusion may
-/// spread by this fraction of its mean (project 0.067, listing 0.027, rewrite 0.075; twoPi = π, a
-/// spiral over half the circle: 0.86).
-pub const SAO_ANISOTROPY: f64 = 0.3;
+/// spread by this fraction of its mean (project 0.072, listing 0.077, rewrite 0.067; the disc left
+/// stretched, without `aspectFix`, 0.21; `ndcToView.yx` 1.08).
+pub const SAO_ANISOTROPY: f64 = 0.15;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
@@ -80,8 +89,13 @@ pub const BLUR_SMOOTHING: f64 = 0.6;
 /// Blur: the most occlusion allowed in the sky. The sky's input is 0 and sky pixels must be kept as
 /// they are, so anything above about five steps of the engine's 8-bit target is leaked occlusion.
 pub const BLUR_SKY_ABS: f64 = 0.02;
-/// Blur: RMSE against the reference on a real SAO buffer (listing 0.046 with its wider
-/// weights, rewrite 0.000; no edge weight 0.080, no normalisation 0.112).
+/// Blur: within the blur's reach of the texture's border, where only the outermost texels are
+/// occluded, the output may differ by this much from the shader's own output beside an occluded
+/// band 9 texels wide inside the texture, which is what clamped reads see (listing and rewrite:
+/// 0.000; reads left unclamped 0.48; clamped to `textureSize(…).yx - 1` 0.52).
+pub const BLUR_BORDER_ABS: f64 = 0.05;
+/// Blur: RMSE against the reference on a real SAO buffer (listing 0.032 with its wider
+/// weights, rewrite 0.000; no edge weight 0.072, no normalisation 0.112).
 pub const BLUR_RMSE: f64 = 0.07;
 /// sao.frag at lesson 6: the normal's y may differ from the checkpoint's by this much at a pixel...
 pub const CHECKPOINT_NORMAL_ABS: f64 = 0.02;
@@ -90,7 +104,7 @@ pub const CHECKPOINT_NORMAL_ABS: f64 = 0.02;
 pub const CHECKPOINT_LEVEL_ABS: f64 = 0.01;
 /// Lessons 6 and 7: the fraction of the pixels (of the three SAO scenes) that may differ by more.
 /// The listings and the rewrite: 0; the normal flipped 0.38 (walls facing the camera have y = 0
-/// either way), `logMipOffset = 4` 0.85, the other lesson's debug view 0.88.
+/// either way), `logMipOffset = 4` 0.84, the other lesson's debug view 0.88.
 pub const CHECKPOINT_BAD_FRACTION: f64 = 0.01;
 /// simple.frag: the largest difference allowed in any channel of the copy and of the composite,
 /// against the project's `simple.frag` on the same inputs. The listing and the rewrite
@@ -98,3 +112,8 @@ pub const CHECKPOINT_BAD_FRACTION: f64 = 0.01;
 /// the mistakes differ by whole channels: red broadcast 0.98, alpha 1 0.76, `.bgra` 0.98, upside
 /// down 0.76, nearest texels on the 2× magnification 0.39.
 pub const SIMPLE_ABS: f64 = 1e-3;
+/// A program that leaves an input unread fails with the output's Inf or NaN instead when more than
+/// this fraction of what it writes is Inf or NaN: a shader writing a constant Inf writes it
+/// everywhere (1.0) and reads nothing, the compiler having dropped every input; a shader that only
+/// misses one uniform writes finite values (0.0).
+pub const NONFINITE_OVER_UNREAD: f64 = 0.5;

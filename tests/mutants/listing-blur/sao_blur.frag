@@ -22,6 +22,7 @@ void main()
 {
   // ピクセルの遮蔽率と深度値を取得
   ivec2 uv = ivec2(gl_FragCoord.xy);
+  ivec2 maxUV = textureSize(texColor, 0) - 1;
   outColor = texelFetch(texColor, uv, 0);
   float depth = texelFetch(texDepth, uv, 0).x;
 
@@ -44,7 +45,7 @@ void main()
       float weight = gaussian[abs(x)] * gaussian[abs(y)];
 
       // 中心との深度値の差によって物体の境界を判定し、ウェイトを調整
-      ivec2 sampleUV = uv + ivec2(x, y) * blurScale;
+      ivec2 sampleUV = clamp(uv + ivec2(x, y) * blurScale, ivec2(0), maxUV);
       float sampleDepth = texelFetch(texDepth, sampleUV, 0).x;
       weight *= max(0.0, 1.0 - edgeSharpness * abs(sampleDepth - depth));
 

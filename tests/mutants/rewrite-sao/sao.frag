@@ -46,6 +46,9 @@ void main()
 
   float rTex = saoInfo.y / z;
   float rPix = rTex * float(textureSize(texDepth, 0).y);
+  // round on screen: one texture-coordinate unit is wider than high
+  vec2 texels = vec2(textureSize(texDepth, 0));
+  vec2 squash = vec2(texels.y / texels.x, 1.0);
   float a = 2.0 * PI * Hash(ivec2(gl_FragCoord.xy));
   float step = 2.0 * PI * TURNS / float(SAMPLES);
   mat2 rot = mat2(cos(step), sin(step), -sin(step), cos(step));
@@ -59,7 +62,7 @@ void main()
   while (i < SAMPLES) {
     float t = (float(i) + 0.5) / float(SAMPLES);
     int level = clamp(findMSB(int(t * rPix)) - 3, 0, 3);
-    sum += SampleAO(p, n, inTexcoord + t * rTex * dir, float(level));
+    sum += SampleAO(p, n, inTexcoord + t * rTex * dir * squash, float(level));
     dir = rot * dir;
     ++i;
   }

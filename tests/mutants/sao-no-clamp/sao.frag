@@ -55,6 +55,8 @@ void main()
   // ワールド座標系とスクリーン座標系のサンプリング半径
   float radiusTS = RADIUS_IN_TEXCOORDS / depth;
   float pixelsSS = radiusTS * textureSize(texDepth, 0).y;
+  // 正誤 20: テクスチャ座標の円はアスペクト比で横に伸びるので補正する
+  vec2 aspectFix = vec2(float(textureSize(texDepth, 0).y) / textureSize(texDepth, 0).x, 1);
 
   float occlusion = 0; // 遮蔽率
   for (int i = 0; i < samplingCount; ++i) {
@@ -64,7 +66,7 @@ void main()
     vec2 unitOffset = vec2(cos(angle), sin(angle));
 
     // サンプル点の視点座標を求める
-    vec2 uv = inTexcoord + ratio * radiusTS * unitOffset;
+    vec2 uv = inTexcoord + ratio * radiusTS * unitOffset * aspectFix;
 
     // 距離が遠いほど高いミップレベルを選択
     int mipLevel = clamp(findMSB(int(ratio * pixelsSS)) - logMipOffset, 0, maxMipLevel);

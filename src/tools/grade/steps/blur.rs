@@ -2,8 +2,11 @@
 //! depth edge, a noisy flat surface and sky; the edge must stay sharp, the flat surface must be
 //! smoothed with its mean kept, nothing may leak into the sky, the response to a single occluded
 //! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
-//! mirror-symmetric, and the RMSE against the project's `sao_blur.frag` is bounded (loosely: the
-//! lesson's listing has wider weights).
+//! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks:
+//! within its reach of the border, the output must equal the shader's own beside an equally
+//! occluded band inside the texture), and the RMSE against the project's `sao_blur.frag` is bounded
+//! (loosely: the lesson's listing has wider weights). The buffers are wider than high, so x and y
+//! cannot be swapped unseen.
 
 use crate::ao::AoSettings;
 use crate::i18n::Text;
@@ -17,8 +20,8 @@ use crate::tools::grade::tol;
 use anyhow::Result;
 use std::collections::BTreeMap;
 
-/// Size of the buffers in the blur step (square).
-pub const BLUR_SIZE: u32 = 128;
+/// Size of the buffers in the blur step (wider than high, so that x and y cannot be swapped unseen).
+pub const BLUR_SIZE: (u32, u32) = (160, 112);
 
 /// A hash in [0, 1) for reproducible noise.
 fn noise(x: usize, y: usize) -> f32 {
@@ -72,6 +75,70 @@ fn impulse_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
         occ[y * w + x] = 1.0;
     }
     (vec![5.0; w * h], occ)
+}
+
+/// A flat surface at 5 m, open but for its outermost ring of texels, fully occluded. Within the
+/// blur's reach of the border, taps past it read the border texel again when clamped to the
+/// texture, as the lesson asks, and nothing (or whatever the driver returns) when they are not.
+fn border_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let occ = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            f32::from(u8::from(x == 0 || y == 0 || x == w - 1 || y == h - 1))
+        })
+        .collect();
+    (vec![5.0; w * h], occ)
+}
+
+/// Where `band_panel` has its bands: the columns `BAND_X - 8 ..= BAND_X` and the rows
+/// `h - BAND_FROM_TOP - 8 ..= h - BAND_FROM_TOP`.
+const BAND_X: usize = 40;
+const BAND_FROM_TOP: usize = 20;
+
+/// The same surface inside the texture: an occluded band as wide as the blur's reach plus one
+/// (9 texels) down the columns `BAND_X`, and one across the rows. Blurred, a pixel k texels beside a
+/// band sees what a pixel k texels inside the border sees when the reads past it are clamped (the
+/// border texel repeated over the blur's reach), with the shader's own weights.
+fn band_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let top = h - BAND_FROM_TOP;
+    let occ = (0..w * h)
+        .map(|i| {
+            let (x, y) = (i % w, i / w);
+            f32::from(u8::from(
+                (BAND_X - 8..=BAND_X).contains(&x) || (top - 8..=top).contains(&y),
+            ))
+        })
+        .collect();
+    (vec![5.0; w * h], occ)
+}
+
+/// Compares the blur of `border_panel` (`s`) within the blur's reach of each side with the blur of
+/// `band_panel` (`bands`) beside the matching band, away from corners and the other band; returns
+/// the largest difference as (difference, x, y, expected).
+fn border_fault(s: &[f32], bands: &[f32], w: usize, h: usize) -> (f64, usize, usize, f32) {
+    let top = h - BAND_FROM_TOP;
+    let mut worst = (0.0f64, 0, 0, 0.0f32);
+    let mut compare = |x: usize, y: usize, ex: usize, ey: usize| {
+        let (got, expected) = (s[y * w + x], bands[ey * w + ex]);
+        let d = (got - expected) as f64;
+        // A NaN is the worst difference there is.
+        if d.abs() > worst.0.abs() || (d.is_nan() && !worst.0.is_nan()) {
+            worst = (d, x, y, expected);
+        }
+    };
+    for k in 0..8 {
+        // Left and right sides, on rows clear of the corners and of the band across.
+        for y in 20..top - 20 {
+            compare(k, y, BAND_X + k, y);
+            compare(w - 1 - k, y, BAND_X - 8 - k, y);
+        }
+        // Bottom and top sides, on columns clear of the corners and of the band down.
+        for x in BAND_X + 20..w - 20 {
+            compare(x, k, x, top + k);
+            compare(x, h - 1 - k, x, top - 8 - k);
+        }
+    }
+    worst
 }
 
 /// The impulse responses around `IMPULSES` in `v`, each as (dx, dy) → value.
@@ -156,10 +223,13 @@ struct Runs {
     /// The impulse panel, the reference's and the student's.
     reference_c: Vec<f32>,
     raw_c: Vec<f32>,
+    /// The student's blur of the border panel and of the band panel.
+    raw_d: Vec<f32>,
+    raw_e: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
-    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let (w, h) = (BLUR_SIZE.0 as usize, BLUR_SIZE.1 as usize);
     let scene = &sao_scenes(BLUR_SIZE)[0];
     let depth_a = scene.depth();
     let occ_a = run_sao(
@@ -178,6 +248,10 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let (depth_c, occ_c) = impulse_panel(w, h);
     let reference_c = run_blur(&rig.reference, &rig.meshes, &depth_c, &occ_c)?;
     let raw_c = run_blur(&rig.student, &rig.meshes, &depth_c, &occ_c)?;
+    let (depth_d, occ_d) = border_panel(w, h);
+    let raw_d = run_blur(&rig.student, &rig.meshes, &depth_d, &occ_d)?;
+    let (depth_e, occ_e) = band_panel(w, h);
+    let raw_e = run_blur(&rig.student, &rig.meshes, &depth_e, &occ_e)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -187,12 +261,14 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         raw_b,
         reference_c,
         raw_c,
+        raw_d,
+        raw_e,
     })
 }
 
 /// Grades the student's blur pass of `rig`.
 pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
-    let (w, h) = (BLUR_SIZE as usize, BLUR_SIZE as usize);
+    let (w, h) = (BLUR_SIZE.0 as usize, BLUR_SIZE.1 as usize);
     let far = sao_scenes(BLUR_SIZE)[0].camera.far;
     let Runs {
         depth_a,
@@ -203,6 +279,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         raw_b,
         reference_c: r_c,
         raw_c,
+        raw_d,
+        raw_e,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -212,6 +290,8 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         .iter()
         .chain(&raw_b)
         .chain(&raw_c)
+        .chain(&raw_d)
+        .chain(&raw_e)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -255,6 +335,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         }
     }
     let rmse = (sq / cnt.max(1) as f64).sqrt();
+    let border = border_fault(&raw_d, &raw_e, w, h);
     let mut metrics = BTreeMap::new();
     metrics.insert("flat_mean_in".into(), in_mean);
     metrics.insert("flat_mean_out".into(), out_mean);
@@ -267,6 +348,11 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("sky_max".into(), sky_max);
     metrics.insert("rmse".into(), rmse);
     metrics.insert("nan".into(), nan as f64);
+    metrics.insert(
+        crate::tools::grade::rig::NONFINITE_METRIC.into(),
+        nan as f64 / (5 * w * h) as f64,
+    );
+    metrics.insert("border_difference".into(), border.0);
     let panels = vec![
         Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
         Panel::absolute(w, h, r_b, s_b, Shade::Occlusion, 0.25),
@@ -332,6 +418,20 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     }
     if let Some(fault) = impulse_fault(&raw_c, &r_c, w) {
         return verdict(false, fault);
+    }
+    if border.0.abs() > tol::BLUR_BORDER_ABS {
+        let (x, y) = (border.1, border.2);
+        let (got, expected) = (f2(raw_d[y * w + x] as f64), f2(border.3 as f64));
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.blur_border",
+                x = x,
+                y = y,
+                got = got,
+                expected = expected
+            ),
+        );
     }
     if rmse > tol::BLUR_RMSE {
         let (x, y) = (worst.1 % w, worst.1 / w);

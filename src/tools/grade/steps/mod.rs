@@ -7,6 +7,7 @@ mod restore;
 mod sao;
 mod sao_checkpoint;
 mod sao_isotropy;
+mod sao_measure;
 mod simple;
 
 pub use blur::{blur, BLUR_SIZE};

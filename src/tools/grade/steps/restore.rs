@@ -121,6 +121,10 @@ pub fn restore(rig: &Rig, cam: &Camera) -> Verdict {
     metrics.insert("worst_error_over_tolerance".into(), worst.0);
     metrics.insert("texels_out_of_tolerance".into(), bad as f64);
     metrics.insert("probe_10m".into(), got[probe] as f64);
+    metrics.insert(
+        crate::tools::grade::rig::NONFINITE_METRIC.into(),
+        nonfinite as f64 / nb as f64,
+    );
     let panels = vec![Panel {
         width: bw,
         height: bh,

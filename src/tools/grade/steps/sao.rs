@@ -1,292 +1,30 @@
 //! The SAO step (`sao.frag`): three ray-cast box scenes (a wall on a floor with a crate; a wall
-//! seen head-on with a step; a wall seen head-on with a raised panel), 160×160, the same mip chain
-//! for both shaders. Checked: NaN; values above 1 (not normalised, when clamping does not hide it);
-//! creases occluded (≥ half the reference's); open flat surfaces ≈ 0; the occlusion of a band beside
-//! the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels facing the
-//! camera and away from depth edges (the per-pixel noise may differ, and the lesson's listing has no
-//! mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and at depth edges
-//! they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing the camera
-//! end up equal); the same occlusion in every direction (`sao_isotropy`); and that far samples
-//! come from mip levels 1–3 and near ones from level 0 (the output must move when levels 1–3 are
-//! emptied, about as much as the project's does: not much less, not far more).
+//! seen head-on with a step; a wall seen head-on with a raised panel), 240×160, the same mip chain
+//! for both shaders (`sao_measure`). Checked: NaN and Inf; values above 1 (not normalised, when
+//! clamping does not hide it); creases occluded (≥ half the reference's); weak occlusion not the
+//! reference's times one factor (a sum never divided by N); the same occlusion in every direction
+//! (`sao_isotropy`; told here when it is stretched along x or y, an aspect correction wrong or
+//! missing, which distorts every measure after it); open flat surfaces ≈ 0; the occlusion of a band
+//! beside the panel (the falloff's shape); the mean and the RMSE of 8×8 block means over pixels
+//! facing the camera and away from depth edges (the per-pixel noise may differ, and the lesson's
+//! listing has no mip-bias or edge guard, which this port's `sao.frag` adds: on grazing surfaces and
+//! at depth edges they legitimately differ); the 2×2 smoothing (diagonal pixels of each quad facing
+//! the camera end up equal), from the lesson that teaches it on; the direction check again, for a
+//! spread not along an axis; and that far samples come from mip levels 1–3 and near ones from
+//! level 0 (the output must move when levels 1–3 are emptied, about as much as the project's does:
+//! not much less, not far more).
 
+use super::sao_measure::{measure, mip_change, Measured, ProbeResult};
 use crate::ao::AoSettings;
 use crate::i18n::Text;
-use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
-use crate::tools::grade::passes::{run_sao, run_sao_pair, Mips};
-use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
-use crate::tools::grade::scene::{sao_scenes, ProbeKind, SynthScene};
+use crate::tools::grade::scene::{sao_scenes, ProbeKind};
 use crate::tools::grade::tol;
-use anyhow::Result;
 use std::collections::BTreeMap;
 
-/// Size of `texSAODepth` level 0 in the SAO step (square).
-pub const SAO_SIZE: u32 = 160;
-/// Relative depth change per texel below which a surface counts as facing the camera.
-const FLAT_SLOPE: f32 = 0.01;
-
-/// One probe's mean occlusion, the student's (`got`, `raw`) and the reference's (`expected`).
-struct ProbeResult {
-    scene: &'static str,
-    name: &'static str,
-    kind: ProbeKind,
-    got: f64,
-    /// Before clamping to [0, 1] (what the shader wrote).
-    raw: f64,
-    expected: f64,
-}
-
-/// Mean |a − b| over non-sky pixels (after the R8 clamp).
-fn mean_abs_change(a: &[f32], b: &[f32], depth: &[f32], far: f32) -> f64 {
-    let (mut sum, mut n) = (0.0f64, 0usize);
-    for i in 0..depth.len() {
-        if depth[i] < far {
-            sum += (as_r8(a[i]) - as_r8(b[i])).abs() as f64;
-            n += 1;
-        }
-    }
-    sum / n.max(1) as f64
-}
-
-/// Pixels away from depth edges: every depth within 2 texels is within 5% of this one (the
-/// lesson's normal from dFdx/dFdy is meaningless at an edge; the reference leaves edges open).
-fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
-    let mut m = vec![false; w * h];
-    for y in 0..h {
-        for x in 0..w {
-            let d0 = depth[y * w + x];
-            if d0 >= far {
-                continue;
-            }
-            let mut ok = true;
-            for yy in y.saturating_sub(2)..=(y + 2).min(h - 1) {
-                for xx in x.saturating_sub(2)..=(x + 2).min(w - 1) {
-                    ok &= (depth[yy * w + xx] - d0).abs() <= 0.05 * d0;
-                }
-            }
-            m[y * w + x] = ok;
-        }
-    }
-    m
-}
-
-/// Aligned 2×2 quads (even x and y) whose four pixels lie away from depth edges on surfaces facing
-/// the camera squarely (depth changing by under 2 cm per texel, as the lesson's 2×2 smoothing asks
-/// before it runs): (such quads, those whose diagonal pixels differ by more than
-/// `tol::SAO_QUAD_SPREAD`). The lesson's smoothing (x, then y of the result) leaves the quad's mean
-/// in all four pixels; taking both derivatives first, as a correct rewrite may, leaves each diagonal
-/// pair the mean of the other pair. Either way the diagonal pixels are equal; without the smoothing,
-/// or with its sign or pixel parity wrong, they are not.
-fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> (usize, usize) {
-    let (mut quads, mut uneven) = (0, 0);
-    for y in (2..h.saturating_sub(3)).step_by(2) {
-        for x in (2..w.saturating_sub(3)).step_by(2) {
-            let px = [(x, y), (x + 1, y + 1), (x + 1, y), (x, y + 1)].map(|(a, b)| b * w + a);
-            let square = px.iter().all(|&i| {
-                clean[i]
-                    && (depth[i + 1] - depth[i - 1]).abs() < 0.02
-                    && (depth[i + w] - depth[i - w]).abs() < 0.02
-            });
-            if !square {
-                continue;
-            }
-            quads += 1;
-            let apart =
-                |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
-            if apart(0, 1) || apart(2, 3) {
-                uneven += 1;
-            }
-        }
-    }
-    (quads, uneven)
-}
-
-/// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
-/// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
-/// those also facing the camera (`flat`).
-struct Measured {
-    panels: Vec<Panel>,
-    /// Non-sky pixels.
-    count: usize,
-    /// Non-sky pixels that are NaN or Inf, above `tol::SAO_RAW_MAX`, below −0.01.
-    nan: usize,
-    over: usize,
-    negative: usize,
-    sum_s: f64,
-    sum_r: f64,
-    sum_raw: f64,
-    clean_s: f64,
-    clean_r: f64,
-    clean_n: usize,
-    flat_s: f64,
-    flat_r: f64,
-    flat_n: usize,
-    max_raw: f64,
-    /// Sum of squared differences of 8×8 block means, and the number of blocks.
-    blocks_sq: (f64, usize),
-    /// The largest block difference: (difference, scene, x, y).
-    worst_block: (f64, &'static str, usize, usize),
-    probes: Vec<ProbeResult>,
-    sky_max: f64,
-    /// Quads checked for the 2×2 smoothing, and those left uneven (`quad_parity`).
-    quads: (usize, usize),
-}
-
-fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
-    let mut panels = vec![];
-    let (mut sum_s, mut sum_r, mut sum_raw, mut count) = (0.0f64, 0.0f64, 0.0f64, 0usize);
-    let (mut clean_s, mut clean_r, mut clean_n) = (0.0f64, 0.0f64, 0usize);
-    let (mut flat_s, mut flat_r, mut flat_n) = (0.0f64, 0.0f64, 0usize);
-    let (mut nan, mut over, mut negative) = (0usize, 0usize, 0usize);
-    let mut max_raw = 0.0f64;
-    let mut blocks_sq = (0.0f64, 0usize);
-    let mut worst_block = (0.0f64, "", 0usize, 0usize);
-    let mut probes = vec![];
-    let mut sky_max = 0.0f64;
-    let mut quads = (0usize, 0usize);
-    for scene in scenes {
-        let (w, h) = (scene.width as usize, scene.height as usize);
-        let depth = scene.depth();
-        let far = scene.camera.far;
-        let (r, raw) = run_sao_pair(
-            &rig.reference,
-            &rig.student,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            params,
-        )?;
-        let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
-        let clean = clean_mask(&depth, w, h, far);
-        let flat: Vec<bool> = (0..w * h)
-            .map(|i| {
-                let (x, y) = (i % w, i / w);
-                if !clean[i] || x == 0 || y == 0 || x == w - 1 || y == h - 1 {
-                    return false;
-                }
-                let sx = (depth[i + 1] - depth[i - 1]).abs() * 0.5;
-                let sy = (depth[i + w] - depth[i - w]).abs() * 0.5;
-                (sx + sy) / depth[i] < FLAT_SLOPE
-            })
-            .collect();
-        for i in 0..w * h {
-            if depth[i] >= far {
-                // Sky: what SAO writes there is never seen (the sky is drawn over it and the
-                // blur skips it), so it is not graded.
-                sky_max = sky_max.max(s[i] as f64);
-                continue;
-            }
-            count += 1;
-            if !raw[i].is_finite() {
-                nan += 1;
-                continue;
-            }
-            sum_raw += raw[i] as f64;
-            max_raw = max_raw.max(raw[i] as f64);
-            if raw[i] as f64 > tol::SAO_RAW_MAX {
-                over += 1;
-            }
-            if raw[i] < -0.01 {
-                negative += 1;
-            }
-            sum_s += s[i] as f64;
-            sum_r += r[i] as f64;
-            if flat[i] {
-                flat_s += s[i] as f64;
-                flat_r += r[i] as f64;
-                flat_n += 1;
-            }
-            if clean[i] {
-                clean_s += s[i] as f64;
-                clean_r += r[i] as f64;
-                clean_n += 1;
-            }
-        }
-        let (q, uneven) = quad_parity(&s, &depth, &clean, w, h);
-        quads = (quads.0 + q, quads.1 + uneven);
-        let bs = block_means(&s, &flat, w, h, 8);
-        let br = block_means(&r, &flat, w, h, 8);
-        for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
-            if let (Some(a), Some(b)) = (a, b) {
-                let d = a - b;
-                blocks_sq.0 += d * d;
-                blocks_sq.1 += 1;
-                if d.abs() > worst_block.0.abs() {
-                    worst_block = (d, scene.name, (k % (w / 8)) * 8 + 4, (k / (w / 8)) * 8 + 4);
-                }
-            }
-        }
-        for p in &scene.probes {
-            let a = scene.project(p.at);
-            let b = match p.to {
-                Some(to) => scene.project(to),
-                None => a,
-            };
-            let grow = |(x, y): (usize, usize), d: isize| {
-                (
-                    (x as isize + d).clamp(0, w as isize - 1) as usize,
-                    (y as isize + d).clamp(0, h as isize - 1) as usize,
-                )
-            };
-            let (a, b) = if p.to.is_some() {
-                (a, b)
-            } else {
-                (grow(a, -2), grow(b, 2))
-            };
-            probes.push(ProbeResult {
-                scene: scene.name,
-                name: p.name,
-                kind: p.kind,
-                got: rect_mean(&s, w, a, b, |v| v),
-                raw: rect_mean(&raw, w, a, b, |v| if v.is_finite() { v } else { 0.0 }),
-                expected: rect_mean(&r, w, a, b, |v| v),
-            });
-        }
-        panels.push(Panel::absolute(w, h, r, s, Shade::Occlusion, 0.5));
-    }
-    Ok(Measured {
-        panels,
-        count,
-        nan,
-        over,
-        negative,
-        sum_s,
-        sum_r,
-        sum_raw,
-        clean_s,
-        clean_r,
-        clean_n,
-        flat_s,
-        flat_r,
-        flat_n,
-        max_raw,
-        blocks_sq,
-        worst_block,
-        probes,
-        sky_max,
-        quads,
-    })
-}
-
-/// How much emptying mip levels 1–3 moves the output, summed over `scenes`: (student, reference).
-fn mip_change(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<(f64, f64)> {
-    let (mut mip_s, mut mip_r) = (0.0f64, 0.0f64);
-    for scene in scenes {
-        let depth = scene.depth();
-        let far = scene.camera.far;
-        let run = |lesson, mips| run_sao(lesson, &rig.meshes, &scene.camera, &depth, params, mips);
-        let change = |lesson| -> Result<f64> {
-            let with = run(lesson, Mips::Filled)?;
-            let without = run(lesson, Mips::Emptied)?;
-            Ok(mean_abs_change(&with, &without, &depth, far))
-        };
-        mip_r += change(&rig.reference)?;
-        mip_s += change(&rig.student)?;
-    }
-    Ok((mip_s, mip_r))
-}
+/// Size of `texSAODepth` level 0 in the SAO step (3:2, so that x and y cannot be swapped unseen).
+pub const SAO_SIZE: (u32, u32) = (240, 160);
 
 /// A probe's or scene's name (`scene.rs`) in the language `l`.
 pub(super) fn place(l: &str, name: &str) -> String {
@@ -307,13 +45,47 @@ pub(super) fn place(l: &str, name: &str) -> String {
     .into_owned()
 }
 
-/// Grades the student's SAO pass of `rig`.
-pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
+/// The quartiles of `v` (at least 4 values).
+fn quartiles(v: &[f64]) -> Option<[f64; 3]> {
+    if v.len() < 4 {
+        return None;
+    }
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    Some([1, 2, 3].map(|k| v[k * (v.len() - 1) / 4]))
+}
+
+/// Whether the occlusion is the reference's times one factor wherever it is weak (the student's 8×8
+/// block means ÷ the reference's, `ratios`): the sum scaled wrong after the loop, most often never
+/// divided by the sample count `samples`. Adds the quartiles to `metrics`.
+fn scaled(ratios: &[f64], samples: u32, metrics: &mut BTreeMap<String, f64>) -> Option<Text> {
+    let [lo, mid, hi] = quartiles(ratios)?;
+    // The quartiles' ratio is reported only: a wrong falloff spreads the ratios about as little.
+    metrics.insert("scale_blocks".into(), ratios.len() as f64);
+    metrics.insert("scale_median".into(), mid);
+    metrics.insert("scale_quartiles".into(), hi / lo.max(1e-9));
+    if mid < tol::SAO_SCALE_MIN {
+        return None;
+    }
+    let times = format!("{mid:.1}");
+    Some(if (mid / samples as f64 - 1.0).abs() < 0.25 {
+        say!("grade.verdict.sao_scaled_count", times = times, n = samples)
+    } else {
+        say!("grade.verdict.sao_scaled", times = times)
+    })
+}
+
+/// Grades the student's SAO pass of `rig` as lesson step `lesson` has it (`None`: finished): before
+/// `SAO_SMOOTHING_STEP` the 2×2 smoothing is not taught yet, so it is neither asked for nor told.
+pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
+    let smoothing_step = crate::tools::lesson::SAO_SMOOTHING_STEP;
+    let smoothing_taught = lesson.is_none_or(|n| n >= smoothing_step);
     let scenes = sao_scenes(SAO_SIZE);
     let Measured {
         panels,
         count,
         nan,
+        inf,
         over,
         negative,
         sum_s,
@@ -330,6 +102,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         worst_block,
         probes,
         sky_max,
+        block_ratios,
         quads,
     } = match measure(rig, params, &scenes) {
         Ok(m) => m,
@@ -356,6 +129,10 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("max_raw".into(), max_raw);
     metrics.insert("block_rmse".into(), rmse);
     metrics.insert("nan_fraction".into(), nan as f64 / n);
+    metrics.insert(
+        crate::tools::grade::rig::NONFINITE_METRIC.into(),
+        nan as f64 / n,
+    );
     metrics.insert("over_one_fraction".into(), over as f64 / n);
     metrics.insert("negative_fraction".into(), negative as f64 / n);
     metrics.insert("sky_max".into(), sky_max);
@@ -376,6 +153,20 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             p.expected,
         );
     }
+    let scale = scaled(&block_ratios, params.samples, &mut metrics);
+    // The same occlusion in every direction: told early when it is stretched along an axis (an
+    // aspect correction wrong or missing distorts every measure after this one).
+    let (aniso_s, aniso_r, stretched) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE)
+    {
+        Ok(a) => a,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+    metrics.insert("anisotropy".into(), aniso_s);
+    metrics.insert("anisotropy_reference".into(), aniso_r);
+    let (spread, spread_reference) = (
+        format!("{:.0}", 100.0 * aniso_s),
+        format!("{:.0}", 100.0 * aniso_r),
+    );
     let verdict = |passed: bool, message: Text| Verdict {
         passed,
         message,
@@ -403,7 +194,17 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
     }
     if nan as f64 > tol::SAO_BAD_PIXEL_FRACTION * n {
         let percent = format!("{:.1}", 100.0 * nan as f64 / n);
-        return verdict(false, say!("grade.verdict.sao_nan", percent = percent));
+        // Inf is a division by zero or an overflow; NaN alone, most often normalize() of a zero
+        // vector.
+        return verdict(
+            false,
+            if inf > 0 {
+                let inf = format!("{:.1}", 100.0 * inf as f64 / n);
+                say!("grade.verdict.sao_inf", percent = percent, inf = inf)
+            } else {
+                say!("grade.verdict.sao_nan", percent = percent)
+            },
+        );
     }
     let creases: Vec<&ProbeResult> = probes
         .iter()
@@ -463,6 +264,19 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             .into_owned()
         });
         return verdict(false, message);
+    }
+    if let Some(message) = scale {
+        return verdict(false, message);
+    }
+    if stretched && aniso_s > tol::SAO_ANISOTROPY {
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.sao_stretched",
+                spread = spread,
+                reference = spread_reference
+            ),
+        );
     }
     if let Some(p) = probes.iter().find(|p| {
         p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
@@ -530,7 +344,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             },
         );
     }
-    if uneven > tol::SAO_UNEVEN_QUADS {
+    if smoothing_taught && uneven > tol::SAO_UNEVEN_QUADS {
         return verdict(false, {
             let percent = format!("{:.0}", 100.0 * uneven);
             say!("grade.verdict.sao_no_smoothing", percent = percent)
@@ -560,13 +374,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         Err(e) => return Verdict::grader_error(&e),
     };
     let mip_use = mip_s / mip_r.max(1e-9);
-    let (aniso_s, aniso_r) = match super::sao_isotropy::anisotropy(rig, params, SAO_SIZE) {
-        Ok(a) => a,
-        Err(e) => return Verdict::grader_error(&e),
-    };
     let mut metrics = metrics.clone();
-    metrics.insert("anisotropy".into(), aniso_s);
-    metrics.insert("anisotropy_reference".into(), aniso_r);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
@@ -589,16 +397,12 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         );
     }
     if aniso_s > tol::SAO_ANISOTROPY {
-        let (spread, reference) = (
-            format!("{:.0}", 100.0 * aniso_s),
-            format!("{:.0}", 100.0 * aniso_r),
-        );
         return verdict(
             false,
             say!(
                 "grade.verdict.sao_anisotropy",
                 spread = spread,
-                reference = reference
+                reference = spread_reference
             ),
         );
     }
@@ -637,7 +441,7 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
             })
             .collect::<Vec<_>>()
             .join(", ");
-        let note = if overflow {
+        let mut note = if overflow {
             rust_i18n::t!(
                 "grade.verdict.sao_pass_overflow_note",
                 locale = l,
@@ -647,6 +451,13 @@ pub fn sao(rig: &Rig, params: &AoSettings) -> Verdict {
         } else {
             String::new()
         };
+        if !smoothing_taught {
+            note.push_str(&rust_i18n::t!(
+                "grade.verdict.sao_pass_smoothing_later_note",
+                locale = l,
+                lesson = smoothing_step
+            ));
+        }
         rust_i18n::t!(
             "grade.verdict.sao_pass",
             locale = l,

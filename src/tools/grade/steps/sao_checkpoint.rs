@@ -49,10 +49,10 @@ fn render(rig: &Rig, lesson: u32, project_res: &Path, params: &AoSettings) -> Re
             &depth,
             params,
         )?;
-        let n = SAO_SIZE as usize;
+        let (w, h) = (SAO_SIZE.0 as usize, SAO_SIZE.1 as usize);
         panels.push(Panel::absolute(
-            n,
-            n,
+            w,
+            h,
             r.clone(),
             s.clone(),
             Shade::Occlusion,
@@ -147,13 +147,11 @@ pub fn sao_checkpoint(
             .zip(&reference)
             .position(|(s, r)| differs(*s, *r))
             .unwrap_or(0);
-        let per_scene = (SAO_SIZE * SAO_SIZE) as usize;
+        let w = SAO_SIZE.0 as usize;
+        let per_scene = w * SAO_SIZE.1 as usize;
         let scenes = sao_scenes(SAO_SIZE);
         let scene = scenes[(i / per_scene).min(scenes.len() - 1)].name;
-        let (x, y) = (
-            (i % per_scene) % SAO_SIZE as usize,
-            (i % per_scene) / SAO_SIZE as usize,
-        );
+        let (x, y) = ((i % per_scene) % w, (i % per_scene) / w);
         let (got, expected) = (format!("{:.3}", student[i]), format!("{:.3}", reference[i]));
         let percent = format!("{:.1}", 100.0 * bad_fraction);
         say!(

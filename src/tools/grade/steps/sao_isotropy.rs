@@ -2,7 +2,9 @@
 //! square panel raised in its middle: the wall is occluded along all four sides of the panel, and a
 //! shader whose samples cover the whole disc (the spiral over 2π, whatever the pixel's start angle)
 //! occludes the four bands alike. One whose samples favour some directions (a spiral over π, start
-//! angles in half the circle) darkens some sides more than others.
+//! angles in half the circle) darkens some sides more than others. One whose disc or rebuilt
+//! positions are stretched along x or y (`aspectFix` left out, `ndcToView` swapped: seen because the
+//! step's target is wider than high) occludes left and right unlike below and above.
 
 use crate::ao::AoSettings;
 use crate::math::Camera;
@@ -13,7 +15,7 @@ use crate::tools::grade::scene::{Aabb, SynthScene};
 use anyhow::Result;
 use glam::Vec3;
 
-fn panel_scene(size: u32) -> SynthScene {
+fn panel_scene((width, height): (u32, u32)) -> SynthScene {
     SynthScene {
         name: "square panel",
         camera: Camera {
@@ -25,8 +27,8 @@ fn panel_scene(size: u32) -> SynthScene {
             Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
             Aabb::new([-1.0, -1.0, -5.0], [1.0, 1.0, -4.75]),
         ],
-        width: size,
-        height: size,
+        width,
+        height,
         probes: vec![],
     }
 }
@@ -47,6 +49,14 @@ fn bands(occ: &[f32], scene: &SynthScene) -> [f64; 4] {
     ]
 }
 
+/// Whether the bands differ between the axes rather than within them: left ≈ right and bottom ≈ top,
+/// but the two pairs apart. That is a disc stretched along x or y, the aspect ratio uncorrected
+/// (or corrected on the wrong axis), not a spiral that favours some directions.
+fn stretched([l, r, b, t]: [f64; 4]) -> bool {
+    let between = ((l + r) - (b + t)).abs() * 0.5;
+    between > 2.0 * ((l - r).abs() + (b - t).abs()).max(1e-9) * 0.5
+}
+
 /// (max − min) / mean of the four bands' occlusion: 0 when the occlusion is isotropic.
 fn spread(b: [f64; 4]) -> f64 {
     let mean = b.iter().sum::<f64>() / 4.0;
@@ -56,8 +66,9 @@ fn spread(b: [f64; 4]) -> f64 {
     (hi - lo) / mean.max(1e-6)
 }
 
-/// The spread of the four bands, the student's and the reference's.
-pub fn anisotropy(rig: &Rig, params: &AoSettings, size: u32) -> Result<(f64, f64)> {
+/// The spread of the four bands, the student's and the reference's, and whether the student's is a
+/// stretched disc (`stretched`).
+pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64, bool)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
     let (r, s) = run_sao_pair(
@@ -68,5 +79,10 @@ pub fn anisotropy(rig: &Rig, params: &AoSettings, size: u32) -> Result<(f64, f64
         &depth,
         params,
     )?;
-    Ok((spread(bands(&s, &scene)), spread(bands(&r, &scene))))
+    let student = bands(&s, &scene);
+    Ok((
+        spread(student),
+        spread(bands(&r, &scene)),
+        stretched(student),
+    ))
 }

@@ -1,0 +1,294 @@
+//! What the SAO step measures (`sao` judges it): both sides' output on the step's scenes, summed
+//! over all non-sky pixels, those away from depth edges and those also facing the camera; the
+//! probes; the 8×8 block means; the 2×2 quads the smoothing evens out; NaN, Inf and out-of-range
+//! values; and how much emptying mip levels 1–3 moves each side's output.
+
+use crate::ao::AoSettings;
+use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
+use crate::tools::grade::passes::{run_sao, run_sao_pair, Mips};
+use crate::tools::grade::picture::{Panel, Shade};
+use crate::tools::grade::rig::Rig;
+use crate::tools::grade::scene::{ProbeKind, SynthScene};
+use crate::tools::grade::tol;
+use anyhow::Result;
+
+/// Relative depth change per texel below which a surface counts as facing the camera.
+const FLAT_SLOPE: f32 = 0.01;
+
+/// One probe's mean occlusion, the student's (`got`, `raw`) and the reference's (`expected`).
+pub(super) struct ProbeResult {
+    pub(super) scene: &'static str,
+    pub(super) name: &'static str,
+    pub(super) kind: ProbeKind,
+    pub(super) got: f64,
+    /// Before clamping to [0, 1] (what the shader wrote).
+    pub(super) raw: f64,
+    pub(super) expected: f64,
+}
+
+/// Mean |a − b| over non-sky pixels (after the R8 clamp).
+fn mean_abs_change(a: &[f32], b: &[f32], depth: &[f32], far: f32) -> f64 {
+    let (mut sum, mut n) = (0.0f64, 0usize);
+    for i in 0..depth.len() {
+        if depth[i] < far {
+            sum += (as_r8(a[i]) - as_r8(b[i])).abs() as f64;
+            n += 1;
+        }
+    }
+    sum / n.max(1) as f64
+}
+
+/// Pixels away from depth edges: every depth within 2 texels is within 5% of this one (the
+/// lesson's normal from dFdx/dFdy is meaningless at an edge; the reference leaves edges open).
+fn clean_mask(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
+    let mut m = vec![false; w * h];
+    for y in 0..h {
+        for x in 0..w {
+            let d0 = depth[y * w + x];
+            if d0 >= far {
+                continue;
+            }
+            let mut ok = true;
+            for yy in y.saturating_sub(2)..=(y + 2).min(h - 1) {
+                for xx in x.saturating_sub(2)..=(x + 2).min(w - 1) {
+                    ok &= (depth[yy * w + xx] - d0).abs() <= 0.05 * d0;
+                }
+            }
+            m[y * w + x] = ok;
+        }
+    }
+    m
+}
+
+/// Aligned 2×2 quads (even x and y) whose four pixels lie away from depth edges on surfaces facing
+/// the camera squarely (depth changing by under 2 cm per texel, as the lesson's 2×2 smoothing asks
+/// before it runs): (such quads, those whose diagonal pixels differ by more than
+/// `tol::SAO_QUAD_SPREAD`). The lesson's smoothing (x, then y of the result) leaves the quad's mean
+/// in all four pixels; taking both derivatives first, as a correct rewrite may, leaves each diagonal
+/// pair the mean of the other pair. Either way the diagonal pixels are equal; without the smoothing,
+/// or with its sign or pixel parity wrong, they are not.
+fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> (usize, usize) {
+    let (mut quads, mut uneven) = (0, 0);
+    for y in (2..h.saturating_sub(3)).step_by(2) {
+        for x in (2..w.saturating_sub(3)).step_by(2) {
+            let px = [(x, y), (x + 1, y + 1), (x + 1, y), (x, y + 1)].map(|(a, b)| b * w + a);
+            let square = px.iter().all(|&i| {
+                clean[i]
+                    && (depth[i + 1] - depth[i - 1]).abs() < 0.02
+                    && (depth[i + w] - depth[i - w]).abs() < 0.02
+            });
+            if !square {
+                continue;
+            }
+            quads += 1;
+            let apart =
+                |a: usize, b: usize| (s[px[a]] - s[px[b]]).abs() as f64 > tol::SAO_QUAD_SPREAD;
+            if apart(0, 1) || apart(2, 3) {
+                uneven += 1;
+            }
+        }
+    }
+    (quads, uneven)
+}
+
+/// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
+/// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
+/// those also facing the camera (`flat`).
+pub(super) struct Measured {
+    pub(super) panels: Vec<Panel>,
+    /// Non-sky pixels.
+    pub(super) count: usize,
+    /// Non-sky pixels that are NaN or Inf, above `tol::SAO_RAW_MAX`, below −0.01.
+    pub(super) nan: usize,
+    /// Of those, the pixels that are ±Inf.
+    pub(super) inf: usize,
+    pub(super) over: usize,
+    pub(super) negative: usize,
+    pub(super) sum_s: f64,
+    pub(super) sum_r: f64,
+    pub(super) sum_raw: f64,
+    pub(super) clean_s: f64,
+    pub(super) clean_r: f64,
+    pub(super) clean_n: usize,
+    pub(super) flat_s: f64,
+    pub(super) flat_r: f64,
+    pub(super) flat_n: usize,
+    pub(super) max_raw: f64,
+    /// Sum of squared differences of 8×8 block means, and the number of blocks.
+    pub(super) blocks_sq: (f64, usize),
+    /// The largest block difference: (difference, scene, x, y).
+    pub(super) worst_block: (f64, &'static str, usize, usize),
+    pub(super) probes: Vec<ProbeResult>,
+    pub(super) sky_max: f64,
+    /// Student ÷ reference of the 8×8 block means where the reference's is low enough that the
+    /// student's stays below 1 even if scaled by the sample count (a sum never averaged).
+    pub(super) block_ratios: Vec<f64>,
+    /// Quads checked for the 2×2 smoothing, and those left uneven (`quad_parity`).
+    pub(super) quads: (usize, usize),
+}
+
+pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
+    let mut panels = vec![];
+    let (mut sum_s, mut sum_r, mut sum_raw, mut count) = (0.0f64, 0.0f64, 0.0f64, 0usize);
+    let (mut clean_s, mut clean_r, mut clean_n) = (0.0f64, 0.0f64, 0usize);
+    let (mut flat_s, mut flat_r, mut flat_n) = (0.0f64, 0.0f64, 0usize);
+    let (mut nan, mut inf, mut over, mut negative) = (0usize, 0usize, 0usize, 0usize);
+    let mut max_raw = 0.0f64;
+    let mut blocks_sq = (0.0f64, 0usize);
+    let mut worst_block = (0.0f64, "", 0usize, 0usize);
+    let mut probes = vec![];
+    let mut sky_max = 0.0f64;
+    let mut quads = (0usize, 0usize);
+    let mut block_ratios = vec![];
+    let low = 0.5 / params.samples.max(1) as f64;
+    for scene in scenes {
+        let (w, h) = (scene.width as usize, scene.height as usize);
+        let depth = scene.depth();
+        let far = scene.camera.far;
+        let (r, raw) = run_sao_pair(
+            &rig.reference,
+            &rig.student,
+            &rig.meshes,
+            &scene.camera,
+            &depth,
+            params,
+        )?;
+        let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
+        let clean = clean_mask(&depth, w, h, far);
+        let flat: Vec<bool> = (0..w * h)
+            .map(|i| {
+                let (x, y) = (i % w, i / w);
+                if !clean[i] || x == 0 || y == 0 || x == w - 1 || y == h - 1 {
+                    return false;
+                }
+                let sx = (depth[i + 1] - depth[i - 1]).abs() * 0.5;
+                let sy = (depth[i + w] - depth[i - w]).abs() * 0.5;
+                (sx + sy) / depth[i] < FLAT_SLOPE
+            })
+            .collect();
+        for i in 0..w * h {
+            if depth[i] >= far {
+                // Sky: what SAO writes there is never seen (the sky is drawn over it and the
+                // blur skips it), so it is not graded.
+                sky_max = sky_max.max(s[i] as f64);
+                continue;
+            }
+            count += 1;
+            if !raw[i].is_finite() {
+                nan += 1;
+                inf += usize::from(raw[i].is_infinite());
+                continue;
+            }
+            sum_raw += raw[i] as f64;
+            max_raw = max_raw.max(raw[i] as f64);
+            if raw[i] as f64 > tol::SAO_RAW_MAX {
+                over += 1;
+            }
+            if raw[i] < -0.01 {
+                negative += 1;
+            }
+            sum_s += s[i] as f64;
+            sum_r += r[i] as f64;
+            if flat[i] {
+                flat_s += s[i] as f64;
+                flat_r += r[i] as f64;
+                flat_n += 1;
+            }
+            if clean[i] {
+                clean_s += s[i] as f64;
+                clean_r += r[i] as f64;
+                clean_n += 1;
+            }
+        }
+        let (q, uneven) = quad_parity(&s, &depth, &clean, w, h);
+        quads = (quads.0 + q, quads.1 + uneven);
+        let bs = block_means(&s, &flat, w, h, 8);
+        let br = block_means(&r, &flat, w, h, 8);
+        for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
+            if let (Some(a), Some(b)) = (a, b) {
+                if (tol::SAO_SCALE_FLOOR..=low).contains(b) {
+                    block_ratios.push(a / b);
+                }
+                let d = a - b;
+                blocks_sq.0 += d * d;
+                blocks_sq.1 += 1;
+                if d.abs() > worst_block.0.abs() {
+                    worst_block = (d, scene.name, (k % (w / 8)) * 8 + 4, (k / (w / 8)) * 8 + 4);
+                }
+            }
+        }
+        for p in &scene.probes {
+            let a = scene.project(p.at);
+            let b = match p.to {
+                Some(to) => scene.project(to),
+                None => a,
+            };
+            let grow = |(x, y): (usize, usize), d: isize| {
+                (
+                    (x as isize + d).clamp(0, w as isize - 1) as usize,
+                    (y as isize + d).clamp(0, h as isize - 1) as usize,
+                )
+            };
+            let (a, b) = if p.to.is_some() {
+                (a, b)
+            } else {
+                (grow(a, -2), grow(b, 2))
+            };
+            probes.push(ProbeResult {
+                scene: scene.name,
+                name: p.name,
+                kind: p.kind,
+                got: rect_mean(&s, w, a, b, |v| v),
+                raw: rect_mean(&raw, w, a, b, |v| if v.is_finite() { v } else { 0.0 }),
+                expected: rect_mean(&r, w, a, b, |v| v),
+            });
+        }
+        panels.push(Panel::absolute(w, h, r, s, Shade::Occlusion, 0.5));
+    }
+    Ok(Measured {
+        panels,
+        count,
+        nan,
+        inf,
+        over,
+        negative,
+        sum_s,
+        sum_r,
+        sum_raw,
+        clean_s,
+        clean_r,
+        clean_n,
+        flat_s,
+        flat_r,
+        flat_n,
+        max_raw,
+        blocks_sq,
+        worst_block,
+        probes,
+        sky_max,
+        block_ratios,
+        quads,
+    })
+}
+
+/// How much emptying mip levels 1–3 moves the output, summed over `scenes`: (student, reference).
+pub(super) fn mip_change(
+    rig: &Rig,
+    params: &AoSettings,
+    scenes: &[SynthScene],
+) -> Result<(f64, f64)> {
+    let (mut mip_s, mut mip_r) = (0.0f64, 0.0f64);
+    for scene in scenes {
+        let depth = scene.depth();
+        let far = scene.camera.far;
+        let run = |lesson, mips| run_sao(lesson, &rig.meshes, &scene.camera, &depth, params, mips);
+        let change = |lesson| -> Result<f64> {
+            let with = run(lesson, Mips::Filled)?;
+            let without = run(lesson, Mips::Emptied)?;
+            Ok(mean_abs_change(&with, &without, &depth, far))
+        };
+        mip_r += change(&rig.reference)?;
+        mip_s += change(&rig.student)?;
+    }
+    Ok((mip_s, mip_r))
+}
