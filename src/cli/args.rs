@@ -139,8 +139,8 @@ pub struct SceneArgs {
     #[arg(long, value_parser = choice(&NormalSource::ALL, NormalSource::name))]
     pub normals: Option<NormalSource>,
     /// Pixels the engine's AO covers beyond each edge of the view, so that occluders just off
-    /// screen count: auto (the default: the radius's size at the camera's focus distance, at most
-    /// 1/24 of the larger side), a number, or 0 (none).
+    /// screen count: auto (the radius's size at the camera's focus distance, at most 1/24 of the
+    /// larger side), a number, or 0 (none, the default).
     #[arg(long, value_name = "auto|PX", value_parser = GuardBand::parse)]
     pub guard_band: Option<GuardBand>,
     /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: half the radius),

@@ -26,6 +26,9 @@ fn headless_context_is_gl_4_5_core() {
 
 /// The vertex shader each fragment shader is drawn with.
 fn vertex_for(frag: &str) -> &'static str {
+    if frag == "ao/surface_normal.frag" {
+        return "ao/surface_normal.vert";
+    }
     match frag.rsplit('/').next().unwrap() {
         "standard.frag" => "standard.vert",
         "shadow.frag" => "shadow.vert",

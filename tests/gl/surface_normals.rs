@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, GtaoQuality, NormalSource};
+use opengl3d::ao::{AoMethod, GtaoQuality, GuardBand, NormalSource};
 use opengl3d::render::View;
 
 const W: u32 = 480;
@@ -22,6 +22,8 @@ fn crease(dir: &std::path::Path) -> opengl3d::scene::SceneDesc {
     );
     s.ao.method = AoMethod::Vbao;
     s.ao.quality = Some(GtaoQuality::Low);
+    // At the view's size (a guard band widens the targets; guard_band.rs tests it).
+    s.ao.guard_band = GuardBand::Off;
     s
 }
 
@@ -125,4 +127,11 @@ fn the_pass_runs_only_when_a_method_reads_normals_and_shows_in_the_stats() {
             normals.name()
         );
     }
+    // With a guard band the pass draws the widened view's depth, whatever the normals.
+    eng.ao_settings.method = AoMethod::Vbao;
+    eng.ao_settings.normals = NormalSource::Depth;
+    eng.ao_settings.guard_band = GuardBand::Auto;
+    eng.sync_shader_constants().unwrap();
+    eng.render_values(View::AoRaw).unwrap();
+    assert!(has_pass(&eng), "the guard band's depth comes from the pass");
 }

@@ -58,6 +58,16 @@ impl Engine {
         self.pass("guard band crop", "ao", || {
             crop(&self.gl, &work, targets, offset, blurred)
         });
+        // The view's own depth chain from its cropped level 0, for the views and tools that read
+        // the levels.
+        self.pass("view depth levels", "ao", || {
+            crate::ao::depth_chain::down_sample(
+                &self.gl,
+                &self.ao.depth_chain.down_sampling,
+                targets,
+                &self.meshes,
+            )
+        });
         Ok(())
     }
 }

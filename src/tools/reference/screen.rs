@@ -244,9 +244,15 @@ mod tests {
         for none in [f32::INFINITY, 5.0, 4.0, f32::NAN] {
             assert!(wall(none, 2.0).blocked(behind, deeper, 0.5), "back {none}");
             let beyond = DVec3::new(0.0, 0.0, -7.2);
-            assert!(!wall(none, 2.0).blocked(beyond, deeper, 10.0), "back {none}");
+            assert!(
+                !wall(none, 2.0).blocked(beyond, deeper, 10.0),
+                "back {none}"
+            );
             assert!(wall(none, 2.0).blocked(beyond, -deeper, 0.3), "back {none}");
-            assert!(!wall(none, 2.0).blocked(beyond, -deeper, 0.15), "back {none}");
+            assert!(
+                !wall(none, 2.0).blocked(beyond, -deeper, 0.15),
+                "back {none}"
+            );
         }
     }
 
