@@ -17,7 +17,8 @@ float UpsampledOcclusion(vec2 uv, ivec2 pix, out bool sky) {
   float z = LinearDepth(texelFetch(texMainDepth, pix, 0).x);
   sky = z >= depthPlanes.y;
   if (sky) {
-    return texture(texOcclusion, uv).x; // nothing to keep apart
+    // Nothing there to occlude: the half-size texels beside a silhouette belong to the surface.
+    return 0.0;
   }
   vec2 halfSize = vec2(textureSize(texOcclusion, 0));
   // Position in half-size texels, relative to the texel centres; the 2x2 texels around it are

@@ -245,3 +245,41 @@ fn the_blended_composites_darken_by_the_upsampled_occlusion() {
         eprintln!("{mode:?}: largest difference from lit colour x visibility {worst:.5}");
     }
 }
+
+/// Half-size AO up-sampled to the main size leaves the sky exactly open: the half-size texels beside a
+/// silhouette belong to the surface, and no sky pixel takes their occlusion.
+#[test]
+fn upsampled_ao_leaves_every_sky_pixel_open() {
+    let ctx = common::context();
+    let dir = common::temp_dir("ao-sky");
+    // The crease seen from low down: the wall's top edge and the floor's far edge meet the sky.
+    let mut scene = common::crease_scene(
+        &dir,
+        Vec3::new(3.0, 1.0, 4.0),
+        Vec3::new(0.0, 2.5, 0.0),
+        320,
+        240,
+    );
+    for method in [AoMethod::Vbao, AoMethod::Gtao, AoMethod::Sao] {
+        scene.ao.method = method;
+        let mut eng = common::engine(&ctx, &scene);
+        let vis = eng.render_values(View::Ao).unwrap();
+        let depth = eng.render_values(View::LinearDepth).unwrap();
+        let far = eng.camera.far;
+        let sky: Vec<f32> = vis
+            .iter()
+            .zip(&depth)
+            .filter(|(_, d)| **d >= far)
+            .map(|(v, _)| *v)
+            .collect();
+        let occluded = vis.iter().filter(|v| **v < 0.9).count();
+        assert!(
+            sky.len() > 1000 && occluded > 100,
+            "{}: {} sky, {occluded} occluded",
+            method.name(),
+            sky.len()
+        );
+        let leaks = sky.iter().filter(|v| **v != 1.0).count();
+        assert_eq!(leaks, 0, "{}: {leaks} sky pixels below 1", method.name());
+    }
+}
