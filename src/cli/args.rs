@@ -135,7 +135,7 @@ pub struct SceneArgs {
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
     /// Where the engine's AO methods take each pixel's normal: geometric (the triangle's own, from a
-    /// pass over the geometry; the default) or depth (rebuilt from neighbouring depths, no extra pass).
+    /// pass over the geometry) or depth (rebuilt from neighbouring depths, no extra pass; the default).
     #[arg(long, value_parser = choice(&NormalSource::ALL, NormalSource::name))]
     pub normals: Option<NormalSource>,
     /// Pixels the engine's AO covers beyond each edge of the view, so that occluders just off

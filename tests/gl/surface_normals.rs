@@ -24,6 +24,7 @@ fn crease(dir: &std::path::Path) -> opengl3d::scene::SceneDesc {
     s.ao.quality = Some(GtaoQuality::Low);
     // At the view's size (a guard band widens the targets; guard_band.rs tests it).
     s.ao.guard_band = GuardBand::Off;
+    s.ao.normals = NormalSource::Geometric;
     s
 }
 
@@ -100,10 +101,7 @@ fn the_pass_runs_only_when_a_method_reads_normals_and_shows_in_the_stats() {
         eng.last_stats().iter().any(|s| s.name == "surface normals")
     };
     eng.render_values(View::AoRaw).unwrap();
-    assert!(
-        has_pass(&eng),
-        "geometric normals (the default) run the pass"
-    );
+    assert!(has_pass(&eng), "geometric normals run the pass");
     let named = |eng: &opengl3d::render::Engine| {
         eng.ao_textures()
             .iter()

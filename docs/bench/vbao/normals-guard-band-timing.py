@@ -9,11 +9,12 @@ import json, statistics, subprocess, sys
 SETTINGS = {
     "sao-lesson": ["--method", "sao-lesson"],
     "vbao low, depth normals, no band": ["--method", "vbao", "--quality", "low", "--normals", "depth", "--guard-band", "0"],
-    "vbao low (geometric normals, auto band)": ["--method", "vbao", "--quality", "low"],
+    "vbao low, geometric normals, no band": ["--method", "vbao", "--quality", "low", "--normals", "geometric", "--guard-band", "0"],
+    "vbao low, backface, geometric normals, auto band": ["--method", "vbao", "--quality", "low", "--thickness", "backface", "--guard-band", "auto"],
     "vbao high, depth normals, no band": ["--method", "vbao", "--quality", "high", "--normals", "depth", "--guard-band", "0"],
-    "vbao high, geometric normals, no band": ["--method", "vbao", "--quality", "high", "--guard-band", "0"],
-    "vbao high (geometric normals, auto band)": ["--method", "vbao", "--quality", "high"],
-    "vbao high, backface (geometric, auto band)": ["--method", "vbao", "--quality", "high", "--thickness", "backface"],
+    "vbao high, geometric normals, no band": ["--method", "vbao", "--quality", "high", "--normals", "geometric", "--guard-band", "0"],
+    "vbao high, geometric normals, auto band": ["--method", "vbao", "--quality", "high", "--guard-band", "auto"],
+    "vbao high, backface, geometric normals, auto band": ["--method", "vbao", "--quality", "high", "--thickness", "backface", "--guard-band", "auto"],
 }
 ROUNDS = int(sys.argv[1]) if len(sys.argv) > 1 else 3
 cpu = {k: [] for k in SETTINGS}

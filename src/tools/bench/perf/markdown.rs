@@ -115,7 +115,7 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
          reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
-         scene replaced by the depth buffer (inverse depth interpolated between pixel centres, normals as the scene's engine methods read them: each triangle's own with `[ao] normals = \"geometric\"` (the default), else rebuilt from the depth buffer; as wide as the scene's `[ao] guard_band`) and every ray \
+         scene replaced by the depth buffer (inverse depth interpolated between pixel centres, normals as the scene's engine methods read them: each triangle's own with `[ao] normals = \"geometric\"`, else (the default) rebuilt from the depth buffer; as wide as the scene's `[ao] guard_band`) and every ray \
          marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
          count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
          error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
