@@ -12,6 +12,7 @@ mod closed_pipe;
 mod common;
 mod composite_modes;
 mod engine_options;
+mod error_map;
 mod gl_basics;
 mod grade;
 mod grade_class;
