@@ -74,7 +74,19 @@ pub fn compare(
     let sky_share: Vec<f32> = sky.iter().map(|s| if *s { 1.0 } else { 0.0 }).collect();
     let (sky_share, _, _) = metrics::downsample(&sky_share, ew, eh, factor);
     let sky: Vec<bool> = sky_share.iter().map(|s| *s >= 0.5).collect();
-    let diff: Vec<f32> = v.iter().zip(truth).map(|(e, t)| e - t).collect();
+    Ok(at_truth_size(&v, truth, sky, (tw, th), factor))
+}
+
+/// The map of `view`, already at the truth's size (`w`×`h`, box-averaged over `factor`²), against
+/// `truth`, leaving the `sky` pixels out of the statistics.
+pub fn at_truth_size(
+    view: &[f32],
+    truth: &[f32],
+    sky: Vec<bool>,
+    (w, h): (usize, usize),
+    factor: usize,
+) -> ErrorMap {
+    let diff: Vec<f32> = view.iter().zip(truth).map(|(e, t)| e - t).collect();
     let (se, n) = diff
         .iter()
         .zip(&sky)
@@ -83,16 +95,16 @@ pub fn compare(
             (se + (*d as f64).powi(2), n + 1)
         });
     let mse = if n == 0 { 0.0 } else { se / n as f64 };
-    Ok(ErrorMap {
-        width: tw,
-        height: th,
+    ErrorMap {
+        width: w,
+        height: h,
         diff,
         sky,
         rmse: mse.sqrt(),
         psnr: metrics::psnr_from_mse(mse),
         pixels: n,
         factor,
-    })
+    }
 }
 
 fn mix(a: [u8; 3], b: [u8; 3], f: f32) -> [u8; 3] {
