@@ -133,8 +133,10 @@ pub fn draw_scale(img: &mut RgbImage, top: u32, scale: &Scale, colour: impl Fn(f
     let at = |t: f32| x0 + (t.clamp(0.0, 1.0) * span).round() as u32;
     // Text centred on x, kept between the bar's ends (one font pixel beyond them).
     let place = |x: u32, w: u32| {
-        x.saturating_sub(w / 2)
-            .clamp(x0.saturating_sub(ZOOM), (x1 + ZOOM).saturating_sub(w).max(x0.saturating_sub(ZOOM)))
+        x.saturating_sub(w / 2).clamp(
+            x0.saturating_sub(ZOOM),
+            (x1 + ZOOM).saturating_sub(w).max(x0.saturating_sub(ZOOM)),
+        )
     };
     for (t, text) in scale.ticks {
         draw_text(img, place(at(*t), text_width(text)), ticks_y, text);

@@ -232,7 +232,11 @@ pub fn read_truth(path: &Path) -> Result<(usize, usize, Vec<f32>)> {
     if c != 1 {
         bail!(
             "{}",
-            t!("error_map.truth_channels", path = path.display(), channels = c)
+            t!(
+                "error_map.truth_channels",
+                path = path.display(),
+                channels = c
+            )
         );
     }
     Ok((w as usize, h as usize, v))

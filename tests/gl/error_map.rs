@@ -58,7 +58,8 @@ fn error_render(truth: &Path, w: u32, h: u32, out: &Path, extra: &[&str]) -> f64
 /// The colour of map pixel (x, y) in the picture (each pixel is a zoom × zoom block).
 fn colour(img: &image::RgbImage, x: usize, y: usize, width: usize) -> [u8; 3] {
     let z = error_map::zoom(width);
-    img.get_pixel((x * z + z / 2) as u32, (y * z + z / 2) as u32).0
+    img.get_pixel((x * z + z / 2) as u32, (y * z + z / 2) as u32)
+        .0
 }
 
 #[test]
@@ -131,10 +132,22 @@ fn the_engine_against_itself_is_white_and_shifted_truths_get_their_sign() {
         .map(|(x, y)| img.get_pixel(x, y).0)
         .collect();
     let count = |c: [u8; 3]| strip.iter().filter(|p| **p == c).count();
-    let blue = strip.iter().filter(|p| p[2] as i32 > p[0] as i32 + 60).count();
-    let orange = strip.iter().filter(|p| p[0] as i32 > p[2] as i32 + 60).count();
-    assert!(blue > 500 && orange > 500, "the bar: {blue} blue, {orange} orange");
-    assert!(count(TOO_DARK) > 0 && count(TOO_LIGHT) > 0, "the bar's ends");
+    let blue = strip
+        .iter()
+        .filter(|p| p[2] as i32 > p[0] as i32 + 60)
+        .count();
+    let orange = strip
+        .iter()
+        .filter(|p| p[0] as i32 > p[2] as i32 + 60)
+        .count();
+    assert!(
+        blue > 500 && orange > 500,
+        "the bar: {blue} blue, {orange} orange"
+    );
+    assert!(
+        count(TOO_DARK) > 0 && count(TOO_LIGHT) > 0,
+        "the bar's ends"
+    );
     assert!(
         count([235, 235, 235]) > 200,
         "the labels (-0.1 too dark, 0, too light +0.1, max)"
@@ -192,11 +205,15 @@ fn bad_truths_give_clear_errors() {
     let out = dir.join("e.png");
     let (m, o) = (missing.to_str().unwrap(), out.to_str().unwrap());
     fails_with(
-        &["--lang", "en", "render", "--view", "error", "--truth", m, "--out", o],
+        &[
+            "--lang", "en", "render", "--view", "error", "--truth", m, "--out", o,
+        ],
         &["nothere.pfm", "cannot read the truth"],
     );
     fails_with(
-        &["--lang", "ja", "render", "--view", "error", "--truth", m, "--out", o],
+        &[
+            "--lang", "ja", "render", "--view", "error", "--truth", m, "--out", o,
+        ],
         &["nothere.pfm", "正解画像"],
     );
     fails_with(
