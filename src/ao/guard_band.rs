@@ -205,7 +205,7 @@ mod tests {
         // 1 m at 6.2 m with a 60° field of view over 1080 rows: about 150 pixels.
         assert!((140..=160).contains(&one), "{one}");
         assert!(
-            half % 2 == 0 && (half as i32 - one as i32 / 2).abs() <= 2,
+            half.is_multiple_of(2) && (half as i32 - one as i32 / 2).abs() <= 2,
             "{half}"
         );
         assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 100.0), 480);

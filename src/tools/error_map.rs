@@ -47,7 +47,7 @@ pub struct ErrorMap {
 /// The whole factor the truth's size (`tw`×`th`) divides the engine's (`ew`×`eh`) by, the same
 /// on both axes, or an error naming both sizes.
 pub fn factor((ew, eh): (usize, usize), (tw, th): (usize, usize)) -> Result<usize> {
-    if tw > 0 && th > 0 && ew % tw == 0 && eh % th == 0 && ew / tw == eh / th {
+    if tw > 0 && th > 0 && ew.is_multiple_of(tw) && eh.is_multiple_of(th) && ew / tw == eh / th {
         return Ok(ew / tw);
     }
     bail!(
@@ -212,7 +212,7 @@ pub fn engine_view(engine: &mut Engine) -> Result<(Vec<f32>, Vec<bool>)> {
     let sky = engine
         .render_values(View::LinearDepth)?
         .iter()
-        .map(|d| !(*d < far * (1.0 - 1e-4)))
+        .map(|d| d.is_nan() || *d >= far * (1.0 - 1e-4))
         .collect();
     Ok((ao, sky))
 }

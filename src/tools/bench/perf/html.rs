@@ -48,9 +48,9 @@ fn figure(out: &mut String, src: &str, alt: &str, caption: &str) {
 pub fn html(report: &Report) -> String {
     let mut out = String::new();
     out.push_str("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"/>");
-    let _ = write!(
+    let _ = writeln!(
         out,
-        "<title>AO bench pictures</title><style>{STYLE}</style></head><body>\n"
+        "<title>AO bench pictures</title><style>{STYLE}</style></head><body>"
     );
     out.push_str("<h1>AO bench: where each method is wrong</h1>\n");
     let r = &report.reference;
