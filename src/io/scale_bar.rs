@@ -98,7 +98,7 @@ pub fn label(v: f32) -> String {
     }
 }
 
-/// Height of the strip `draw` adds under the heat map.
+/// Height of the strip `draw` and `draw_scale` add under a picture.
 pub const HEIGHT: u32 = 6 + TEXT_HEIGHT + 2 + 5 + 1 + BAR_HEIGHT + 3 + TEXT_HEIGHT + 6;
 const BAR_HEIGHT: u32 = 14;
 /// Space left and right of the bar, so the end labels fit.
@@ -106,8 +106,8 @@ const MARGIN: u32 = 10;
 
 /// What the strip under a picture shows.
 pub struct Scale<'a> {
-    /// (position along the bar in [0, 1], label) under the bar; the first and last are kept
-    /// inside the bar's ends, the others centred on their position.
+    /// (position along the bar in [0, 1], label) under the bar: each label centred on its
+    /// position, moved inwards where it would pass the bar's ends.
     pub ticks: &'a [(f32, String)],
     /// A downward triangle over the bar at this position (clamped to [0, 1], NaN at the right
     /// end), its label over it.

@@ -89,8 +89,8 @@ fn the_engine_against_itself_is_white_and_shifted_truths_get_their_sign() {
     }
     assert!(white > w * h / 2, "{white} white pixels, {sky} sky");
 
-    // The truth 0.2 brighter in the bottom-left quarter (the engine too dark there) and 0.2 darker
-    // in the bottom-right quarter (too light); at a range of 0.1 both are full colour.
+    // The truth 0.2 brighter in the left half of the bottom quarter of rows (the engine too dark
+    // there) and 0.2 darker in its right half (too light); at a range of 0.1 both are full colour.
     let mut shifted = ao.clone();
     let quarter = |x: usize, y: usize| match (y >= h * 3 / 4, x < w / 2) {
         (false, _) => 0,
