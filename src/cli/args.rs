@@ -158,14 +158,46 @@ pub struct SceneArgs {
     pub power: Option<f32>,
 }
 
+/// What `render` writes: one of the engine's views, or the AO view's error against a truth.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum RenderView {
+    Engine(View),
+    Error,
+}
+
+impl RenderView {
+    pub const ALL: [RenderView; 5] = [
+        RenderView::Engine(View::Composite),
+        RenderView::Engine(View::LinearDepth),
+        RenderView::Engine(View::AoRaw),
+        RenderView::Engine(View::Ao),
+        RenderView::Error,
+    ];
+    pub fn name(self) -> &'static str {
+        match self {
+            RenderView::Engine(v) => v.name(),
+            RenderView::Error => "error",
+        }
+    }
+}
+
 #[derive(Args, Debug)]
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 = open).
-    #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
-    pub view: View,
-    /// Output file: .png (8-bit) or .pfm (raw floats).
+    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 =
+    /// open), or `error`: the blurred AO view minus `--truth`, box-averaged to the truth's size
+    /// (too dark blue, too light orange, sky grey, with a colour scale; PSNR and RMSE on stdout).
+    #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
+    pub view: RenderView,
+    /// With `--view error`: the truth, a one-channel PFM of visibility (e.g. `opengl3d reference`'s)
+    /// at the output size divided by a whole factor.
+    #[arg(long, value_name = "FILE.pfm")]
+    pub truth: Option<PathBuf>,
+    /// With `--view error`: the error drawn at full colour (visibility units).
+    #[arg(long, default_value_t = crate::tools::error_map::DEFAULT_RANGE, allow_negative_numbers = true)]
+    pub error_range: f32,
+    /// Output file: .png (8-bit) or .pfm (raw floats; `--view error`: the signed difference).
     #[arg(long, default_value = "out/frame.png")]
     pub out: PathBuf,
     /// Print each pass of the frame (name, group, ms, draw calls) as JSON on stdout, measured on a

@@ -2,12 +2,14 @@
 
 mod args;
 mod output;
+mod render_error;
 mod res_check;
 mod scene_args;
 mod usage_errors;
 
 pub use args::{
-    parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, SceneArgs, WindowArgs,
+    parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, RenderView, SceneArgs,
+    WindowArgs,
 };
 pub use output::{write_view, OutFormat, PNG_OR_PFM};
 pub use res_check::{check_res, ResUse};
@@ -135,7 +137,9 @@ pub fn run() -> Result<()> {
             }
             let args = RenderArgs {
                 scene: SceneArgs::default(),
-                view: View::Composite,
+                view: RenderView::Engine(View::Composite),
+                truth: None,
+                error_range: crate::tools::error_map::DEFAULT_RANGE,
                 out: PathBuf::from("out/frame.png"),
                 stats: false,
             };
@@ -146,24 +150,31 @@ pub fn run() -> Result<()> {
 
 /// Renders one frame headless per `args` and writes it.
 pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
+    let view = match args.view {
+        RenderView::Error => return render_error::run(res, args),
+        RenderView::Engine(v) => v,
+    };
+    if args.truth.is_some() {
+        bail!("{}", t!("error_map.truth_needs_view"));
+    }
     OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
     let scene = load_scene(&args.scene, res)?;
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-    engine.view = args.view;
+    engine.view = view;
     if args.stats {
         // One frame first, unmeasured: the first frame compiles every shader (Mesa compiles on
         // first draw) and allocates the targets, which is not what a pass costs.
-        write_view(&mut engine, args.view, &args.out)?;
+        write_view(&mut engine, view, &args.out)?;
     }
     engine.collect_stats = args.stats;
-    write_view(&mut engine, args.view, &args.out)?;
+    write_view(&mut engine, view, &args.out)?;
     let msg = t!(
         "render.wrote",
         path = args.out.display(),
         width = scene.output.width,
         height = scene.output.height,
-        view = args.view.label(),
+        view = view.label(),
         renderer = ctx.renderer
     );
     if args.stats {

@@ -1,6 +1,7 @@
 //! Writing frames: 8-bit PNG, and Portable Float Map for raw values. Every I/O error names its file
 //! and says which of the usual causes it is (no such folder, permission denied, a folder in the way).
 
+pub mod scale_bar;
 pub mod stdout;
 
 use anyhow::{bail, Context as _, Result};

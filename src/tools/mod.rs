@@ -2,6 +2,7 @@
 //! lesson loop.
 
 pub mod bench;
+pub mod error_map;
 pub mod grade;
 pub mod lesson;
 pub mod reference;

@@ -195,6 +195,7 @@ fn tiny_bench_writes_a_complete_finite_report() {
         "{md}"
     );
     assert!(md.contains("## Error split") && md.contains("screen-space reference"));
+    crate::bench_html::check(&out, 4);
     // A second run reads the references from the cache.
     let again = perf::run(
         &ResDirs::default(),

@@ -3,6 +3,7 @@
 
 mod ao_resolution;
 mod bench;
+mod bench_html;
 mod bench_skips;
 mod bench_split;
 mod blur_stripes;
@@ -12,6 +13,7 @@ mod closed_pipe;
 mod common;
 mod composite_modes;
 mod engine_options;
+mod error_map;
 mod gl_basics;
 mod grade;
 mod grade_class;

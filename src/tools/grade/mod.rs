@@ -55,7 +55,7 @@
 //! passes), `interface` (the program against the lesson's interface), `passes` (running them),
 //! `steps/` (one file per step), `say` (messages), `measure` (shared statistics), `tol` (every
 //! tolerance, with what it was measured against); `scene` and `picture` (the SAO scenes and the
-//! PNGs) with `scale_bar` (the heat map's colour scale).
+//! PNGs, with the colour scale of `crate::io::scale_bar`).
 
 mod args;
 mod child;
@@ -73,7 +73,6 @@ mod rig;
 mod run;
 mod run_step;
 mod say;
-mod scale_bar;
 pub mod scene;
 mod staging;
 mod steps;

@@ -1,7 +1,7 @@
 //! The grader's pictures (`--out DIR`, and the class report's): expected, actual and a difference
 //! heat map per step, at least `MIN_WIDTH` pixels wide, the heat map with its colour scale.
 
-use super::scale_bar;
+use crate::io::scale_bar;
 use anyhow::{Context as _, Result};
 use std::path::{Path, PathBuf};
 

@@ -17,11 +17,14 @@
 //! sampling loses (method against screen-space reference).
 //!
 //! Files: `config.rs` (inputs), `references.rs` (ground truth), `setting.rs` (one row), `run.rs`
-//! (the loop), `report.rs` (the figures), `markdown.rs` and `chart.rs` (their presentation).
+//! (the loop), `report.rs` (the figures), `markdown.rs` and `chart.rs` (their presentation),
+//! `pictures.rs` and `html.rs` (`report.html`: truth, AO view and signed error map per setting).
 
 mod chart;
 mod config;
+mod html;
 mod markdown;
+mod pictures;
 mod references;
 mod report;
 mod run;

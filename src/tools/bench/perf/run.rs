@@ -5,7 +5,7 @@ use super::config::PerfConfig;
 use super::references::{self, Ceiling, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
-use super::{chart, markdown};
+use super::{chart, html, markdown};
 use crate::ao::{AoMethod, AoSettings};
 use crate::platform::HeadlessContext;
 use crate::render::Engine;
@@ -17,7 +17,8 @@ use anyhow::{bail, Context as _, Result};
 use std::path::PathBuf;
 use std::time::Instant;
 
-/// Runs the benchmark and writes report.json, report.md and the charts into `cfg.out`.
+/// Runs the benchmark and writes report.json, report.md, report.html (with `pictures/`) and the
+/// charts into `cfg.out`.
 pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let t0 = Instant::now();
     cfg.check()?;
@@ -164,7 +165,7 @@ fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
     Ok(plan)
 }
 
-/// report.json, report.md and (when a font is found) the charts; a chart that cannot be drawn is
+/// report.json, report.md, report.html (its pictures are written with each row) and (when a font is found) the charts; a chart that cannot be drawn is
 /// reported on stderr and the run still succeeds, the tables being the result.
 fn write_outputs(report: &Report, cfg: &PerfConfig) -> Result<()> {
     let json_path = cfg.out.join("report.json");
@@ -174,6 +175,7 @@ fn write_outputs(report: &Report, cfg: &PerfConfig) -> Result<()> {
     let md_path = cfg.out.join("report.md");
     std::fs::write(&md_path, markdown::markdown(report, cfg)?)
         .with_context(|| format!("cannot write {}", md_path.display()))?;
+    crate::io::write_file(&cfg.out.join("report.html"), html::html(report).as_bytes())?;
     if cfg.charts {
         if let Err(e) = chart::write_charts(report, &cfg.out) {
             eprintln!("charts not written: {e:#}");

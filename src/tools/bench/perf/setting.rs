@@ -43,6 +43,7 @@ pub fn run_setting(
     let timing = time_frames(engine, cfg)?;
 
     let views = ao_views(engine, sd, s, cfg)?;
+    let pictures = super::pictures::write(cfg, sd, method, s, &views)?;
     engine.camera = scene_camera;
     engine.sync_shader_constants()?;
 
@@ -93,6 +94,7 @@ pub fn run_setting(
             .map(|c| (c.raw.psnr - c.parts_psnr).abs())
             .fold(0.0, f64::max),
         cameras,
+        pictures,
     })
 }
 

@@ -1,6 +1,7 @@
-//! The colour scale under a heat map: a gradient bar from 0 to 1 (the heat map's full scale)
-//! labelled at both ends, and a marker with the largest difference the picture holds. The labels
-//! are drawn with a tiny built-in pixel font, so the grader needs no font file on the machine.
+//! The colour scale under a picture of differences: a gradient bar with labelled values under it
+//! and an optional marker over it (the grader's heat maps: 0 to 1 with the largest difference
+//! marked; the signed error maps: −range "too dark" to +range "too light"). The
+//! labels are drawn with a tiny built-in pixel font, so no font file is needed on the machine.
 
 use image::{Rgb, RgbImage};
 
@@ -24,6 +25,15 @@ fn glyph(c: char) -> Option<&'static [&'static str; 5]> {
         'm' => &[".....", ".....", "####.", "#.#.#", "#.#.#"],
         'a' => &["...", "...", ".##", "#.#", ".##"],
         'x' => &["...", "...", "#.#", ".#.", "#.#"],
+        'd' => &["..#", "..#", "###", "#.#", "###"],
+        'g' => &["...", "###", "#.#", "###", ".##"],
+        'h' => &["#..", "#..", "###", "#.#", "#.#"],
+        'i' => &["#", ".", "#", "#", "#"],
+        'k' => &["#..", "#..", "#.#", "##.", "#.#"],
+        'l' => &["#.", "#.", "#.", "#.", "##"],
+        'o' => &["...", "...", "###", "#.#", "###"],
+        'r' => &["...", "...", "###", "#..", "#.."],
+        't' => &[".#.", "###", ".#.", ".#.", ".##"],
         ' ' => &["..", "..", "..", "..", ".."],
         _ => return None,
     })
@@ -88,50 +98,74 @@ pub fn label(v: f32) -> String {
     }
 }
 
-/// Height of the strip `draw` adds under the heat map.
+/// Height of the strip `draw` and `draw_scale` add under a picture.
 pub const HEIGHT: u32 = 6 + TEXT_HEIGHT + 2 + 5 + 1 + BAR_HEIGHT + 3 + TEXT_HEIGHT + 6;
 const BAR_HEIGHT: u32 = 14;
 /// Space left and right of the bar, so the end labels fit.
 const MARGIN: u32 = 10;
 
-/// Draws the scale into the strip of `img` that starts at row `top` (HEIGHT rows, the image's
-/// width): the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1" under its ends, and
-/// above it a marker at `max` (the largest difference in the picture; at the right end when it
-/// is over 1) labelled "max VALUE".
-pub fn draw(img: &mut RgbImage, top: u32, max: f32, heat: impl Fn(f32) -> [u8; 3]) {
+/// What the strip under a picture shows.
+pub struct Scale<'a> {
+    /// (position along the bar in [0, 1], label) under the bar: each label centred on its
+    /// position, moved inwards where it would pass the bar's ends.
+    pub ticks: &'a [(f32, String)],
+    /// A downward triangle over the bar at this position (clamped to [0, 1], NaN at the right
+    /// end), its label over it.
+    pub marker: Option<(f32, String)>,
+}
+
+/// Draws `scale` into the strip of `img` that starts at row `top` (HEIGHT rows, the image's
+/// width): the bar coloured by `colour(t)` from t = 0 (left) to 1 (right).
+pub fn draw_scale(img: &mut RgbImage, top: u32, scale: &Scale, colour: impl Fn(f32) -> [u8; 3]) {
     let width = img.width();
     let (x0, x1) = (MARGIN, width.saturating_sub(MARGIN).max(MARGIN + 1));
     let span = (x1 - x0 - 1).max(1) as f32;
     let label_y = top + 6;
     let marker_y = label_y + TEXT_HEIGHT + 2;
     let bar_y = marker_y + 5 + 1;
-    let ends_y = bar_y + BAR_HEIGHT + 3;
-    for x in x0..x1 {
-        let c = Rgb(heat((x - x0) as f32 / span));
+    let ticks_y = bar_y + BAR_HEIGHT + 3;
+    for x in x0..x1.min(width) {
+        let c = Rgb(colour((x - x0) as f32 / span));
         for y in bar_y..bar_y + BAR_HEIGHT {
             img.put_pixel(x, y, c);
         }
     }
-    draw_text(img, x0.saturating_sub(ZOOM), ends_y, "0");
-    let one = text_width("1");
-    draw_text(img, (x1 + ZOOM).saturating_sub(one), ends_y, "1");
-    // The marker: a downward triangle over the bar at max (clamped to the bar), its label above.
-    let t = if max.is_finite() {
-        max.clamp(0.0, 1.0)
-    } else {
-        1.0
+    let at = |t: f32| x0 + (t.clamp(0.0, 1.0) * span).round() as u32;
+    // Text centred on x, kept between the bar's ends (one font pixel beyond them).
+    let place = |x: u32, w: u32| {
+        x.saturating_sub(w / 2).clamp(
+            x0.saturating_sub(ZOOM),
+            (x1 + ZOOM).saturating_sub(w).max(x0.saturating_sub(ZOOM)),
+        )
     };
-    let mx = x0 + (t * span).round() as u32;
-    for row in 0..5u32 {
-        let half = 4 - row;
-        for x in mx.saturating_sub(half)..=(mx + half).min(width - 1) {
-            img.put_pixel(x, marker_y + row, TEXT);
-        }
+    for (t, text) in scale.ticks {
+        draw_text(img, place(at(*t), text_width(text)), ticks_y, text);
     }
-    let text = format!("max {}", label(max));
-    let w = text_width(&text);
-    let lx = mx.saturating_sub(w / 2).min(width.saturating_sub(w + ZOOM));
-    draw_text(img, lx, label_y, &text);
+    if let Some((t, text)) = &scale.marker {
+        let t = if t.is_nan() { 1.0 } else { *t };
+        let mx = at(t);
+        for row in 0..5u32 {
+            let half = 4 - row;
+            for x in mx.saturating_sub(half)..=(mx + half).min(width - 1) {
+                img.put_pixel(x, marker_y + row, TEXT);
+            }
+        }
+        let w = text_width(text);
+        let lx = mx.saturating_sub(w / 2).min(width.saturating_sub(w + ZOOM));
+        draw_text(img, lx, label_y, text);
+    }
+}
+
+/// The heat maps' scale: the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1" under
+/// its ends, and above it a marker at `max` (the largest difference in the picture; at the right
+/// end when it is over 1) labelled "max VALUE".
+pub fn draw(img: &mut RgbImage, top: u32, max: f32, heat: impl Fn(f32) -> [u8; 3]) {
+    let t = if max.is_finite() { max } else { 1.0 };
+    let scale = Scale {
+        ticks: &[(0.0, "0".into()), (1.0, "1".into())],
+        marker: Some((t, format!("max {}", label(max)))),
+    };
+    draw_scale(img, top, &scale, heat);
 }
 
 #[cfg(test)]
@@ -151,7 +185,7 @@ mod tests {
 
     #[test]
     fn every_label_character_has_a_glyph_of_five_even_rows() {
-        for c in "0123456789.-+emax ".chars() {
+        for c in "0123456789.-+emax toodarklight".chars() {
             let g = glyph(c).unwrap_or_else(|| panic!("no glyph for {c:?}"));
             assert!(g.iter().all(|r| r.len() == g[0].len()), "{c:?}");
         }

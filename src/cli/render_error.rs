@@ -1,0 +1,59 @@
+//! `render --view error --truth FILE`: the AO view of the current settings against a truth image,
+//! written as a signed error map (`crate::tools::error_map`), with PSNR and RMSE on stdout.
+
+use super::args::RenderArgs;
+use super::output::{OutFormat, PNG_OR_PFM};
+use super::scene_args::load_scene;
+use crate::platform::HeadlessContext;
+use crate::render::Engine;
+use crate::res::ResDirs;
+use crate::tools::error_map;
+use anyhow::{bail, Result};
+use rust_i18n::t;
+
+pub fn run(res: &ResDirs, args: &RenderArgs) -> Result<()> {
+    OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
+    let Some(truth_path) = &args.truth else {
+        bail!("{}", t!("error_map.no_truth"));
+    };
+    if !(args.error_range.is_finite() && args.error_range > 0.0) {
+        bail!("{}", t!("error_map.bad_range", range = args.error_range));
+    }
+    if args.stats {
+        bail!("{}", t!("error_map.no_stats"));
+    }
+    // The truth first: a missing file or a wrong size costs no render.
+    let (tw, th, truth) = error_map::read_truth(truth_path)?;
+    let scene = load_scene(&args.scene, res)?;
+    let (ew, eh) = (scene.output.width as usize, scene.output.height as usize);
+    error_map::factor((ew, eh), (tw, th))
+        .map_err(|e| anyhow::anyhow!("{}: {e}", truth_path.display()))?;
+    let ctx = HeadlessContext::new()?;
+    let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
+    let (ao, sky) = error_map::engine_view(&mut engine)?;
+    let map = error_map::compare(&ao, &sky, (ew, eh), &truth, (tw, th))?;
+    error_map::write(&args.out, &map, args.error_range)?;
+    crate::outln!(
+        "{}",
+        t!(
+            "error_map.wrote",
+            path = args.out.display(),
+            width = tw,
+            height = th,
+            engine = format!("{ew}x{eh}"),
+            factor = map.factor,
+            range = args.error_range,
+            renderer = ctx.renderer
+        )
+    );
+    crate::outln!(
+        "{}",
+        t!(
+            "error_map.score",
+            psnr = format!("{:.2}", map.psnr),
+            rmse = format!("{:.4}", map.rmse),
+            pixels = map.pixels
+        )
+    );
+    Ok(())
+}

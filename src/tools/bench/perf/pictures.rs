@@ -1,0 +1,80 @@
+//! The pictures of `report.html`, in `pictures/` next to it: per scene, the first test camera's
+//! ray-traced truth at each radius, and each setting's AO view (box-averaged to the truth's size)
+//! with its signed error map against that truth (`crate::tools::error_map`).
+
+use super::config::PerfConfig;
+use super::references::SceneData;
+use crate::ao::AoMethod;
+use crate::tools::bench::catalog::Setting;
+use crate::tools::error_map;
+use anyhow::Result;
+use serde::Serialize;
+
+/// The folder, relative to the report.
+pub const FOLDER: &str = "pictures";
+
+/// One setting's pictures (paths relative to the report) and the camera they show.
+#[derive(Clone, Debug, Serialize)]
+pub struct SettingPictures {
+    pub camera: String,
+    pub truth: String,
+    pub ao: String,
+    pub error: String,
+    /// The error map's PSNR at that camera (dB; the same pixels as the row's raw figure).
+    pub psnr: f64,
+}
+
+/// `text` with anything but ASCII letters, digits, `-` and `.` as `_`: a plain file name.
+fn plain(text: &str) -> String {
+    text.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '.' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// Writes the truth (shared by the settings of a radius), the AO view and the error map of `method` at
+/// `s` for the scene's first test camera; `views` are the box-averaged AO views of every camera.
+/// `None` when the scene has no test camera.
+pub fn write(
+    cfg: &PerfConfig,
+    sd: &SceneData,
+    method: AoMethod,
+    s: &Setting,
+    views: &[Vec<f32>],
+) -> Result<Option<SettingPictures>> {
+    let Some(ci) = sd.cameras.iter().position(|c| !c.train) else {
+        return Ok(None);
+    };
+    let r = &sd.refs[&(ci, s.radius.to_bits())];
+    let (w, h) = (r.width, r.height);
+    let dir = cfg.out.join(FOLDER);
+    crate::io::create_dir_all(&dir)?;
+    let camera = &sd.cameras[ci].name;
+    let stem = plain(&format!("{}-{}", sd.name, camera));
+    let truth = format!("{stem}-r{}-truth.png", plain(&s.radius.to_string()));
+    crate::io::gray_to_png(&dir.join(&truth), w, h, &r.ao, 1.0)?;
+    let setting = plain(&format!("{stem}-{}-{}", method.name(), s.label()));
+    let (ao, error) = (format!("{setting}-ao.png"), format!("{setting}-error.png"));
+    crate::io::gray_to_png(&dir.join(&ao), w, h, &views[ci], 1.0)?;
+    let map = error_map::at_truth_size(
+        &views[ci],
+        &r.ao,
+        r.sky_mask(),
+        (w as usize, h as usize),
+        cfg.ref_scale as usize,
+    );
+    error_map::write(&dir.join(&error), &map, error_map::DEFAULT_RANGE)?;
+    let rel = |f: &str| format!("{FOLDER}/{f}");
+    Ok(Some(SettingPictures {
+        camera: camera.clone(),
+        truth: rel(&truth),
+        ao: rel(&ao),
+        error: rel(&error),
+        psnr: map.psnr,
+    }))
+}
