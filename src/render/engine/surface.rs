@@ -24,13 +24,7 @@ impl Engine {
     /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
     /// where no back face lies behind the pixel.
     pub fn render_back_face_depth(&mut self) -> Result<Vec<f32>> {
-        // The opaque pass first: the back-face restore reads the front depth of each texel.
-        self.render_values(View::LinearDepth)?;
-        let front = self
-            .fbo_main
-            .depth_texture()
-            .cloned()
-            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let front = self.render_front_depth()?;
         let f = self.frame();
         let back = self
             .surface
@@ -45,38 +39,36 @@ impl Engine {
     /// The surface normals (view space, unit length) at the AO size from the last frame that ran
     /// the pass (`normals = "geometric"`); rows bottom-up.
     pub fn surface_normals(&self) -> Option<Vec<[f32; 3]>> {
-        let codes = self.surface.normals.restored()?.read_f32(0, 2);
-        Some(
-            codes
-                .chunks_exact(2)
-                .map(|c| decode_octahedral([c[0], c[1]]))
-                .collect(),
-        )
+        Some(decode_normals(
+            &self.surface.normals.restored()?.read_f32(0, 2),
+        ))
     }
 
     /// The surface normals at the full output size and the current camera, whatever the AO
     /// settings: what a method reading geometric normals at full AO resolution sees (the
     /// screen-space reference's). View space, unit length, rows top-down.
     pub fn render_surface_normals(&mut self) -> Result<Vec<[f32; 3]>> {
-        self.render_values(View::LinearDepth)?;
-        let front = self
-            .fbo_main
-            .depth_texture()
-            .cloned()
-            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        let front = self.render_front_depth()?;
         let f = self.frame();
         let codes = self
             .surface
             .normals
             .draw(&f, Some(&front), self.size())?
             .read_f32(0, 2);
-        let mut v: Vec<[f32; 3]> = codes
-            .chunks_exact(2)
-            .map(|c| decode_octahedral([c[0], c[1]]))
-            .collect();
+        let mut v = decode_normals(&codes);
         flip_rows(&mut v, self.width as usize, self.height as usize);
         check_error(&self.gl, "reading the surface normals")?;
         Ok(v)
+    }
+
+    /// The main depth buffer after the opaque pass of the current camera (the linear-depth view runs
+    /// no AO method): the surface passes' restores keep the texel whose front is nearest.
+    fn render_front_depth(&mut self) -> Result<Rc<Texture>> {
+        self.render_values(View::LinearDepth)?;
+        self.fbo_main
+            .depth_texture()
+            .cloned()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))
     }
 
     /// The passes over the geometry that the AO settings read besides the depth chain.
@@ -106,4 +98,12 @@ impl Engine {
         }
         Ok(out)
     }
+}
+
+/// Unit normals from the octahedral codes the surface-normal pass writes (two floats per texel).
+fn decode_normals(codes: &[f32]) -> Vec<[f32; 3]> {
+    codes
+        .chunks_exact(2)
+        .map(|c| decode_octahedral([c[0], c[1]]))
+        .collect()
 }
