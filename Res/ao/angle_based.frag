@@ -1,6 +1,6 @@
 #version 450
 
-// Angle-based SSAO (UE4, seed 003 §3): pairs of samples at equal distance on opposite sides of
+// Angle-based SSAO (Unreal Engine 4; Mittring 2012): pairs of samples at equal distance on opposite sides of
 // the pixel; the angles the two make above the surface (behind the normal's hemisphere clamped to 0,
 // beyond the radius faded out) say how much of the half-circle they close off.
 

@@ -1,6 +1,6 @@
 #version 450
 
-// Composite with a tint and a power (seeds 000, 003): blended with SRC_ALPHA / ONE_MINUS_SRC_ALPHA,
+// Composite with a tint and a power: blended with SRC_ALPHA / ONE_MINUS_SRC_ALPHA,
 // occluded areas move toward `tint` by 1 - visibility^power.
 
 layout(location=1) in vec2 inTexcoord;

@@ -1,6 +1,6 @@
 #version 450
 
-// Crytek-style SSAO (seeds 000 §1, 003 §1): points in a sphere around the pixel, each compared
+// Crytek-style SSAO (Mittring 2007): points in a sphere around the pixel, each compared
 // with the depth buffer; a point behind the stored surface (within the range) is occluded.
 // An open plane hides half the sphere, so the occluded fraction is rescaled: 0.5 -> 0, 1 -> 1.
 

@@ -1,6 +1,6 @@
 #version 450
 
-// Horizon-based AO (seed 000 §3, Bavoil et al. 2008): for each screen direction, march in pixel
+// Horizon-based AO (Bavoil, Sainz and Dimitrov 2008): for each screen direction, march in pixel
 // steps (snapped to texel centres) and raise the horizon; occlusion is the rise of sin(horizon) above
 // the tangent plane, weighted by W(r) = 1 - r^2/R^2.
 

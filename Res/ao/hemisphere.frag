@@ -1,6 +1,6 @@
 #version 450
 
-// Normal-oriented hemisphere SSAO (seeds 000 §2, 003 §2; LearnOpenGL): a kernel in the hemisphere
+// Normal-oriented hemisphere SSAO (Filion and McNaughton 2008; the LearnOpenGL SSAO chapter): a kernel in the hemisphere
 // around the normal, concentrated toward the point, rotated by a 4x4 noise, with a range check.
 
 #include "common.glsl"

@@ -247,7 +247,7 @@ pub enum CompositeMode {
     /// The lesson's blend over the whole lit colour (SRC_ALPHA, ONE_MINUS_SRC_ALPHA).
     #[default]
     Blend,
-    /// Blend toward `tint` with visibility^`power` (seeds 000 and 003).
+    /// Blend toward `tint` with visibility^`power`.
     Tinted,
     /// A depth pre-pass, AO, then lighting with AO applied to the ambient term only.
     AmbientOnly,

@@ -1,4 +1,4 @@
-//! UE4-style angle-based SSAO (seed 000): samples in mirrored pairs, occlusion from the angle the
+//! UE4-style angle-based SSAO (Mittring 2012, the Elemental demo): samples in mirrored pairs, occlusion from the angle the
 //! pair makes over the pixel. Shader: `Res/ao/angle_based.frag`.
 
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};

@@ -1,4 +1,4 @@
-//! Crytek's SSAO (seed 000): points in a sphere around the pixel, occluded when the depth buffer is
+//! Crytek's SSAO (Mittring 2007, "Finding Next Gen: CryEngine 2"): points in a sphere around the pixel, occluded when the depth buffer is
 //! nearer than the point. Shader: `Res/ao/crytek.frag`.
 
 use crate::ao::method_pass::ShaderMethod;

@@ -1,4 +1,4 @@
-//! Horizon-based AO (seed 000): marches screen-space directions, keeps the highest horizon per
+//! Horizon-based AO (Bavoil, Sainz and Dimitrov 2008): marches screen-space directions, keeps the highest horizon per
 //! direction. Shader: `Res/ao/hbao.frag`.
 
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};

@@ -1,4 +1,4 @@
-//! Normal-oriented hemisphere SSAO (seed 000): the sphere kernel flipped into the surface's
+//! Normal-oriented hemisphere SSAO (Filion and McNaughton 2008, StarCraft II): the sphere kernel flipped into the surface's
 //! hemisphere, with a range check so distant occluders do not count. Shader: `Res/ao/hemisphere.frag`.
 
 use crate::ao::method_pass::ShaderMethod;

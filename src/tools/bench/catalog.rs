@@ -105,7 +105,7 @@ pub(crate) fn settings_for(
     match method {
         AoMethod::SaoLesson => grid(&LESSON_SAMPLES, &LESSON_RADII),
         AoMethod::Gtao => {
-            // Its presets too: the issue's accuracy target is on "high".
+            // Its presets too: "high" is the accurate end the report compares.
             let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
             for radius in [1.0, 0.5] {
                 v.push(Setting::preset(crate::ao::GtaoQuality::High, radius));
@@ -114,7 +114,7 @@ pub(crate) fn settings_for(
             v
         }
         AoMethod::Vbao => {
-            // Every preset: the issue asks for the cheapest one that reaches its accuracy target.
+            // Every preset: the report shows the cheapest one that reaches a given accuracy.
             let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
             for radius in [1.0, 0.5] {
                 for q in crate::ao::GtaoQuality::ALL {
