@@ -2,12 +2,13 @@
 //! depth with front faces culled, linearised at the AO buffers' size. Runs only when the settings
 //! ask for it (`AoSettings::uses_back_faces`).
 
+use super::ao_size_restore::restore_at_ao_size;
 use crate::ao::blur::half_size_target;
 use crate::gl::pass_state::Cull;
 use crate::gl::{FramebufferObject, Gl, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
 use crate::res::ResDirs;
-use crate::shader_interface::{binding, loc};
+use crate::shader_interface::loc;
 use anyhow::{anyhow, Result};
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -84,24 +85,11 @@ impl BackFacePass {
         depth_only.use_program();
         f.draw_objects(depth_only, false, &f.view_projection());
         f.apply(PassState::FULLSCREEN);
-        self.restore.use_program();
-        let reversed = if f.depth_mode.reversed() { 1.0 } else { 0.0 };
-        let c = f.camera;
-        self.restore
-            .set_vec3(loc::UPSAMPLE_DEPTH_PLANES, [c.near, c.far, reversed]);
-        let block = if ao_size == f.size { 1 } else { 2 };
-        self.restore.set_i32(loc::BACK_DEPTH_BLOCK, block);
-        t.linear.bind();
-        t.depth
+        let back = t
+            .depth
             .depth_texture()
-            .ok_or_else(|| anyhow!("the back-face FBO has no depth texture"))?
-            .bind(binding::INPUT);
-        front_depth.bind(binding::SECOND_INPUT);
-        f.meshes.draw_plane_xy();
-        t.linear
-            .color_texture()
-            .cloned()
-            .ok_or_else(|| anyhow!("the back-face target has no colour texture"))
+            .ok_or_else(|| anyhow!("the back-face FBO has no depth texture"))?;
+        restore_at_ao_size(f, &self.restore, &t.linear, back, front_depth)
     }
 
     /// The linear back depth of the last frame that ran the pass.

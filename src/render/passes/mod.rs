@@ -1,5 +1,6 @@
 //! The engine's passes, each owning its programs and stating its render state.
 
+pub mod ao_size_restore;
 pub mod back_faces;
 pub mod bloom;
 pub mod normals;

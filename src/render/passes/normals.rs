@@ -4,11 +4,12 @@
 //! buffers' size by `ao/restore_normal.frag`. Runs only when the settings ask for it
 //! (`AoSettings::uses_surface_normals`).
 
+use super::ao_size_restore::restore_at_ao_size;
 use crate::ao::blur::half_size_target;
 use crate::gl::{FramebufferObject, Gl, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
 use crate::res::ResDirs;
-use crate::shader_interface::{binding, loc};
+use crate::shader_interface::loc;
 use anyhow::{anyhow, Result};
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -98,28 +99,15 @@ impl NormalPass {
         p.use_program();
         f.draw_objects(p, false, &f.view_projection());
         f.apply(PassState::FULLSCREEN);
-        self.restore.use_program();
-        let reversed = if f.depth_mode.reversed() { 1.0 } else { 0.0 };
-        let c = f.camera;
-        self.restore
-            .set_vec3(loc::UPSAMPLE_DEPTH_PLANES, [c.near, c.far, reversed]);
-        let block = if ao_size == f.size { 1 } else { 2 };
-        self.restore.set_i32(loc::BACK_DEPTH_BLOCK, block);
-        t.restored.bind();
-        t.main
+        let normals = t
+            .main
             .color_texture()
-            .ok_or_else(|| anyhow!("the surface-normal FBO has no colour texture"))?
-            .bind(binding::INPUT);
+            .ok_or_else(|| anyhow!("the surface-normal FBO has no colour texture"))?;
         let own_depth = t.main.depth_texture();
-        front_depth
+        let front = front_depth
             .or(own_depth.map(|d| d.as_ref()))
-            .ok_or_else(|| anyhow!("the surface-normal FBO has no depth texture"))?
-            .bind(binding::SECOND_INPUT);
-        f.meshes.draw_plane_xy();
-        t.restored
-            .color_texture()
-            .cloned()
-            .ok_or_else(|| anyhow!("the surface-normal target has no colour texture"))
+            .ok_or_else(|| anyhow!("the surface-normal FBO has no depth texture"))?;
+        restore_at_ao_size(f, &self.restore, &t.restored, normals, front)
     }
 
     /// The depth buffer of the last frame that ran the pass (the widened view's, with a guard band).
