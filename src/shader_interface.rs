@@ -50,6 +50,8 @@ pub mod loc {
     pub const AO_BACK_FACES: i32 = 205;
     /// ao/common.glsl: 1 = normals from the surface-normal pass (`texNormal`), 0 = rebuilt from depth.
     pub const AO_SURFACE_NORMALS: i32 = 206;
+    /// ao/vbao.frag: depth layers marched per tap (2 = also `texSecondDepth`).
+    pub const AO_LAYERS: i32 = 207;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -61,6 +63,8 @@ pub mod loc {
     /// ao/restore_back_depth.frag, ao/restore_normal.frag: main texels per AO texel along each
     /// axis (1 or 2).
     pub const BACK_DEPTH_BLOCK: i32 = 231;
+    /// ao/second_layer.frag: how far (m) behind the first layer the second begins.
+    pub const LAYER_SEPARATION: i32 = 232;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -80,6 +84,8 @@ pub mod binding {
     pub const SHADOW_MAP: u32 = 2;
     /// standard.frag: occlusion for AO on the ambient term only.
     pub const AO_AMBIENT: u32 = 3;
+    /// ao/vbao.frag: `texSecondDepth`, the second depth layer at the AO size.
+    pub const SECOND_LAYER: u32 = 3;
 }
 
 /// One uniform a program declares.
@@ -302,11 +308,13 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoThickness", AO_THICKNESS),
             u("aoBackFaces", AO_BACK_FACES),
             u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+            u("aoLayers", AO_LAYERS),
         ],
         &[
             s("texDepth", INPUT),
             s("texBackDepth", SECOND_INPUT),
             s("texNormal", SURFACE_NORMALS),
+            s("texSecondDepth", SECOND_LAYER),
         ],
     ),
     fullscreen(
@@ -317,6 +325,17 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         ],
         &[s("texDepth", INPUT), s("texFrontDepth", SECOND_INPUT)],
     ),
+    ProgramInterface {
+        vert: "shadow.vert",
+        frag: "ao/second_layer.frag",
+        uniforms: &[
+            u("matModel", MODEL),
+            u("matViewProjection", VIEW_PROJECTION),
+            u("depthPlanes", UPSAMPLE_DEPTH_PLANES),
+            u("layerSeparation", LAYER_SEPARATION),
+        ],
+        samplers: &[s("texFrontDepth", INPUT)],
+    },
     ProgramInterface {
         vert: "ao/surface_normal.vert",
         frag: "ao/surface_normal.frag",

@@ -4,13 +4,16 @@
 // Each depth sample is a slab from its surface to aoThickness behind it along its camera ray, clipped
 // to the radius sphere around the pixel (the reference counts a ray as blocked by a hit within the
 // radius). The sectors have equal cosine-weighted measure in the slice, so the set bits are the
-// occluded fraction of the quantity the ray tracer measures.
+// occluded fraction of the quantity the ray tracer measures. With two depth layers each tap adds the
+// slab of the nearest surface hidden behind it (the second_layer pass).
 
 #include "common.glsl"
 
 layout(location=204) uniform float aoThickness; // metres behind each depth sample
 layout(location=205) uniform int aoBackFaces;   // 1: each tap's thickness from texBackDepth
+layout(location=207) uniform int aoLayers;      // 2: each tap also marches texSecondDepth
 layout(binding=1) uniform sampler2D texBackDepth; // linear depth of the back faces (m), AO size
+layout(binding=3) uniform sampler2D texSecondDepth; // linear depth of the second layer (m), AO size
 
 const int SECTORS = 32;
 
@@ -45,6 +48,80 @@ uint SectorBits(int first, int last) {
     return 0u;
   }
   return count >= SECTORS ? 0xffffffffu : ((1u << uint(count)) - 1u) << uint(first);
+}
+
+// One slice of one pixel: what every slab of its taps is measured against.
+struct Slice {
+  vec3 origin;   // the pixel's point lifted by the bias
+  float r2;      // radius squared
+  vec3 n;        // surface normal
+  float projLen; // length of the normal projected into the slice plane
+  vec3 tSlice;   // the slice's tangent
+  float cosG, sinG, g; // angle of the projected normal from V
+  float measureLo, toSector; // slice measure at -pi/2, and measure -> sectors
+};
+
+// Sectors of the slice occluded by the slab on the camera ray X(d) = e * d from depth 'front' to
+// 'front + thickness', clipped to the radius sphere around the origin.
+uint SlabBits(Slice sl, vec3 e, float front, float thickness) {
+  // Part of the ray within the radius of the origin: |e d - origin|^2 <= r^2.
+  float ee = dot(e, e);
+  float eo = dot(e, sl.origin);
+  float disc = eo * eo - ee * (dot(sl.origin, sl.origin) - sl.r2);
+  if (disc <= 0.0) {
+    return 0u;
+  }
+  float root = sqrt(disc);
+  float d0 = max(front, (eo - root) / ee);
+  float d1 = min(front + thickness, (eo + root) / ee);
+  if (d1 <= d0) {
+    return 0u;
+  }
+  // Angles from the projected normal (towards ortho): the hemisphere is (-pi/2, pi/2) and
+  // atan never wraps there. Measured from V instead, a floor seen at a grazing angle puts its
+  // far points near -V, where the angle jumps from pi to -pi and one slab would fill the mask.
+  vec3 a = e * d0 - sl.origin;
+  vec3 b = e * d1 - sl.origin;
+  // Heights use the full normal: a tap rounded to a texel lies up to half a texel off the
+  // slice plane, and its height along the projected normal alone would lift a flat floor's
+  // neighbours above the tangent plane. Divided by projLen they equal the in-slice heights for
+  // points in the plane.
+  float ua = dot(a, sl.n) / sl.projLen, va = dot(a, sl.tSlice);
+  float ub = dot(b, sl.n) / sl.projLen, vb = dot(b, sl.tSlice);
+  if (ua <= 0.0 && ub <= 0.0) {
+    return 0u; // the whole slab is below the tangent plane (a segment between two points below it)
+  }
+  // Each end as (angle from the normal, cos 2b, sin 2b); an end below the plane is replaced by
+  // the point where the slab crosses it, on the side where it crosses (b = +-pi/2).
+  vec3 endA = vec3(-0.5 * PI, -1.0, 0.0);
+  vec3 endB = endA;
+  if (ua > 0.0) {
+    float r2a = ua * ua + va * va;
+    endA = vec3(AtanRight(va, ua), (ua * ua - va * va) / r2a, 2.0 * ua * va / r2a);
+  }
+  if (ub > 0.0) {
+    float r2b = ub * ub + vb * vb;
+    endB = vec3(AtanRight(vb, ub), (ub * ub - vb * vb) / r2b, 2.0 * ub * vb / r2b);
+  }
+  if (ua <= 0.0 || ub <= 0.0) {
+    float crossing = (ua * vb - ub * va) / (ua - ub);
+    vec3 edge = vec3(crossing >= 0.0 ? 0.5 * PI : -0.5 * PI, -1.0, 0.0);
+    if (ua <= 0.0) {
+      endA = edge;
+    } else {
+      endB = edge;
+    }
+  }
+  if (endA.x > endB.x) {
+    vec3 swap = endA;
+    endA = endB;
+    endB = swap;
+  }
+  float from = SliceMeasure(endA.x, endA.y, endA.z, sl.cosG, sl.sinG, sl.g);
+  float to = SliceMeasure(endB.x, endB.y, endB.z, sl.cosG, sl.sinG, sl.g);
+  int first = int(round((from - sl.measureLo) * sl.toSector));
+  int last = int(round((to - sl.measureLo) * sl.toSector));
+  return SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
 }
 
 void main()
@@ -96,6 +173,7 @@ void main()
     float toSector = float(SECTORS) / max(total, 1e-6);
     // The slice's tangent: the projected normal turned a quarter towards ortho.
     vec3 tSlice = cosG * ortho - sinG * V;
+    Slice slice = Slice(origin, r2, n, projLen, tSlice, cosG, sinG, g, measureLo, toSector);
     uint mask = 0u;
     for (int side = 0; side < 2 && mask != 0xffffffffu; ++side) {
       vec2 sideDir = side == 0 ? -dir : dir;
@@ -113,70 +191,20 @@ void main()
         }
         // The sample's camera ray, parametrised by linear depth: X(d) = e * d.
         vec3 e = vec3(((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0) * ndcToView, -1.0);
-        // Part of the ray within the radius of the origin: |e d - origin|^2 <= r^2.
-        float ee = dot(e, e);
-        float eo = dot(e, origin);
-        float disc = eo * eo - ee * (dot(origin, origin) - r2);
-        if (disc <= 0.0) {
-          continue;
-        }
-        float root = sqrt(disc);
-        float d0 = max(zq, (eo - root) / ee);
         float thickness = aoThickness;
         if (aoBackFaces != 0) {
           // The back face behind the tap, where there is one ('far' where none: open planes, sky).
           float back = texelFetch(texBackDepth, q, 0).x;
           thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
         }
-        float d1 = min(zq + thickness, (eo + root) / ee);
-        if (d1 <= d0) {
-          continue;
-        }
-        // Angles from the projected normal (towards ortho): the hemisphere is (-pi/2, pi/2) and
-        // atan never wraps there. Measured from V instead, a floor seen at a grazing angle puts its
-        // far points near -V, where the angle jumps from pi to -pi and one slab would fill the mask.
-        vec3 a = e * d0 - origin;
-        vec3 b = e * d1 - origin;
-        // Heights use the full normal: a tap rounded to a texel lies up to half a texel off the
-        // slice plane, and its height along the projected normal alone would lift a flat floor's
-        // neighbours above the tangent plane. Divided by projLen they equal the in-slice heights for
-        // points in the plane.
-        float ua = dot(a, n) / projLen, va = dot(a, tSlice);
-        float ub = dot(b, n) / projLen, vb = dot(b, tSlice);
-        if (ua <= 0.0 && ub <= 0.0) {
-          continue; // the whole slab is below the tangent plane (a segment between two points below it)
-        }
-        // Each end as (angle from the normal, cos 2b, sin 2b); an end below the plane is replaced by
-        // the point where the slab crosses it, on the side where it crosses (b = +-pi/2).
-        vec3 endA = vec3(-0.5 * PI, -1.0, 0.0);
-        vec3 endB = endA;
-        if (ua > 0.0) {
-          float r2a = ua * ua + va * va;
-          endA = vec3(AtanRight(va, ua), (ua * ua - va * va) / r2a, 2.0 * ua * va / r2a);
-        }
-        if (ub > 0.0) {
-          float r2b = ub * ub + vb * vb;
-          endB = vec3(AtanRight(vb, ub), (ub * ub - vb * vb) / r2b, 2.0 * ub * vb / r2b);
-        }
-        if (ua <= 0.0 || ub <= 0.0) {
-          float crossing = (ua * vb - ub * va) / (ua - ub);
-          vec3 edge = vec3(crossing >= 0.0 ? 0.5 * PI : -0.5 * PI, -1.0, 0.0);
-          if (ua <= 0.0) {
-            endA = edge;
-          } else {
-            endB = edge;
+        mask |= SlabBits(slice, e, zq, thickness);
+        if (aoLayers > 1) {
+          // The nearest surface hidden behind the tap ('far' where none), with the set thickness.
+          float hidden = texelFetch(texSecondDepth, q, 0).x;
+          if (hidden < CAMERA_FAR) {
+            mask |= SlabBits(slice, e, hidden, aoThickness);
           }
         }
-        if (endA.x > endB.x) {
-          vec3 swap = endA;
-          endA = endB;
-          endB = swap;
-        }
-        float from = SliceMeasure(endA.x, endA.y, endA.z, cosG, sinG, g);
-        float to = SliceMeasure(endB.x, endB.y, endB.z, cosG, sinG, g);
-        int first = int(round((from - measureLo) * toSector));
-        int last = int(round((to - measureLo) * toSector));
-        mask |= SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
       }
     }
     weight += projLen * total;

@@ -26,6 +26,8 @@ pub struct AoInputs<'a> {
     pub back_depth: Option<&'a Texture>,
     /// Octahedral view-space surface normals at the AO size, when the settings ask for them.
     pub normals: Option<&'a Texture>,
+    /// Linear depth of the second depth layer at the AO size, when the settings ask for it.
+    pub second_depth: Option<&'a Texture>,
 }
 
 impl AoInputs<'_> {
@@ -113,6 +115,9 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     if program.has_location(loc::AO_BACK_FACES) {
         program.set_i32(loc::AO_BACK_FACES, inputs.back_depth.is_some() as i32);
     }
+    if program.has_location(loc::AO_LAYERS) {
+        program.set_i32(loc::AO_LAYERS, 1 + inputs.second_depth.is_some() as i32);
+    }
     if program.has_location(loc::AO_SURFACE_NORMALS) {
         program.set_i32(loc::AO_SURFACE_NORMALS, inputs.normals.is_some() as i32);
     }
@@ -176,6 +181,9 @@ impl AoMethodPass for ShaderMethod {
         inputs.targets.tex_depth.bind(binding::INPUT);
         if let Some(back) = inputs.back_depth {
             back.bind(binding::SECOND_INPUT);
+        }
+        if let Some(second) = inputs.second_depth {
+            second.bind(binding::SECOND_LAYER);
         }
         inputs.bind_normals();
         inputs.meshes.draw_plane_xy();

@@ -303,6 +303,9 @@ pub struct AoSettings {
     pub normals: NormalSource,
     /// Margin the engine's AO passes cover beyond the view (`sao-lesson` ignores it).
     pub guard_band: GuardBand,
+    /// Depth layers `vbao` marches (1 or 2): the visible surface, and the nearest one hidden at least
+    /// `LAYER_SEPARATION_OF_RADIUS` × R behind it.
+    pub layers: u32,
 }
 
 /// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
@@ -359,6 +362,13 @@ impl Thickness {
     }
 }
 
+/// The second layer's minimum separation from the first, as a fraction of the radius. Small next to
+/// the slabs (R/2), so a surface hidden just behind a thin foreground object still counts; large
+/// enough that depth quantisation and coplanar surfaces never make the visible surface its own
+/// second layer. Mara et al. (2016) found the separation matters little once it is below the
+/// scene's typical object thickness.
+pub const LAYER_SEPARATION_OF_RADIUS: f32 = 0.1;
+
 /// `vbao`'s default thickness as a fraction of the radius, chosen on the bench's training cameras of
 /// its three scenes (docs/bench/vbao-thickness.md): thinner lets light through walls seen edge-on,
 /// thicker turns every chair leg and shelf board into a wall reaching the radius. R/2 has the best
@@ -384,6 +394,7 @@ impl Default for AoSettings {
             resolution: AoResolution::Half,
             normals: NormalSource::Depth,
             guard_band: GuardBand::Off,
+            layers: 1,
         }
     }
 }
@@ -397,6 +408,8 @@ pub const INTENSITY_RANGE: (f32, f32) = (0.0, 1000.0);
 pub const POWER_RANGE: (f32, f32) = (0.05, 20.0);
 pub const SAMPLES_RANGE: (u32, u32) = (1, 256);
 pub const SPIRAL_TURNS_RANGE: (u32, u32) = (1, 64);
+/// Depth layers: the visible one, and one hidden behind it.
+pub const LAYERS_RANGE: (u32, u32) = (1, 2);
 /// Thickness: 0.1 mm (a sheet) to 1 km (a heightfield, as GTAO assumes).
 pub const THICKNESS_RANGE: (f32, f32) = (1e-4, 1000.0);
 
@@ -421,6 +434,16 @@ impl AoSettings {
     /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
     pub fn uses_back_faces(&self) -> bool {
         self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
+    }
+
+    /// Whether a frame needs the second depth layer: `vbao` with `layers = 2`.
+    pub fn uses_second_layer(&self) -> bool {
+        self.method == AoMethod::Vbao && self.layers >= 2
+    }
+
+    /// How far behind the visible surface the second layer begins (m).
+    pub fn layer_separation_metres(&self) -> f32 {
+        LAYER_SEPARATION_OF_RADIUS * self.radius
     }
 
     /// Whether a frame needs the surface-normal pass: an engine method that reads a normal, with
@@ -477,6 +500,7 @@ impl AoSettings {
         };
         fix_count("samples", &mut self.samples, SAMPLES_RANGE);
         fix_count("spiral_turns", &mut self.spiral_turns, SPIRAL_TURNS_RANGE);
+        fix_count("layers", &mut self.layers, LAYERS_RANGE);
         (self, notes)
     }
 }

@@ -147,6 +147,10 @@ pub struct SceneArgs {
     /// or `backface`: each pixel's own, from a depth pass of the back faces.
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
+    /// Depth layers `vbao` marches: 1 (the visible surface) or 2 (also the nearest surface hidden at
+    /// least a tenth of the radius behind it, from one more depth pass).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
+    pub layers: Option<u32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
     #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
     pub composite: Option<CompositeMode>,

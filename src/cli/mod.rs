@@ -345,6 +345,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         let what = crate::tools::reference::Capture {
             back_faces,
             normals: scene.ao.normals == crate::ao::NormalSource::Geometric,
+            second_layer: (scene.ao.layers >= 2).then(|| scene.ao.layer_separation_metres()),
         };
         let depth = DepthBuffer::capture(&mut engine, guard_px, what)?.with_thickness(thickness);
         crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?

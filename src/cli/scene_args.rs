@@ -206,6 +206,9 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     if let Some(g) = args.guard_band {
         desc.ao.guard_band = g;
     }
+    if let Some(l) = args.layers {
+        desc.ao.layers = l;
+    }
     if let Some(t) = args.thickness {
         let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
         if let crate::ao::Thickness::Metres(m) = t {

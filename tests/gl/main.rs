@@ -12,6 +12,7 @@ mod closed_pipe;
 #[path = "../common/mod.rs"]
 mod common;
 mod composite_modes;
+mod depth_layers;
 mod engine_options;
 mod error_map;
 mod gl_basics;

@@ -19,6 +19,12 @@ impl Engine {
         self.surface.back_faces.linear_depth()
     }
 
+    /// Linear depth (m) of the second depth layer at the AO size, from the last frame that needed it
+    /// (`vbao` with `layers = 2`); rows bottom-up, `far` where nothing lies behind.
+    pub fn second_layer_depth(&self) -> Option<Rc<Texture>> {
+        self.surface.second_layer.linear_depth()
+    }
+
     /// Linear depth (m) of the nearest back faces at the full output size and the current camera,
     /// whatever the AO settings: the pass `vbao` reads with `thickness = "backface"` at full AO
     /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
@@ -33,6 +39,23 @@ impl Engine {
         let mut v = back.read_f32(0, 1);
         flip_rows(&mut v, self.width as usize, self.height as usize);
         check_error(&self.gl, "reading the back-face depth")?;
+        Ok(v)
+    }
+
+    /// Linear depth (m) of the second depth layer `separation` metres or more behind the visible
+    /// surface, at the full output size and the current camera, whatever the AO settings: what
+    /// `vbao` with `layers = 2` reads at full AO resolution (the screen-space reference's). Rows
+    /// top-down; exactly `far` where nothing lies behind the pixel.
+    pub fn render_second_layer_depth(&mut self, separation: f32) -> Result<Vec<f32>> {
+        let front = self.render_front_depth()?;
+        let f = self.frame();
+        let layer = self
+            .surface
+            .second_layer
+            .draw(&f, &front, separation, self.size())?;
+        let mut v = layer.read_f32(0, 1);
+        flip_rows(&mut v, self.width as usize, self.height as usize);
+        check_error(&self.gl, "reading the second depth layer")?;
         Ok(v)
     }
 
@@ -86,6 +109,12 @@ impl Engine {
             out.back_depth = Some(self.pass("back-face depth", "ao", || {
                 let depth_only = &self.shadow.program;
                 passes.back_faces.draw(f, depth_only, depth, ao_size)
+            })?);
+        }
+        if s.uses_second_layer() {
+            out.second_depth = Some(self.pass("second depth layer", "ao", || {
+                let separation = s.layer_separation_metres();
+                passes.second_layer.draw(f, depth, separation, ao_size)
             })?);
         }
         if s.uses_surface_normals() {

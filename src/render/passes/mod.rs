@@ -6,6 +6,7 @@ pub mod bloom;
 pub mod normals;
 pub mod opaque;
 pub mod post;
+pub mod second_layer;
 pub mod shadow;
 pub mod sky;
 pub mod surface;

@@ -1,9 +1,11 @@
 //! What the engine's AO methods may read besides the depth chain, each from a pass of its own over
 //! the geometry that runs only when the settings ask for it: the back faces' depth (`vbao` with
-//! `thickness = "backface"`) and the surface normals (`normals = "geometric"`).
+//! `thickness = "backface"`), the surface normals (`normals = "geometric"`) and a second depth layer
+//! (`vbao` with `layers = 2`).
 
 use super::back_faces::BackFacePass;
 use super::normals::NormalPass;
+use super::second_layer::SecondLayerPass;
 use crate::gl::{Gl, ProgramObject, Texture};
 use crate::res::ResDirs;
 use std::rc::Rc;
@@ -11,6 +13,7 @@ use std::rc::Rc;
 pub struct SurfacePasses {
     pub back_faces: BackFacePass,
     pub normals: NormalPass,
+    pub second_layer: SecondLayerPass,
 }
 
 /// What a frame's surface passes produced, at the AO size.
@@ -18,6 +21,8 @@ pub struct SurfacePasses {
 pub struct SurfaceInputs {
     pub back_depth: Option<Rc<Texture>>,
     pub normals: Option<Rc<Texture>>,
+    /// Linear depth of the second layer.
+    pub second_depth: Option<Rc<Texture>>,
 }
 
 impl SurfacePasses {
@@ -25,22 +30,26 @@ impl SurfacePasses {
         Ok(SurfacePasses {
             back_faces: BackFacePass::new(gl, res)?,
             normals: NormalPass::new(gl, res)?,
+            second_layer: SecondLayerPass::new(gl, res)?,
         })
     }
 
     pub fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         let [a, b] = self.normals.programs_mut();
-        vec![self.back_faces.program_mut(), a, b]
+        let [c, d] = self.second_layer.programs_mut();
+        vec![self.back_faces.program_mut(), a, b, c, d]
     }
 
     pub fn textures(&self) -> Vec<Rc<Texture>> {
         let mut t = self.back_faces.textures();
         t.extend(self.normals.textures());
+        t.extend(self.second_layer.textures());
         t
     }
 
     pub fn release_targets(&self) {
         self.back_faces.release_targets();
         self.normals.release_targets();
+        self.second_layer.release_targets();
     }
 }

@@ -10,12 +10,14 @@ use super::image::RefImage;
 use crate::math::Camera;
 
 /// What `DepthBuffer::capture` reads from the engine besides the depth.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct Capture {
     /// The back faces' depth (`vbao`'s `--thickness backface`).
     pub back_faces: bool,
     /// The surface normals (`--normals geometric`).
     pub normals: bool,
+    /// The second depth layer (`vbao`'s `--layers 2`), beginning this many metres behind the first.
+    pub second_layer: Option<f32>,
 }
 
 /// A depth buffer and the projection it was rendered with.
@@ -47,6 +49,10 @@ pub struct DepthBuffer {
     /// engine's surface-normal pass: the ceiling of a method reading geometric normals. `None`:
     /// normals rebuilt from the depths, as methods reading only depth must.
     pub normals: Option<Vec<[f32; 3]>>,
+    /// Linear depth (m) of the second layer along each pixel's ray, rows top-down: the nearest front
+    /// face a minimum separation behind the first surface (`vbao`'s `--layers 2`), a slab of
+    /// [`Self::thickness`] like the first layer's; `f32::INFINITY` where none. `None`: one layer.
+    pub second_layer: Option<Vec<f32>>,
     /// Pixels on each side that lie outside the visible image: they can occlude, but the
     /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
     pub guard_band: u32,
@@ -89,6 +95,16 @@ impl DepthBuffer {
                 );
             }
         }
+        if let Some(second) = &self.second_layer {
+            if second.len() != n {
+                bail!(
+                    "second layer of {} values does not match the {}x{} depth buffer",
+                    second.len(),
+                    self.width,
+                    self.height
+                );
+            }
+        }
         if let Some(normals) = &self.normals {
             if normals.len() != n {
                 bail!(
@@ -122,6 +138,18 @@ impl DepthBuffer {
         DepthBuffer { thickness, ..self }
     }
 
+    /// The second layer as a buffer of its own (same projection, thickness and guard band; no back
+    /// faces or normals): the screen-space reference's second field of slabs.
+    pub(crate) fn second_layer_buffer(&self) -> Option<DepthBuffer> {
+        Some(DepthBuffer {
+            linear_depth: self.second_layer.clone()?,
+            back_depth: None,
+            normals: None,
+            second_layer: None,
+            ..self.clone()
+        })
+    }
+
     /// The depth buffer of a ray-traced reference image (its `linear_depth`, same pixel centres).
     pub fn from_reference(img: &RefImage, cam: &Camera) -> DepthBuffer {
         DepthBuffer {
@@ -133,6 +161,7 @@ impl DepthBuffer {
             thickness: f32::INFINITY,
             back_depth: None,
             normals: None,
+            second_layer: None,
             guard_band: 0,
         }
     }
@@ -172,6 +201,7 @@ impl DepthBuffer {
             thickness: f32::INFINITY,
             back_depth: None,
             normals: None,
+            second_layer: None,
             guard_band: 0,
         };
         buf.validate()?;
@@ -218,7 +248,7 @@ impl DepthBuffer {
     ) -> Result<DepthBuffer> {
         let what = Capture {
             back_faces: true,
-            normals: false,
+            ..Capture::default()
         };
         DepthBuffer::capture(engine, guard_band, what)
     }
@@ -235,21 +265,25 @@ impl DepthBuffer {
             if what.normals {
                 buf.normals = Some(engine.render_surface_normals()?);
             }
+            // The passes write exactly `far` where nothing lies behind the pixel.
+            let far = engine.camera.far;
+            let behind = |depths: Vec<f32>| -> Vec<f32> {
+                depths
+                    .into_iter()
+                    .map(|d| {
+                        if d.is_finite() && d > 0.0 && d < far {
+                            d
+                        } else {
+                            f32::INFINITY
+                        }
+                    })
+                    .collect()
+            };
             if what.back_faces {
-                let far = engine.camera.far;
-                let back = engine.render_back_face_depth()?;
-                // The pass writes exactly `far` where no back face lies behind the pixel.
-                buf.back_depth = Some(
-                    back.into_iter()
-                        .map(|d| {
-                            if d.is_finite() && d > 0.0 && d < far {
-                                d
-                            } else {
-                                f32::INFINITY
-                            }
-                        })
-                        .collect(),
-                );
+                buf.back_depth = Some(behind(engine.render_back_face_depth()?));
+            }
+            if let Some(separation) = what.second_layer {
+                buf.second_layer = Some(behind(engine.render_second_layer_depth(separation)?));
             }
             Ok(buf)
         };
@@ -316,6 +350,12 @@ impl DepthBuffer {
         if let Some(back) = &self.back_depth {
             h.bytes(b"back faces");
             for d in back {
+                h.f32(*d);
+            }
+        }
+        if let Some(second) = &self.second_layer {
+            h.bytes(b"second layer");
+            for d in second {
                 h.f32(*d);
             }
         }

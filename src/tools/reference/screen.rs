@@ -39,6 +39,7 @@
 use std::path::Path;
 
 use anyhow::{bail, Result};
+use glam::DVec3;
 
 use super::cache;
 use super::depth_buffer::DepthBuffer;
@@ -60,6 +61,11 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
         bail!("{}", rust_i18n::t!("reference.visibility_only"));
     }
     let field = Heightfield::new(depth);
+    let second = depth.second_layer_buffer().map(|b| Heightfield::new(&b));
+    let layers = Layers {
+        first: &field,
+        second: second.as_ref(),
+    };
     let (w, h) = depth.visible_size();
     let g = depth.guard_band as usize;
     Ok(shade_image(
@@ -68,19 +74,34 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
         "screen-space reference",
         params.progress,
         // Each visible pixel keeps the random stream it has without a guard band.
-        |x, y| shade_pixel(&field, x + g, y + g, (y * w as usize + x) as u64, params),
+        |x, y| shade_pixel(&layers, x + g, y + g, (y * w as usize + x) as u64, params),
     ))
+}
+
+/// The solid the rays meet: the first layer's slabs (or heightfield), and with a second layer its
+/// slabs too (each triangulated on its own: a ray is blocked by either).
+struct Layers<'a> {
+    first: &'a Heightfield,
+    second: Option<&'a Heightfield>,
+}
+
+impl Layers<'_> {
+    fn blocked(&self, origin: DVec3, d: DVec3, radius: f64) -> bool {
+        self.first.blocked(origin, d, radius)
+            || self.second.is_some_and(|s| s.blocked(origin, d, radius))
+    }
 }
 
 /// (ao, std_error, linear depth) of buffer pixel (x, y), whose random stream is `stream`; `None`
 /// for sky.
 fn shade_pixel(
-    field: &Heightfield,
+    layers: &Layers,
     x: usize,
     y: usize,
     stream: u64,
     params: &RefParams,
 ) -> Option<(f32, f32, f32)> {
+    let field = layers.first;
     let p = field.point(x, y)?;
     let depth = (1.0 / field.inv_at(x, y)) as f32;
     if p.z > -field.near {
@@ -104,7 +125,7 @@ fn shade_pixel(
     for i in 0..count {
         let (u, v) = sampling::lattice_point(i, count, shift);
         let d = sampling::cosine_direction(nrm, tan, bit, u, v);
-        if !field.blocked(origin, d, radius) {
+        if !layers.blocked(origin, d, radius) {
             open += 1;
         }
     }
@@ -165,6 +186,7 @@ mod tests {
             thickness: f32::INFINITY,
             back_depth: None,
             normals: None,
+            second_layer: None,
             guard_band: 0,
         }
     }

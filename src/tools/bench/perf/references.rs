@@ -4,6 +4,7 @@
 
 use super::config::PerfConfig;
 use crate::ao::guard_band::guard_band_pixels;
+use crate::ao::settings::LAYER_SEPARATION_OF_RADIUS;
 use crate::ao::{AoMethod, AoSettings, NormalSource, Thickness};
 use crate::render::Engine;
 use crate::res::ResDirs;
@@ -199,23 +200,27 @@ pub fn screen_references(
         let camera = cam.camera(&sd.desc.camera);
         engine.camera = camera;
         engine.sync_shader_constants()?;
-        // Captured once per camera and (guard band, back faces).
-        let mut captured: BTreeMap<(u32, bool), DepthBuffer> = BTreeMap::new();
+        // Captured once per camera and (guard band, back faces, second layer's separation bits).
+        let mut captured: BTreeMap<(u32, bool, Option<u32>), DepthBuffer> = BTreeMap::new();
         for &(r, ceiling) in ceilings {
             let params = params(r, cfg.screen_rays, cfg.progress);
             let band =
                 guard_band_pixels(sd.desc.ao.guard_band, &camera, (cfg.width, cfg.height), r);
             let guard = (band as u64 * ref_width as u64 / cfg.width.max(1) as u64) as u32;
             let back_faces = matches!(ceiling, Ceiling::BackFaces { .. });
-            let buffer = match captured.get(&(guard, back_faces)) {
+            // The scene's second layer, its separation following the ceiling's radius.
+            let second_layer = (sd.desc.ao.layers >= 2).then_some(LAYER_SEPARATION_OF_RADIUS * r);
+            let slot = (guard, back_faces, second_layer.map(f32::to_bits));
+            let buffer = match captured.get(&slot) {
                 Some(b) => b.clone(),
                 None => {
                     let what = Capture {
                         back_faces,
                         normals,
+                        second_layer,
                     };
                     let b = DepthBuffer::capture(engine, guard, what)?;
-                    captured.insert((guard, back_faces), b.clone());
+                    captured.insert(slot, b.clone());
                     b
                 }
             };
