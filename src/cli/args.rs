@@ -51,14 +51,18 @@ pub struct ReferenceArgs {
     pub obscurance: bool,
     /// Screen-space reference instead: the same visibility computed exactly from the engine's
     /// full-resolution depth buffer seen as a heightfield (what a perfect screen-space method gets).
+    /// There `--guard-band PX|auto` renders the depth buffer wider on each side (same pixel size,
+    /// wider field of view) so that surfaces just off screen can occlude; `--thickness M` makes each
+    /// depth sample a slab M metres thick (the model `vbao` uses), `--thickness backface` a slab
+    /// reaching the back face behind it, `--layers 2` adds the second depth layer's slabs, and
+    /// `--normals geometric` takes each pixel's triangle normal.
     #[arg(long)]
     pub screen_space: bool,
-    /// With --screen-space, `--guard-band PX|auto` renders the depth buffer wider on each side (same
-    /// pixel size, wider field of view), so that surfaces just off the visible screen can occlude;
-    /// the output stays the visible size. `--thickness M` there makes each depth sample a slab M metres thick
-    /// (the model `vbao` uses) instead of an infinitely thick heightfield; `--thickness backface`
-    /// a slab reaching the back face behind it (from a depth render with front faces culled, as
-    /// `vbao`'s), or vbao's default thickness where there is none.
+    /// With --screen-space: render the depth buffer N times wider and taller and average the
+    /// visibility over each N×N block (the bench's `--ref-scale N` protocol); the output keeps the
+    /// scene's size.
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
+    pub supersample: u32,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,

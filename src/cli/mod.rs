@@ -338,17 +338,34 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         crate::ao::GuardBand::Pixels(p) => p,
         band => crate::ao::guard_band::guard_band_pixels(band, &cam, (w, h), radius),
     };
+    if args.supersample > 1 && !args.screen_space {
+        bail!("--supersample applies to the screen-space reference: add --screen-space")
+    }
     let img = if args.screen_space {
         use crate::tools::reference::DepthBuffer;
+        let n = args.supersample;
+        let mut big = scene.clone();
+        big.output.width = w * n;
+        big.output.height = h * n;
         let ctx = HeadlessContext::new()?;
-        let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
+        let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &big)?;
         let what = crate::tools::reference::Capture {
             back_faces,
             normals: scene.ao.normals == crate::ao::NormalSource::Geometric,
             second_layer: (scene.ao.layers >= 2).then(|| scene.ao.layer_separation_metres()),
         };
-        let depth = DepthBuffer::capture(&mut engine, guard_px, what)?.with_thickness(thickness);
-        crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+        let depth =
+            DepthBuffer::capture(&mut engine, guard_px * n, what)?.with_thickness(thickness);
+        if n > 1 {
+            crate::tools::reference::load_or_render_screen_box_cached(
+                &args.cache,
+                &depth,
+                n,
+                &params,
+            )?
+        } else {
+            crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+        }
     } else {
         load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
     };

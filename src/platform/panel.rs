@@ -143,6 +143,10 @@ impl Panel {
             };
         }
         if p.method == AoMethod::Vbao {
+            let mut second = p.layers >= 2;
+            ui.checkbox(&mut second, tr("panel.second_layer"))
+                .on_hover_text(tr("panel.second_layer_help"));
+            p.layers = if second { 2 } else { 1 };
             let mut back_faces = p.thickness == Some(Thickness::Backface);
             ui.checkbox(&mut back_faces, tr("panel.backface"))
                 .on_hover_text(tr("panel.backface_help"));

@@ -16,6 +16,7 @@ mod params;
 mod sampling;
 mod scene;
 mod screen;
+mod screen_box;
 mod trace;
 
 pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
@@ -25,4 +26,7 @@ pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};
 pub use screen::{load_or_render_screen_cached, render_screen_space, screen_cache_key};
+pub use screen_box::{
+    load_or_render_screen_box_cached, render_screen_space_box, screen_box_cache_key,
+};
 pub use trace::render_reference;

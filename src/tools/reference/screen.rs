@@ -80,9 +80,9 @@ pub fn render_screen_space(depth: &DepthBuffer, params: &RefParams) -> Result<Re
 
 /// The solid the rays meet: the first layer's slabs (or heightfield), and with a second layer its
 /// slabs too (each triangulated on its own: a ray is blocked by either).
-struct Layers<'a> {
-    first: &'a Heightfield,
-    second: Option<&'a Heightfield>,
+pub(crate) struct Layers<'a> {
+    pub(crate) first: &'a Heightfield,
+    pub(crate) second: Option<&'a Heightfield>,
 }
 
 impl Layers<'_> {
@@ -101,37 +101,71 @@ fn shade_pixel(
     stream: u64,
     params: &RefParams,
 ) -> Option<(f32, f32, f32)> {
-    let field = layers.first;
-    let p = field.point(x, y)?;
-    let depth = (1.0 / field.inv_at(x, y)) as f32;
-    if p.z > -field.near {
-        return Some((1.0, 0.0, depth)); // closer than the near plane: the buffer cannot hold it
-    }
-    let radius = params.radius as f64;
-    if radius.is_nan() || radius <= 0.0 {
+    let (start, depth) = ray_start(layers.first, x, y, params)?;
+    let Some(start) = start else {
         return Some((1.0, 0.0, depth));
-    }
-    let nrm = field.normal(x, y, p);
-    // The ray-traced reference's offset size (clears rounding at that distance), but towards the
-    // eye along the pixel's own ray: the origin stays over the pixel's vertex, in front of every
-    // triangle that meets there. Along the normal it could cross the screen into a neighbouring
-    // triangle that rises steeply (the one bridging a concave crease) and start inside the solid.
-    let origin = p - p.normalize() * (1e-4 * p.length().max(1.0));
-    let (tan, bit) = sampling::tangent_frame(nrm);
+    };
     let count = params.rays.max(1);
     let mut rng = sampling::Pcg32::for_pixel(params.seed, stream);
     let shift = (rng.next_f64(), rng.next_f64());
     let mut open = 0u32;
     for i in 0..count {
         let (u, v) = sampling::lattice_point(i, count, shift);
-        let d = sampling::cosine_direction(nrm, tan, bit, u, v);
-        if !layers.blocked(origin, d, radius) {
+        if !start.blocked(layers, (u, v), params.radius as f64) {
             open += 1;
         }
     }
     let mean = open as f64 / count as f64;
     let se = (mean * (1.0 - mean) / count as f64).max(0.0).sqrt();
     Some((mean.clamp(0.0, 1.0) as f32, se as f32, depth))
+}
+
+/// Where a pixel's rays leave from, and its frame for cosine-weighted directions.
+pub(crate) struct RayStart {
+    origin: DVec3,
+    normal: DVec3,
+    tangent: DVec3,
+    bitangent: DVec3,
+}
+
+impl RayStart {
+    /// Whether the cosine-weighted direction of lattice point `uv` is blocked within `radius`.
+    pub(crate) fn blocked(&self, layers: &Layers, uv: (f64, f64), radius: f64) -> bool {
+        let (n, t, b) = (self.normal, self.tangent, self.bitangent);
+        let d = sampling::cosine_direction(n, t, b, uv.0, uv.1);
+        layers.blocked(self.origin, d, radius)
+    }
+}
+
+/// Buffer pixel (x, y)'s ray start and linear depth: `None` for sky; a `None` start where the pixel
+/// sees nothing (closer than the near plane, or no radius), which is fully open.
+pub(crate) fn ray_start(
+    field: &Heightfield,
+    x: usize,
+    y: usize,
+    params: &RefParams,
+) -> Option<(Option<RayStart>, f32)> {
+    let p = field.point(x, y)?;
+    let depth = (1.0 / field.inv_at(x, y)) as f32;
+    let radius = params.radius as f64;
+    if p.z > -field.near || radius.is_nan() || radius <= 0.0 {
+        // Closer than the near plane the buffer cannot hold it; no radius, nothing occludes.
+        return Some((None, depth));
+    }
+    let normal = field.normal(x, y, p);
+    // The ray-traced reference's offset size (clears rounding at that distance), but towards the
+    // eye along the pixel's own ray: the origin stays over the pixel's vertex, in front of every
+    // triangle that meets there. Along the normal it could cross the screen into a neighbouring
+    // triangle that rises steeply (the one bridging a concave crease) and start inside the solid.
+    let origin = p - p.normalize() * (1e-4 * p.length().max(1.0));
+    let (tangent, bitangent) = sampling::tangent_frame(normal);
+    let start = RayStart {
+        origin,
+        normal,
+        tangent,
+        bitangent,
+    };
+    Some((Some(start), depth))
 }
 
 /// Cache key of a screen-space render: FNV-1a 64 over the algorithm version, every depth value,

@@ -64,9 +64,9 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let mut rows = Vec::new();
     let mut screen_count = RenderCount::default();
     for sd in &scenes {
-        // The engine starts at the reference's size for the screen-space references' depth
-        // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
-        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
+        // The screen-space references read the depth buffer at the bench size, as the methods do,
+        // and average their visibility over the blocks the bench averages the methods' output over.
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, cfg.width, cfg.height)?;
         let ceilings = ceilings(&plan, &engine.ao_settings);
         let screen =
             references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?;
