@@ -325,6 +325,9 @@ fn bench_room(out: &std::path::Path, thickness: &str) -> perf::Report {
         flip: false,
         charts: false,
         progress: false,
+        ceilings: true,
+        grid: perf::Grid::Full,
+        scaled: Vec::new(),
     };
     perf::run(&res, &cfg).expect("bench run")
 }

@@ -25,11 +25,13 @@ mod config;
 mod html;
 mod markdown;
 mod pictures;
+pub mod protocol;
 mod references;
 mod report;
 mod run;
 mod setting;
 
 pub use config::PerfConfig;
+pub use protocol::Grid;
 pub use report::{CameraError, ReferenceInfo, Report, Row};
 pub use run::run;

@@ -63,15 +63,9 @@ fn params(radius: f32, rays: u32, progress: bool) -> RefParams {
     }
 }
 
-/// Loads the scene at `path` at the bench size and its ray-traced references at `radii`.
-pub fn load_scene(
-    res: &ResDirs,
-    path: &Path,
-    radii: &[f32],
-    cfg: &PerfConfig,
-    count: &mut RenderCount,
-) -> Result<SceneData> {
-    let (rw, rh) = cfg.reference_size();
+/// Loads the scene at `path` at the bench size with its cameras, and its triangles for the ray
+/// tracer (the references come from [`trace_references`]).
+pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
     let mut desc = SceneDesc::load(path)?;
     desc.output.width = cfg.width;
     desc.output.height = cfg.height;
@@ -81,33 +75,67 @@ pub fn load_scene(
         .unwrap_or_else(|| "scene".into());
     let cameras = catalog::camera_variants(&desc.camera);
     let bvh = Scene::new(desc.world_triangles(res)?)?;
-    let mut refs = BTreeMap::new();
-    for (ci, cam) in cameras.iter().enumerate() {
-        for &r in radii {
-            let params = params(r, cfg.ref_rays, cfg.progress);
-            let camera = cam.camera(&desc.camera);
-            let key = cache_key(bvh.content_hash(), &camera, rw, rh, &params);
-            let hit = cache_path(&cfg.cache, &key).is_file();
-            if cfg.progress {
-                eprintln!(
-                    "reference {name}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
-                    cam.name,
-                    cfg.ref_rays,
-                    if hit { "cached" } else { "rendering" }
-                );
-            }
-            let t = Instant::now();
-            let img = load_or_render_cached(&cfg.cache, &bvh, &camera, rw, rh, &params);
-            count.add(hit, t);
-            refs.insert((ci, r.to_bits()), img);
-        }
-    }
-    Ok(SceneData {
+    let sd = SceneData {
         name,
         desc,
         cameras,
-        refs,
-    })
+        refs: BTreeMap::new(),
+    };
+    Ok((sd, bvh))
+}
+
+/// The cache key of every reference of `sd` at `radii` (camera index, radius, key).
+fn reference_keys(sd: &SceneData, bvh: &Scene, radii: &[f32], cfg: &PerfConfig) -> Vec<(usize, f32, String)> {
+    let (rw, rh) = cfg.reference_size();
+    let mut keys = Vec::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        for &r in radii {
+            let camera = cam.camera(&sd.desc.camera);
+            let key = cache_key(bvh.content_hash(), &camera, rw, rh, &params(r, cfg.ref_rays, false));
+            keys.push((ci, r, key));
+        }
+    }
+    keys
+}
+
+/// How many of the scene's references at `radii` are not in the cache yet.
+pub fn missing_references(sd: &SceneData, bvh: &Scene, radii: &[f32], cfg: &PerfConfig) -> usize {
+    reference_keys(sd, bvh, radii, cfg)
+        .iter()
+        .filter(|(_, _, key)| !cache_path(&cfg.cache, key).is_file())
+        .count()
+}
+
+/// Ray-traces (or reads from the cache) the reference of every camera of `sd` at `radii`;
+/// `done` counts the references of the whole run so far, of `total`, for the progress lines.
+pub fn trace_references(
+    sd: &mut SceneData,
+    bvh: &Scene,
+    radii: &[f32],
+    cfg: &PerfConfig,
+    count: &mut RenderCount,
+    (done, total): (&mut usize, usize),
+) {
+    let (rw, rh) = cfg.reference_size();
+    for (ci, r, key) in reference_keys(sd, bvh, radii, cfg) {
+        let params = params(r, cfg.ref_rays, cfg.progress);
+        let camera = sd.cameras[ci].camera(&sd.desc.camera);
+        let hit = cache_path(&cfg.cache, &key).is_file();
+        *done += 1;
+        if cfg.progress {
+            eprintln!(
+                "reference {done}/{total} {}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
+                sd.name,
+                sd.cameras[ci].name,
+                cfg.ref_rays,
+                if hit { "cached" } else { "rendering" }
+            );
+        }
+        let t = Instant::now();
+        let img = load_or_render_cached(&cfg.cache, bvh, &camera, rw, rh, &params);
+        count.add(hit, t);
+        sd.refs.insert((ci, r.to_bits()), img);
+    }
 }
 
 /// Screen-space references keyed by (camera index, radius bits, ceiling).

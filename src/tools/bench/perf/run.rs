@@ -2,6 +2,7 @@
 //! every scene, then the report files.
 
 use super::config::PerfConfig;
+use super::protocol::{self, Grid, Work};
 use super::references::{self, Ceiling, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
@@ -41,19 +42,30 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     radii.sort_by(|a, b| a.total_cmp(b));
     radii.dedup();
 
+    let mut loaded = scene_paths
+        .iter()
+        .map(|path| references::load_scene(res, path, cfg))
+        .collect::<Result<Vec<_>>>()?;
+    let ctx = HeadlessContext::new()?;
+    let missing: usize = loaded
+        .iter()
+        .map(|(sd, bvh)| references::missing_references(sd, bvh, &radii, cfg))
+        .sum();
+    let total_refs = loaded.iter().map(|(sd, _)| sd.cameras.len()).sum::<usize>() * radii.len();
+    let settings_per_scene: usize = plan.iter().map(|(_, s)| s.len()).sum();
+    if cfg.progress {
+        announce(cfg, &ctx, &loaded, &radii, missing, total_refs, settings_per_scene, &plan);
+    }
+
     // References first: they are the slow part, and cached for later runs.
     let mut traced = RenderCount::default();
-    let scenes = scene_paths
-        .iter()
-        .map(|path| references::load_scene(res, path, &radii, cfg, &mut traced))
-        .collect::<Result<Vec<_>>>()?;
+    let mut done = 0;
+    for (sd, bvh) in &mut loaded {
+        references::trace_references(sd, bvh, &radii, cfg, &mut traced, (&mut done, total_refs));
+    }
+    let scenes: Vec<_> = loaded.into_iter().map(|(sd, _)| sd).collect();
 
-    let ctx = HeadlessContext::new()?;
-    let timing = if ctx.software {
-        "wall clock around glFinish per pass (software GL: Mesa llvmpipe; timer queries do not measure real time there)"
-    } else {
-        "wall clock around glFinish per pass (hardware GL)"
-    };
+    let clock = crate::gl::PassClock::of_context(&ctx.gl);
     let total_settings: usize = plan.iter().map(|(_, s)| s.len()).sum::<usize>() * scenes.len();
     let pb = progress::bar(
         total_settings as u64,
@@ -67,9 +79,12 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         // The engine starts at the reference's size for the screen-space references' depth
         // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
-        let ceilings = ceilings(&plan, &engine.ao_settings);
-        let screen =
-            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?;
+        let screen = if cfg.ceilings {
+            let ceilings = ceilings(&plan, &engine.ao_settings);
+            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?
+        } else {
+            Default::default()
+        };
         engine.resize(cfg.width, cfg.height)?;
         for (method, settings) in &plan {
             for s in settings {
@@ -86,7 +101,11 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let report = Report {
         renderer: ctx.renderer.clone(),
         software: ctx.software,
-        timing: timing.to_string(),
+        timing: clock.description().to_string(),
+        clock,
+        full_protocol: cfg.scaled.is_empty(),
+        scaled: cfg.scaled.clone(),
+        ceilings: cfg.ceilings,
         cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
         width: cfg.width,
         height: cfg.height,
@@ -119,6 +138,76 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     Ok(report)
 }
 
+/// Prints what the run will do and how long it should take, before anything slow starts.
+#[allow(clippy::too_many_arguments)]
+fn announce(
+    cfg: &PerfConfig,
+    ctx: &HeadlessContext,
+    loaded: &[(references::SceneData, crate::tools::reference::Scene)],
+    radii: &[f32],
+    missing: usize,
+    total_refs: usize,
+    settings_per_scene: usize,
+    plan: &[(AoMethod, Vec<Setting>)],
+) {
+    let cameras = loaded.first().map_or(0, |(sd, _)| sd.cameras.len());
+    let test_cameras = loaded
+        .first()
+        .map_or(0, |(sd, _)| sd.cameras.iter().filter(|c| !c.train).count());
+    let screen = if cfg.ceilings {
+        // One per test camera, radius and ceiling kind (at most three kinds).
+        loaded.len() * test_cameras * radii.len() * if plan.iter().any(|(m, _)| *m == AoMethod::Vbao) { 2 } else { 1 }
+    } else {
+        0
+    };
+    let work = Work {
+        settings: settings_per_scene * loaded.len(),
+        cameras,
+        references: missing,
+        cached: total_refs - missing,
+        screen_references: screen,
+        mean_radius: radii.iter().map(|r| *r as f64).sum::<f64>() / radii.len().max(1) as f64,
+    };
+    let p = protocol::Protocol {
+        width: cfg.width,
+        height: cfg.height,
+        ref_scale: cfg.ref_scale,
+        ref_rays: cfg.ref_rays,
+        screen_rays: cfg.screen_rays,
+        warmup: cfg.warmup,
+        frames: cfg.frames,
+        ceilings: cfg.ceilings,
+        grid: cfg.grid,
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (rw, rh) = cfg.reference_size();
+    eprintln!(
+        "{}",
+        rust_i18n::t!(
+            "bench.plan",
+            settings = work.settings,
+            scenes = loaded.len(),
+            width = cfg.width,
+            height = cfg.height,
+            refs = missing,
+            cached = work.cached,
+            ref_width = rw,
+            ref_height = rh,
+            rays = cfg.ref_rays
+        )
+    );
+    if ctx.software {
+        let estimate = protocol::minutes(protocol::estimate_seconds(&p, &work, cores));
+        eprintln!("{}", rust_i18n::t!("bench.estimate", time = estimate, cores = cores));
+    }
+    if !cfg.scaled.is_empty() {
+        eprintln!("{}", rust_i18n::t!("bench.quick", command = protocol::FULL_COMMAND));
+        for line in &cfg.scaled {
+            eprintln!("  - {line}");
+        }
+    }
+}
+
 /// Every (radius, ceiling) whose screen-space reference the plan's error split needs: each
 /// setting's radius with its method's thickness model (`Ceiling::of`) under the scene's AO
 /// settings.
@@ -145,10 +234,13 @@ fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
         .methods
         .iter()
         .map(|m| {
-            (
-                *m,
-                catalog::settings_for(*m, &cfg.samples, &cfg.radii, &cfg.qualities),
-            )
+            let given = !(cfg.samples.is_empty() && cfg.radii.is_empty() && cfg.qualities.is_empty());
+            let settings = if cfg.grid == Grid::Quick && !given {
+                catalog::quick_settings()
+            } else {
+                catalog::settings_for(*m, &cfg.samples, &cfg.radii, &cfg.qualities)
+            };
+            (*m, settings)
         })
         .collect();
     for (_, settings) in &plan {
