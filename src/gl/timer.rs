@@ -121,7 +121,10 @@ mod tests {
         ] {
             assert_eq!(PassClock::for_renderer(r), PassClock::WallClock, "{r}");
         }
-        for r in ["NVIDIA Corporation NVIDIA H200/PCIe/SSE2", "AMD Radeon RX 7900 (radeonsi)"] {
+        for r in [
+            "NVIDIA Corporation NVIDIA H200/PCIe/SSE2",
+            "AMD Radeon RX 7900 (radeonsi)",
+        ] {
             assert_eq!(PassClock::for_renderer(r), PassClock::GpuTimer, "{r}");
         }
         assert_eq!(PassClock::WallClock.name(), "wall clock");

@@ -257,7 +257,9 @@ impl Panel {
     fn timing_table(&mut self, ui: &mut egui::Ui, stats: &[PassStat]) {
         let renderer = &self.renderer;
         // Each figure's clock: the GPU's timer query on a hardware driver, else the wall clock.
-        let gpu = stats.iter().any(|s| s.clock == crate::gl::PassClock::GpuTimer);
+        let gpu = stats
+            .iter()
+            .any(|s| s.clock == crate::gl::PassClock::GpuTimer);
         let (caption, unit) = if gpu {
             ("panel.times_caption_gpu", "panel.ms_gpu")
         } else {

@@ -497,9 +497,15 @@ fn stats_name_their_clock_and_software_gl_gets_the_wall_clock() {
     // figure is the wall clock around glFinish, and says so.
     let soft = stats_json(&[("OPENGL3D_DEVICE", "software")]);
     let renderer = soft["renderer"].as_str().unwrap().to_ascii_lowercase();
-    assert!(renderer.contains("llvmpipe") || renderer.contains("softpipe"), "{renderer}");
+    assert!(
+        renderer.contains("llvmpipe") || renderer.contains("softpipe"),
+        "{renderer}"
+    );
     assert_eq!(soft["clock"], "wall clock", "{soft}");
-    assert!(soft["timing"].as_str().unwrap().contains("glFinish"), "{soft}");
+    assert!(
+        soft["timing"].as_str().unwrap().contains("glFinish"),
+        "{soft}"
+    );
     let passes = soft["passes"].as_array().unwrap();
     assert!(!passes.is_empty());
     for p in passes {

@@ -38,9 +38,9 @@ fn resolve(
     }
     match set(home) {
         Some(home) => Ok(home.join(".cache").join("opengl3d").join("reference")),
-        None => bail!(
-            "no cache folder: set {CACHE_ENV}, XDG_CACHE_HOME or HOME, or give --cache DIR"
-        ),
+        None => {
+            bail!("no cache folder: set {CACHE_ENV}, XDG_CACHE_HOME or HOME, or give --cache DIR")
+        }
     }
 }
 

@@ -97,7 +97,12 @@ where
     let err = |e: DrawingAreaErrorKind<DB::ErrorType>| anyhow!("{e:?}");
     let points: Vec<(f64, f64)> = panel.rows.iter().map(|r| (r.total_ms, r.psnr)).collect();
     let finite = |v: f64| v.is_finite();
-    let xmax = points.iter().map(|p| p.0).filter(|v| finite(*v)).fold(1e-3, f64::max) * 1.15;
+    let xmax = points
+        .iter()
+        .map(|p| p.0)
+        .filter(|v| finite(*v))
+        .fold(1e-3, f64::max)
+        * 1.15;
     let ys: Vec<f64> = points.iter().map(|p| p.1).filter(|v| finite(*v)).collect();
     let ymin = ys.iter().copied().fold(f64::INFINITY, f64::min);
     let ymax = ys.iter().copied().fold(f64::NEG_INFINITY, f64::max);
@@ -143,7 +148,11 @@ where
         let on_front = front.contains(&i);
         let size = if on_front { 6 } else { 4 };
         chart
-            .draw_series(std::iter::once(Circle::new(points[i], size, colour.filled())))
+            .draw_series(std::iter::once(Circle::new(
+                points[i],
+                size,
+                colour.filled(),
+            )))
             .map_err(err)?;
         if on_front {
             chart
@@ -174,7 +183,10 @@ where
 }
 
 /// Each method's colour (the same on every chart) and the front's line.
-fn legend<DB: DrawingBackend>(root: DrawingArea<DB, plotters::coord::Shift>, report: &Report) -> Result<()>
+fn legend<DB: DrawingBackend>(
+    root: DrawingArea<DB, plotters::coord::Shift>,
+    report: &Report,
+) -> Result<()>
 where
     DB::ErrorType: 'static,
 {
@@ -188,15 +200,19 @@ where
     let font = ("sans-serif", 15).into_font();
     let y = (LEGEND_HEIGHT / 2) as i32;
     let mut x = 20;
-    root.draw(&PathElement::new(vec![(x, y), (x + 30, y)], BLACK.mix(0.6).stroke_width(2)))
-        .map_err(err)?;
+    root.draw(&PathElement::new(
+        vec![(x, y), (x + 30, y)],
+        BLACK.mix(0.6).stroke_width(2),
+    ))
+    .map_err(err)?;
     let front_label = "Pareto front (nothing cheaper scores higher)";
     root.draw(&Text::new(front_label, (x + 38, y - 8), font.clone()))
         .map_err(err)?;
     x += 48 + 8 * front_label.len() as i32;
     for m in methods {
         let colour = front::method_colour(m);
-        root.draw(&Circle::new((x, y), 6, colour.filled())).map_err(err)?;
+        root.draw(&Circle::new((x, y), 6, colour.filled()))
+            .map_err(err)?;
         root.draw(&Text::new(m.to_string(), (x + 12, y - 8), font.clone()))
             .map_err(err)?;
         x += 30 + 9 * m.len() as i32;

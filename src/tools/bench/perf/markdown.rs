@@ -121,7 +121,7 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
              computes them."
         )?;
     } else {
-    writeln!(
+        writeln!(
         s,
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \

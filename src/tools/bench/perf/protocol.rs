@@ -92,7 +92,10 @@ pub fn resolve(given: &Given, base: &Protocol) -> (Protocol, Vec<String>) {
             p.width, p.height, FULL.width, FULL.height
         ));
     }
-    let (rw, rh) = (p.width.div_ceil(p.ref_scale), p.height.div_ceil(p.ref_scale));
+    let (rw, rh) = (
+        p.width.div_ceil(p.ref_scale),
+        p.height.div_ceil(p.ref_scale),
+    );
     let (fw, fh) = (
         FULL.width.div_ceil(FULL.ref_scale),
         FULL.height.div_ceil(FULL.ref_scale),
@@ -190,7 +193,12 @@ mod tests {
         let (p, notes) = resolve(&Given::default(), &QUICK);
         assert_eq!(p, QUICK);
         let all = notes.join("\n");
-        for needle in ["output 640×360", "references 160×90", "5 per method", "error split"] {
+        for needle in [
+            "output 640×360",
+            "references 160×90",
+            "5 per method",
+            "error split",
+        ] {
             assert!(all.contains(needle), "{needle}: {all}");
         }
         let given = Given {

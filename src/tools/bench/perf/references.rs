@@ -85,13 +85,24 @@ pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(Scene
 }
 
 /// The cache key of every reference of `sd` at `radii` (camera index, radius, key).
-fn reference_keys(sd: &SceneData, bvh: &Scene, radii: &[f32], cfg: &PerfConfig) -> Vec<(usize, f32, String)> {
+fn reference_keys(
+    sd: &SceneData,
+    bvh: &Scene,
+    radii: &[f32],
+    cfg: &PerfConfig,
+) -> Vec<(usize, f32, String)> {
     let (rw, rh) = cfg.reference_size();
     let mut keys = Vec::new();
     for (ci, cam) in sd.cameras.iter().enumerate() {
         for &r in radii {
             let camera = cam.camera(&sd.desc.camera);
-            let key = cache_key(bvh.content_hash(), &camera, rw, rh, &params(r, cfg.ref_rays, false));
+            let key = cache_key(
+                bvh.content_hash(),
+                &camera,
+                rw,
+                rh,
+                &params(r, cfg.ref_rays, false),
+            );
             keys.push((ci, r, key));
         }
     }

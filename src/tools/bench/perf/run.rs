@@ -54,7 +54,16 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let total_refs = loaded.iter().map(|(sd, _)| sd.cameras.len()).sum::<usize>() * radii.len();
     let settings_per_scene: usize = plan.iter().map(|(_, s)| s.len()).sum();
     if cfg.progress {
-        announce(cfg, &ctx, &loaded, &radii, missing, total_refs, settings_per_scene, &plan);
+        announce(
+            cfg,
+            &ctx,
+            &loaded,
+            &radii,
+            missing,
+            total_refs,
+            settings_per_scene,
+            &plan,
+        );
     }
 
     // References first: they are the slow part, and cached for later runs.
@@ -156,7 +165,14 @@ fn announce(
         .map_or(0, |(sd, _)| sd.cameras.iter().filter(|c| !c.train).count());
     let screen = if cfg.ceilings {
         // One per test camera, radius and ceiling kind (at most three kinds).
-        loaded.len() * test_cameras * radii.len() * if plan.iter().any(|(m, _)| *m == AoMethod::Vbao) { 2 } else { 1 }
+        loaded.len()
+            * test_cameras
+            * radii.len()
+            * if plan.iter().any(|(m, _)| *m == AoMethod::Vbao) {
+                2
+            } else {
+                1
+            }
     } else {
         0
     };
@@ -198,10 +214,16 @@ fn announce(
     );
     if ctx.software {
         let estimate = protocol::minutes(protocol::estimate_seconds(&p, &work, cores));
-        eprintln!("{}", rust_i18n::t!("bench.estimate", time = estimate, cores = cores));
+        eprintln!(
+            "{}",
+            rust_i18n::t!("bench.estimate", time = estimate, cores = cores)
+        );
     }
     if !cfg.scaled.is_empty() {
-        eprintln!("{}", rust_i18n::t!("bench.quick", command = protocol::FULL_COMMAND));
+        eprintln!(
+            "{}",
+            rust_i18n::t!("bench.quick", command = protocol::FULL_COMMAND)
+        );
         for line in &cfg.scaled {
             eprintln!("  - {line}");
         }
@@ -234,7 +256,8 @@ fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
         .methods
         .iter()
         .map(|m| {
-            let given = !(cfg.samples.is_empty() && cfg.radii.is_empty() && cfg.qualities.is_empty());
+            let given =
+                !(cfg.samples.is_empty() && cfg.radii.is_empty() && cfg.qualities.is_empty());
             let settings = if cfg.grid == Grid::Quick && !given {
                 catalog::quick_settings()
             } else {

@@ -93,11 +93,9 @@ pub fn method_colour(method: &str) -> RGBColor {
     if let Some((_, c)) = METHOD_COLOURS.iter().find(|(m, _)| *m == method) {
         return *c;
     }
-    let hash = method
-        .bytes()
-        .fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
-            (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
-        });
+    let hash = method.bytes().fold(0xcbf2_9ce4_8422_2325u64, |h, b| {
+        (h ^ b as u64).wrapping_mul(0x100_0000_01b3)
+    });
     OTHER_COLOURS[(hash % OTHER_COLOURS.len() as u64) as usize]
 }
 
@@ -127,11 +125,21 @@ mod tests {
 
     #[test]
     fn every_method_has_its_own_fixed_colour() {
-        let colours: Vec<RGBColor> = AoMethod::ALL.iter().map(|m| method_colour(m.name())).collect();
+        let colours: Vec<RGBColor> = AoMethod::ALL
+            .iter()
+            .map(|m| method_colour(m.name()))
+            .collect();
         for (i, c) in colours.iter().enumerate() {
-            assert!(!colours[..i].contains(c), "{:?} shares a colour", AoMethod::ALL[i]);
+            assert!(
+                !colours[..i].contains(c),
+                "{:?} shares a colour",
+                AoMethod::ALL[i]
+            );
             assert!(!OTHER_COLOURS.contains(c));
         }
-        assert_eq!(method_colour("some-new-method"), method_colour("some-new-method"));
+        assert_eq!(
+            method_colour("some-new-method"),
+            method_colour("some-new-method")
+        );
     }
 }
