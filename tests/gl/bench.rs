@@ -122,6 +122,7 @@ fn tiny_bench_writes_a_complete_finite_report() {
     let out = temp_dir("bench-tiny");
     let cfg = perf::PerfConfig {
         scenes: Vec::new(),
+        models: Vec::new(),
         width: 96,
         height: 54,
         out: out.clone(),
@@ -326,6 +327,7 @@ fn library_runs_refuse_the_same_ranges() {
     let out = temp_dir("bench-lib-range");
     let base = perf::PerfConfig {
         scenes: Vec::new(),
+        models: Vec::new(),
         width: 32,
         height: 18,
         out: out.clone(),

@@ -140,7 +140,7 @@ pub fn check_chart(dir: &Path) {
             "{name} {titles:?}"
         );
     }
-    // Every panel has a front, and its first point is labelled.
+    // Every panel has a front, named in its points' tooltips.
     assert!(
         titles
             .iter()

@@ -15,6 +15,7 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
     ];
     let cfg = perf::PerfConfig {
         scenes,
+        models: Vec::new(),
         width: 64,
         height: 36,
         out: out.clone(),

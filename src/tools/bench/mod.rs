@@ -30,6 +30,11 @@ pub struct BenchArgs {
     /// Scene files (default: the demo scene). Each is run at its own camera and three variants.
     #[arg(long = "scene")]
     pub scenes: Vec<PathBuf>,
+    /// Models (OBJ), each run as a scene of its own: the camera framed from its bounds as
+    /// `render --obj` does, with the same three variants, and (without --radii) the radii scaled
+    /// by the AO radius the framing chose. The demo scene runs only when a --scene is given too.
+    #[arg(long = "obj", value_name = "FILE")]
+    pub models: Vec<PathBuf>,
     /// Run the full protocol (1920×1080, references at 1/6, every method's whole grid of
     /// settings, the error split against each method's ceiling) for the options not given.
     /// Without it, the options not given take a quick run's values (a few minutes on two cores)
@@ -149,6 +154,7 @@ impl BenchArgs {
         let (p, scaled) = perf::protocol::resolve(&given, &base);
         Ok(perf::PerfConfig {
             scenes: self.scenes.clone(),
+            models: self.models.clone(),
             width: p.width,
             height: p.height,
             out: self.out.clone(),

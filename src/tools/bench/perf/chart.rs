@@ -140,6 +140,7 @@ where
             BLACK.mix(0.6).stroke_width(2),
         ))
         .map_err(err)?;
+    let mut placed: Vec<Rect> = Vec::new();
     for (i, row) in panel.rows.iter().enumerate() {
         if !(finite(points[i].0) && finite(points[i].1)) {
             continue;
@@ -154,13 +155,17 @@ where
                 colour.filled(),
             )))
             .map_err(err)?;
-        if on_front {
+        let label = format!("{} {}", row.method, row.setting);
+        let offset = on_front
+            .then(|| free_spot(chart.backend_coord(&points[i]), &label, &mut placed))
+            .flatten();
+        if let Some(offset) = offset {
             chart
                 .draw_series(std::iter::once(
                     EmptyElement::at(points[i])
                         + Text::new(
-                            format!("{} {}", row.method, row.setting),
-                            (8, -14),
+                            label,
+                            offset,
                             ("sans-serif", 12).into_font().color(&colour.mix(0.95)),
                         ),
                 ))
@@ -180,6 +185,35 @@ where
         });
     }
     Ok(())
+}
+
+/// A label's box in backend pixels: left, top, right, bottom.
+type Rect = (i32, i32, i32, i32);
+
+/// Where a label of `text` beside the point at `at` (backend pixels) overlaps no label placed
+/// before: the offset from the point, first free of a few spots right, left, above and below;
+/// `None` when all are taken (the point keeps its tooltip). Text is 12 px high, ~7 px a character.
+fn free_spot(at: (i32, i32), text: &str, placed: &mut Vec<Rect>) -> Option<(i32, i32)> {
+    let (w, h) = (7 * text.chars().count() as i32, 14);
+    let candidates = [
+        (8, -16),
+        (8, 4),
+        (-w - 8, -16),
+        (-w - 8, 4),
+        (8, -32),
+        (8, 20),
+        (-w / 2, -34),
+        (-w / 2, 22),
+    ];
+    let overlaps = |a: &Rect, b: &Rect| a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+    for (dx, dy) in candidates {
+        let rect = (at.0 + dx, at.1 + dy, at.0 + dx + w, at.1 + dy + h);
+        if !placed.iter().any(|p| overlaps(p, &rect)) {
+            placed.push(rect);
+            return Some((dx, dy));
+        }
+    }
+    None
 }
 
 /// Each method's colour (the same on every chart) and the front's line.
@@ -296,4 +330,28 @@ fn write_chart_pair(report: &Report, out: &Path, stem: &str) -> Result<Vec<PathB
         .save(&png)
         .with_context(|| format!("cannot write {}", png.display()))?;
     Ok(vec![svg, png])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{free_spot, Rect};
+
+    #[test]
+    fn labels_of_points_at_one_place_never_overlap() {
+        let mut placed: Vec<Rect> = Vec::new();
+        let mut n = 0;
+        while free_spot((200, 200), "hemisphere n8 r1", &mut placed).is_some() {
+            n += 1;
+            assert!(n < 100);
+        }
+        assert!(n >= 6, "{n} labels placed");
+        for (i, a) in placed.iter().enumerate() {
+            for b in &placed[..i] {
+                let overlap = a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3;
+                assert!(!overlap, "{a:?} overlaps {b:?}");
+            }
+        }
+        // A point elsewhere still gets its label.
+        assert!(free_spot((600, 200), "gtao n8 r1", &mut placed).is_some());
+    }
 }

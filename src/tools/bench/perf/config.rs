@@ -10,6 +10,8 @@ use std::path::PathBuf;
 #[derive(Clone, Debug)]
 pub struct PerfConfig {
     pub scenes: Vec<PathBuf>,
+    /// Models (`--obj`), each run as a scene of its own framed from its bounds.
+    pub models: Vec<PathBuf>,
     pub width: u32,
     pub height: u32,
     pub out: PathBuf,

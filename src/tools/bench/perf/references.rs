@@ -7,13 +7,14 @@ use crate::ao::guard_band::guard_band_pixels;
 use crate::ao::{AoMethod, AoSettings, NormalSource, Thickness};
 use crate::render::Engine;
 use crate::res::ResDirs;
+use crate::scene::framing;
 use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
     cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
     AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
 };
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use indicatif::ProgressBar;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -29,6 +30,9 @@ pub struct SceneData {
     pub desc: SceneDesc,
     pub cameras: Vec<BenchCamera>,
     pub refs: RefMap,
+    /// The settings' radii are multiplied by this on this scene: 1 for a scene file, the AO
+    /// radius framing chose for a model (`--obj`) when no `--radii` are given.
+    pub radius_scale: f32,
 }
 
 /// How many references were rendered this run or read from the cache, and the seconds spent
@@ -73,6 +77,16 @@ pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(Scene
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
+    scene_data(res, name, desc, 1.0)
+}
+
+/// A scene of its cameras (the scene's own and its variants) and triangles.
+fn scene_data(
+    res: &ResDirs,
+    name: String,
+    desc: SceneDesc,
+    radius_scale: f32,
+) -> Result<(SceneData, Scene)> {
     let cameras = catalog::camera_variants(&desc.camera);
     let bvh = Scene::new(desc.world_triangles(res)?)?;
     let sd = SceneData {
@@ -80,8 +94,36 @@ pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(Scene
         desc,
         cameras,
         refs: BTreeMap::new(),
+        radius_scale,
     };
     Ok((sd, bvh))
+}
+
+/// Loads one model as the whole scene (as `render --obj` does: the demo's light and AO, the
+/// camera framed from the model's bounds), with the same camera variants as a scene file. Without
+/// `--radii` the settings' radii (in metres for the demo's scale) are multiplied by the radius
+/// framing chose, so that they follow the model's size.
+pub fn load_model(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
+    let found = path
+        .canonicalize()
+        .with_context(|| rust_i18n::t!("render.obj_not_found", path = path.display()))?;
+    let data = crate::gl::mesh::MeshData::load_obj(&found)?;
+    let mut desc = SceneDesc::single_obj(&found);
+    desc.output.width = cfg.width;
+    desc.output.height = cfg.height;
+    let framed = match data.bounds() {
+        Some((lo, hi)) => framing::frame_model(&mut desc, lo, hi, framing::Fixed::default()),
+        None => None,
+    };
+    let scale = match framed {
+        Some(radius) if cfg.radii.is_empty() => radius,
+        _ => 1.0,
+    };
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "model".into());
+    scene_data(res, name, desc, scale)
 }
 
 /// The cache key of every reference of `sd` at `radii` (camera index, radius, key).

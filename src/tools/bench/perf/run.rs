@@ -27,7 +27,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     std::fs::create_dir_all(&cfg.out)
         .with_context(|| format!("cannot create {}", cfg.out.display()))?;
 
-    let scene_paths: Vec<PathBuf> = if cfg.scenes.is_empty() {
+    let scene_paths: Vec<PathBuf> = if cfg.scenes.is_empty() && cfg.models.is_empty() {
         vec![res
             .find("scenes/demo.toml")
             .map_err(|e| anyhow::anyhow!("{e}"))?]
@@ -35,47 +35,55 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         cfg.scenes.clone()
     };
     let plan = plan(cfg)?;
-    let mut radii: Vec<f32> = plan
-        .iter()
-        .flat_map(|(_, s)| s.iter().map(|s| s.radius))
-        .collect();
-    radii.sort_by(|a, b| a.total_cmp(b));
-    radii.dedup();
-
     let mut loaded = scene_paths
         .iter()
         .map(|path| references::load_scene(res, path, cfg))
+        .chain(
+            cfg.models
+                .iter()
+                .map(|path| references::load_model(res, path, cfg)),
+        )
         .collect::<Result<Vec<_>>>()?;
-    let ctx = HeadlessContext::new()?;
-    let missing: usize = loaded
+    // Each scene's settings: a model's radii follow its size (`SceneData::radius_scale`).
+    let plans: Vec<Plan> = loaded
         .iter()
-        .map(|(sd, bvh)| references::missing_references(sd, bvh, &radii, cfg))
-        .sum();
-    let total_refs = loaded.iter().map(|(sd, _)| sd.cameras.len()).sum::<usize>() * radii.len();
-    let settings_per_scene: usize = plan.iter().map(|(_, s)| s.len()).sum();
+        .map(|(sd, _)| scaled_plan(&plan, sd.radius_scale))
+        .collect();
+    let ctx = HeadlessContext::new()?;
+    let mut work = Work {
+        settings: plans.iter().flatten().map(|(_, s)| s.len()).sum(),
+        cameras: loaded.first().map_or(0, |(sd, _)| sd.cameras.len()),
+        mean_radius: mean(&radii_of(&plan)),
+        ..Work::default()
+    };
+    for ((sd, bvh), plan) in loaded.iter().zip(&plans) {
+        let radii = radii_of(plan);
+        let missing = references::missing_references(sd, bvh, &radii, cfg);
+        work.references += missing;
+        work.cached += sd.cameras.len() * radii.len() - missing;
+        if cfg.ceilings {
+            // One per test camera and radius, twice for vbao (its slabs besides the heightfield).
+            let kinds = 1 + plan.iter().any(|(m, _)| *m == AoMethod::Vbao) as usize;
+            work.screen_references +=
+                sd.cameras.iter().filter(|c| !c.train).count() * radii.len() * kinds;
+        }
+    }
     if cfg.progress {
-        announce(
-            cfg,
-            &ctx,
-            &loaded,
-            &radii,
-            missing,
-            total_refs,
-            settings_per_scene,
-            &plan,
-        );
+        announce(cfg, &ctx, &work, loaded.len());
     }
 
     // References first: they are the slow part, and cached for later runs.
     let mut traced = RenderCount::default();
     let mut done = 0;
-    for (sd, bvh) in &mut loaded {
-        references::trace_references(sd, bvh, &radii, cfg, &mut traced, (&mut done, total_refs));
+    let total_refs = work.references + work.cached;
+    for ((sd, bvh), plan) in loaded.iter_mut().zip(&plans) {
+        let progress = (&mut done, total_refs);
+        references::trace_references(sd, bvh, &radii_of(plan), cfg, &mut traced, progress);
     }
     let scenes: Vec<_> = loaded.into_iter().map(|(sd, _)| sd).collect();
 
     let clock = crate::gl::PassClock::of_context(&ctx.gl);
-    let total_settings: usize = plan.iter().map(|(_, s)| s.len()).sum::<usize>() * scenes.len();
+    let total_settings = work.settings;
     let pb = progress::bar(
         total_settings as u64,
         "bench {bar:40} {pos}/{len} settings [{elapsed_precise} < {eta_precise}] {msg}",
@@ -84,18 +92,18 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let load_before = load_average();
     let mut rows = Vec::new();
     let mut screen_count = RenderCount::default();
-    for sd in &scenes {
+    for (sd, plan) in scenes.iter().zip(&plans) {
         // The engine starts at the reference's size for the screen-space references' depth
         // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
         let screen = if cfg.ceilings {
-            let ceilings = ceilings(&plan, &engine.ao_settings);
+            let ceilings = ceilings(plan, &engine.ao_settings);
             references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?
         } else {
             Default::default()
         };
         engine.resize(cfg.width, cfg.height)?;
-        for (method, settings) in &plan {
+        for (method, settings) in plan {
             for s in settings {
                 pb.set_message(format!("{} {} {}", sd.name, method.name(), s.label()));
                 let row = run_setting(&mut engine, sd, &screen, *method, s, cfg)
@@ -148,42 +156,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
 }
 
 /// Prints what the run will do and how long it should take, before anything slow starts.
-#[allow(clippy::too_many_arguments)]
-fn announce(
-    cfg: &PerfConfig,
-    ctx: &HeadlessContext,
-    loaded: &[(references::SceneData, crate::tools::reference::Scene)],
-    radii: &[f32],
-    missing: usize,
-    total_refs: usize,
-    settings_per_scene: usize,
-    plan: &[(AoMethod, Vec<Setting>)],
-) {
-    let cameras = loaded.first().map_or(0, |(sd, _)| sd.cameras.len());
-    let test_cameras = loaded
-        .first()
-        .map_or(0, |(sd, _)| sd.cameras.iter().filter(|c| !c.train).count());
-    let screen = if cfg.ceilings {
-        // One per test camera, radius and ceiling kind (at most three kinds).
-        loaded.len()
-            * test_cameras
-            * radii.len()
-            * if plan.iter().any(|(m, _)| *m == AoMethod::Vbao) {
-                2
-            } else {
-                1
-            }
-    } else {
-        0
-    };
-    let work = Work {
-        settings: settings_per_scene * loaded.len(),
-        cameras,
-        references: missing,
-        cached: total_refs - missing,
-        screen_references: screen,
-        mean_radius: radii.iter().map(|r| *r as f64).sum::<f64>() / radii.len().max(1) as f64,
-    };
+fn announce(cfg: &PerfConfig, ctx: &HeadlessContext, work: &Work, scenes: usize) {
     let p = protocol::Protocol {
         width: cfg.width,
         height: cfg.height,
@@ -202,10 +175,10 @@ fn announce(
         rust_i18n::t!(
             "bench.plan",
             settings = work.settings,
-            scenes = loaded.len(),
+            scenes = scenes,
             width = cfg.width,
             height = cfg.height,
-            refs = missing,
+            refs = work.references,
             cached = work.cached,
             ref_width = rw,
             ref_height = rh,
@@ -213,7 +186,7 @@ fn announce(
         )
     );
     if ctx.software {
-        let estimate = protocol::minutes(protocol::estimate_seconds(&p, &work, cores));
+        let estimate = protocol::minutes(protocol::estimate_seconds(&p, work, cores));
         eprintln!(
             "{}",
             rust_i18n::t!("bench.estimate", time = estimate, cores = cores)
@@ -250,8 +223,51 @@ fn ceilings(plan: &[(AoMethod, Vec<Setting>)], scene_ao: &AoSettings) -> Vec<(f3
     out
 }
 
+/// Every method with its settings.
+type Plan = Vec<(AoMethod, Vec<Setting>)>;
+
+/// The radii of `plan`, ascending, each once.
+fn radii_of(plan: &Plan) -> Vec<f32> {
+    let mut radii: Vec<f32> = plan
+        .iter()
+        .flat_map(|(_, s)| s.iter().map(|s| s.radius))
+        .collect();
+    radii.sort_by(|a, b| a.total_cmp(b));
+    radii.dedup();
+    radii
+}
+
+fn mean(v: &[f32]) -> f64 {
+    v.iter().map(|x| *x as f64).sum::<f64>() / v.len().max(1) as f64
+}
+
+/// `plan` with every radius times `scale` (within the engine's radius range, four significant
+/// digits): a model framed from its bounds is measured at radii that follow its size.
+fn scaled_plan(plan: &Plan, scale: f32) -> Plan {
+    if scale == 1.0 {
+        return plan.clone();
+    }
+    let (lo, hi) = crate::ao::settings::RADIUS_RANGE;
+    let round = |r: f32| {
+        let digits = 10f32.powi(3 - r.abs().log10().floor() as i32);
+        (r * digits).round() / digits
+    };
+    plan.iter()
+        .map(|(m, settings)| {
+            let scaled = settings
+                .iter()
+                .map(|s| Setting {
+                    radius: round((s.radius * scale).clamp(lo, hi)),
+                    ..*s
+                })
+                .collect();
+            (*m, scaled)
+        })
+        .collect()
+}
+
 /// The settings of every method, checked against what the engine accepts.
-fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
+fn plan(cfg: &PerfConfig) -> Result<Plan> {
     let plan: Vec<(AoMethod, Vec<Setting>)> = cfg
         .methods
         .iter()
