@@ -66,9 +66,11 @@ pub struct ReferenceArgs {
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,
-    /// Folder of cached results (keyed by scene, camera, size and parameters).
-    #[arg(long, default_value = "out/reference-cache")]
-    pub cache: PathBuf,
+    /// Folder of cached results (keyed by scene, camera, size and parameters); default:
+    /// `$OPENGL3D_CACHE`, else `$XDG_CACHE_HOME/opengl3d/reference`, else
+    /// `~/.cache/opengl3d/reference`.
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
 }
 
 #[derive(Args, Debug)]

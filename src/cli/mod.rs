@@ -179,12 +179,9 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     );
     if args.stats {
         eprintln!("{msg}");
-        let timing = if ctx.software {
-            "wall clock around glFinish (llvmpipe)"
-        } else {
-            "wall clock around glFinish"
-        };
-        let json = serde_json::json!({ "renderer": ctx.renderer, "timing": timing, "passes": engine.last_stats() });
+        // Each pass names its clock too: a pass timed inside another falls back to the wall clock.
+        let clock = crate::gl::PassClock::of_context(&ctx.gl);
+        let json = serde_json::json!({ "renderer": ctx.renderer, "clock": clock.name(), "timing": clock.description(), "passes": engine.last_stats() });
         crate::outln!("{json}");
     } else {
         crate::outln!("{msg}");
@@ -334,6 +331,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         progress: true,
     };
     let (w, h) = (scene.output.width, scene.output.height);
+    let cache = crate::tools::reference::reference_cache_dir(args.cache.as_deref())?;
     let guard_px = match scene.ao.guard_band {
         crate::ao::GuardBand::Pixels(p) => p,
         band => crate::ao::guard_band::guard_band_pixels(band, &cam, (w, h), radius),
@@ -357,17 +355,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         let depth =
             DepthBuffer::capture(&mut engine, guard_px * n, what)?.with_thickness(thickness);
         if n > 1 {
-            crate::tools::reference::load_or_render_screen_box_cached(
-                &args.cache,
-                &depth,
-                n,
-                &params,
-            )?
+            crate::tools::reference::load_or_render_screen_box_cached(&cache, &depth, n, &params)?
         } else {
-            crate::tools::reference::load_or_render_screen_cached(&args.cache, &depth, &params)?
+            crate::tools::reference::load_or_render_screen_cached(&cache, &depth, &params)?
         }
     } else {
-        load_or_render_cached(&args.cache, &bvh, &cam, w, h, &params)
+        load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
     };
     crate::io::create_parent(&args.out)?;
     match format {

@@ -74,47 +74,23 @@ fn describe(issue: &Issue, origin: &Origin, flags: &FlagKeys) -> String {
     }
 }
 
-/// Frames the OBJ's bounding sphere: the camera looks at it from a fixed direction unless `--eye` /
-/// `--target` are given, and near/far follow the sphere's distance so a model of any size (a CAD
-/// export in millimetres, a 2 km terrain) fills the frame with a sane far/near ratio.
+/// Frames the OBJ's bounds (`scene::framing`), keeping what the flags set, and says which AO
+/// radius it chose.
 fn frame_bounds(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, args: &SceneArgs) {
-    let c = &mut desc.camera;
-    let center = (lo + hi) * 0.5;
-    let half = (hi - lo).length() * 0.5;
-    // A model that is a single point: any size frames it.
-    let r = if half > 0.0 { half } else { 1.0 };
-    if args.target.is_none() {
-        c.target = center.to_array();
-    }
-    if args.eye.is_none() {
-        let dist = r / (c.fov_y.to_radians() * 0.5).sin() * 1.1;
-        c.eye = (Vec3::from(c.target) + Vec3::new(0.55, 0.45, 1.0).normalize() * dist).to_array();
-    }
-    let d = Vec3::from(c.eye).distance(center);
-    // Room to step back in the window, and a near plane well in front of the model (or a tenth of
-    // its size when the eye is close), never more than 1e4 below far.
-    let far = (d + r) * 2.0;
-    let near = ((d - r) * 0.5).min(r * 0.1).max(far * 1e-4);
-    if args.far.is_none() {
-        c.far = far;
-    }
-    if args.near.is_none() {
-        c.near = near;
-    }
-    // The AO radius follows the model's size as the camera does: 1 m would be nothing on a model in
-    // millimetres and everything on a terrain. A tenth of the diagonal darkens creases, feet and
-    // gaps of a model without burying it.
-    if args.radius.is_none() {
-        let (lo_r, hi_r) = crate::ao::settings::RADIUS_RANGE;
-        let radius = (0.2 * r).clamp(lo_r, hi_r);
-        let radius = (radius * 1e4).round() / 1e4;
-        desc.ao.radius = if radius > 0.0 { radius } else { lo_r };
+    let fixed = crate::scene::framing::Fixed {
+        eye: args.eye.is_some(),
+        target: args.target.is_some(),
+        near: args.near.is_some(),
+        far: args.far.is_some(),
+        radius: args.radius.is_some(),
+    };
+    if let Some(radius) = crate::scene::framing::frame_model(desc, lo, hi, fixed) {
         eprintln!(
             "{}",
             t!(
                 "render.obj_radius",
-                radius = desc.ao.radius,
-                diagonal = format!("{:.4}", 2.0 * r)
+                radius = radius,
+                diagonal = format!("{:.4}", (hi - lo).length())
             )
         );
     }

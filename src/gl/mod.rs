@@ -12,6 +12,7 @@ pub mod program;
 pub mod readback;
 pub mod shader_error;
 pub mod texture;
+pub mod timer;
 
 pub use framebuffer::FramebufferObject;
 pub use mesh::{MeshBuffer, StaticMesh, Vertex};
@@ -20,6 +21,7 @@ pub use preprocess::ShaderSource;
 pub use program::ProgramObject;
 pub use shader_error::ProgramError;
 pub use texture::{Texture, TextureDesc};
+pub use timer::{PassClock, TimerQuery};
 
 use std::rc::Rc;
 

@@ -260,11 +260,16 @@ impl Panel {
 
     fn timing_table(&mut self, ui: &mut egui::Ui, stats: &[PassStat]) {
         let renderer = &self.renderer;
-        ui.small(t!(
-            "panel.times_caption",
-            locale = self.lang.code(),
-            renderer = renderer
-        ));
+        // Each figure's clock: the GPU's timer query on a hardware driver, else the wall clock.
+        let gpu = stats
+            .iter()
+            .any(|s| s.clock == crate::gl::PassClock::GpuTimer);
+        let (caption, unit) = if gpu {
+            ("panel.times_caption_gpu", "panel.ms_gpu")
+        } else {
+            ("panel.times_caption", "panel.ms")
+        };
+        ui.small(t!(caption, locale = self.lang.code(), renderer = renderer));
         let tr = |key: &str| label(self.lang, key);
         self.smoothed_ms
             .retain(|name, _| stats.iter().any(|s| s.name == *name));
@@ -274,7 +279,7 @@ impl Panel {
             .show(ui, |ui| {
                 ui.strong(tr("panel.pass"));
                 ui.strong(tr("panel.group"));
-                ui.strong(tr("panel.ms"));
+                ui.strong(tr(unit));
                 ui.end_row();
                 let mut total = 0.0;
                 for s in stats {

@@ -5,7 +5,8 @@
 //! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, F1 shows or
 //! hides the parameter panel, Esc quits. Keys and drags go to the camera only when the panel does not use them.
 //! The panel (egui, painted over the frame) sets the AO method, composite mode, radius, bias, intensity,
-//! sample count, spiral turns, blur and view, and shows the wall-clock time of each pass.
+//! sample count, spiral turns, blur and view, and shows the time of each pass (GPU timer queries
+//! on a hardware driver, the wall clock on llvmpipe).
 //! Shaders are also rebuilt automatically within half a second of being saved; a compile error is
 //! shown in the window (red, `file:line: message`, even with the panel hidden), in the title bar and on
 //! the console, and the last working program keeps running until the file compiles. When a `--res`

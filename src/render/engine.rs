@@ -8,7 +8,7 @@ use super::main_fbo::create_main_fbos;
 use super::passes::surface::{SurfaceInputs, SurfacePasses};
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
 use super::passes::{shadow::ShadowPass, transparent};
-use super::stats::{process_cpu_seconds, AoTextureInfo, PassStat};
+use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
 use crate::ao::method_pass::AoInputs;
@@ -75,6 +75,7 @@ pub struct Engine {
     /// off to measure what it saves).
     pub frustum_culling: bool,
     stats: RefCell<Vec<PassStat>>,
+    pass_timer: PassTimer,
 }
 
 impl Engine {
@@ -158,6 +159,7 @@ impl Engine {
             collect_stats: false,
             frustum_culling: true,
             stats: Default::default(),
+            pass_timer: PassTimer::new(gl),
             res,
         };
         engine.set_depth_mode(scene.output.depth)?;
@@ -323,23 +325,20 @@ impl Engine {
         self.stats.borrow().clone()
     }
 
-    /// Runs one pass, timed between two glFinish calls when `collect_stats` is on.
+    /// Runs one pass, timed by `PassTimer` (glFinish around it) when `collect_stats` is on.
     fn pass<T>(&self, name: &'static str, group: &'static str, f: impl FnOnce() -> T) -> T {
         if !self.collect_stats {
             return f();
         }
-        use glow::HasContext;
-        unsafe { self.gl.finish() };
         let calls = self.meshes.draw_calls.get();
-        let t = std::time::Instant::now();
-        let cpu = process_cpu_seconds();
-        let out = f();
-        unsafe { self.gl.finish() };
+        let (out, t) = self.pass_timer.time(&self.gl, f);
         self.stats.borrow_mut().push(PassStat {
             name,
             group,
-            ms: t.elapsed().as_secs_f64() * 1e3,
-            cpu_ms: (process_cpu_seconds() - cpu) * 1e3,
+            ms: t.ms,
+            clock: t.clock,
+            wall_ms: t.wall_ms,
+            cpu_ms: t.cpu_ms,
             draw_calls: self.meshes.draw_calls.get() - calls,
         });
         out

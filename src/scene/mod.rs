@@ -3,6 +3,7 @@
 mod check;
 mod desc;
 mod file;
+pub mod framing;
 pub mod furniture;
 pub mod game_object;
 mod places;

@@ -132,9 +132,16 @@ pub fn surface_points(
     out
 }
 
-/// The `opengl3d` binary under test.
+/// The `opengl3d` binary under test, its reference cache in a temp folder (never the user's).
 pub fn bin() -> std::process::Command {
-    std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+    let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"));
+    c.env(opengl3d::tools::reference::CACHE_ENV, test_cache());
+    c
+}
+
+/// The reference cache of the tests' command-line runs.
+pub fn test_cache() -> PathBuf {
+    std::env::temp_dir().join("opengl3d-tests-reference-cache")
 }
 
 /// Runs the binary with `args` and waits for it.

@@ -122,6 +122,7 @@ fn tiny_bench_writes_a_complete_finite_report() {
     let out = temp_dir("bench-tiny");
     let cfg = perf::PerfConfig {
         scenes: Vec::new(),
+        models: Vec::new(),
         width: 96,
         height: 54,
         out: out.clone(),
@@ -138,6 +139,9 @@ fn tiny_bench_writes_a_complete_finite_report() {
         flip: true,
         charts: true,
         progress: false,
+        ceilings: true,
+        grid: perf::Grid::Full,
+        scaled: Vec::new(),
     };
     let report = perf::run(&ResDirs::default(), &cfg).expect("bench run");
     assert_eq!(report.rows.len(), 4);
@@ -289,7 +293,7 @@ fn tiny_stress_run_has_no_nan_or_inf() {
 
 /// `opengl3d bench` with extra arguments; it must stop at the argument check, before any rendering.
 fn bench_cli(args: &[&str]) -> std::process::Output {
-    std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+    crate::common::bin()
         .arg("bench")
         .args(args)
         .output()
@@ -323,6 +327,7 @@ fn library_runs_refuse_the_same_ranges() {
     let out = temp_dir("bench-lib-range");
     let base = perf::PerfConfig {
         scenes: Vec::new(),
+        models: Vec::new(),
         width: 32,
         height: 18,
         out: out.clone(),
@@ -339,6 +344,9 @@ fn library_runs_refuse_the_same_ranges() {
         flip: false,
         charts: false,
         progress: false,
+        ceilings: true,
+        grid: perf::Grid::Full,
+        scaled: Vec::new(),
     };
     for (cfg, flag) in [
         (

@@ -61,4 +61,151 @@ pub fn check(dir: &Path, rows: usize) {
         assert!(ids.contains(link), "{link} leads nowhere: {ids:?}");
     }
     assert!(text.contains("PSNR") && text.contains(" ms"));
+    if dir.join("report.svg").is_file() {
+        check_chart(dir);
+    }
+}
+
+/// Checks `dir/report.svg` against `dir/report.json`: it parses as XML, has one panel per
+/// (scene, radius) of the rows, names the clock on the cost axis, and a tooltip per row.
+pub fn check_chart(dir: &Path) {
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let svg = std::fs::read_to_string(dir.join("report.svg")).expect("report.svg");
+    let mut reader = quick_xml::Reader::from_str(&svg);
+    let (mut texts, mut titles, mut depth) = (Vec::new(), Vec::new(), 0i32);
+    let mut current: Option<&'static str> = None;
+    loop {
+        match reader.read_event() {
+            Ok(Event::Eof) => break,
+            Ok(Event::Start(e)) => {
+                depth += 1;
+                current = match e.name().as_ref() {
+                    b"text" => Some("text"),
+                    b"title" => Some("title"),
+                    _ => current,
+                };
+            }
+            Ok(Event::End(_)) => {
+                depth -= 1;
+                current = None;
+            }
+            Ok(Event::Text(t)) => {
+                let t = String::from_utf8_lossy(t.as_ref()).trim().to_string();
+                match current {
+                    Some("text") => texts.push(t),
+                    Some("title") => titles.push(t),
+                    _ => {}
+                }
+            }
+            Ok(_) => {}
+            Err(e) => panic!("report.svg is not well-formed ({e})"),
+        }
+    }
+    assert_eq!(depth, 0, "unclosed elements in report.svg");
+    let rows = json["rows"].as_array().unwrap();
+    let (w, h) = (&json["width"], &json["height"]);
+    let mut panels: BTreeSet<String> = BTreeSet::new();
+    for row in rows {
+        let scene = row["cameras"][0]["scene"].as_str().unwrap();
+        let radius = row["radius"].as_f64().unwrap() as f32;
+        panels.insert(format!("{scene}, R {radius} m ({w}x{h})"));
+    }
+    for p in &panels {
+        let n = texts.iter().filter(|t| *t == p).count();
+        assert_eq!(n, 1, "panel {p:?} appears {n} times: {texts:?}");
+    }
+    let captions = texts.iter().filter(|t| t.contains(", R ")).count();
+    assert_eq!(
+        captions,
+        panels.len(),
+        "one panel per scene and radius: {texts:?}"
+    );
+    let clock = json["clock"].as_str().unwrap();
+    assert!(
+        texts
+            .iter()
+            .any(|t| t.contains("AO chain") && t.contains(clock)),
+        "the cost axis names the clock {clock}: {texts:?}"
+    );
+    assert_eq!(titles.len(), rows.len(), "one tooltip per row: {titles:?}");
+    for row in rows {
+        let name = format!(
+            "{} {}:",
+            row["method"].as_str().unwrap(),
+            row["setting"].as_str().unwrap()
+        );
+        assert!(
+            titles.iter().any(|t| t.starts_with(&name)),
+            "{name} {titles:?}"
+        );
+    }
+    // Every panel has a front, named in its points' tooltips.
+    assert!(
+        titles
+            .iter()
+            .filter(|t| t.contains("(Pareto front)"))
+            .count()
+            >= panels.len()
+    );
+}
+
+/// A plain `opengl3d bench` with only a few flags: the options not given take the quick run's
+/// values and the reports list them; the references go to the cache folder the environment
+/// names, and the chart has a panel for each radius.
+#[test]
+fn quick_run_lists_what_it_scaled_and_caches_where_told() {
+    let dir = crate::common::temp_dir("bench-quick-cli");
+    let cache = dir.join("cache");
+    let out = dir.join("out");
+    let o = crate::common::bin()
+        .env(opengl3d::tools::reference::CACHE_ENV, &cache)
+        .args([
+            "bench",
+            "--width",
+            "48",
+            "--height",
+            "28",
+            "--methods",
+            "sao,gtao",
+        ])
+        .args([
+            "--samples",
+            "4,8",
+            "--radii",
+            "0.5,1",
+            "--ref-rays",
+            "8",
+            "--frames",
+            "1",
+        ])
+        .arg("--out")
+        .arg(&out)
+        .output()
+        .expect("run opengl3d");
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(o.status.success(), "{stderr}");
+    // The plan and the quick run's notes come before the work.
+    assert!(
+        stderr.contains("8 settings") && stderr.contains("opengl3d bench --full"),
+        "{stderr}"
+    );
+    let cached = std::fs::read_dir(&cache).expect("the cache folder").count();
+    // 4 cameras × 2 radii, at 1/4 of the output (the quick run's scale).
+    assert_eq!(cached, 8, "{stderr}");
+    let md = std::fs::read_to_string(out.join("report.md")).unwrap();
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for needle in [
+        "references 12×7",
+        "error split skipped",
+        "opengl3d bench --full",
+        "1 warm-up",
+    ] {
+        assert!(md.contains(needle), "report.md lacks {needle}:\n{md}");
+        assert!(html.contains(needle), "report.html lacks {needle}");
+    }
+    // Flags given are not listed as scaled: the settings were chosen.
+    assert!(!md.contains("5 per method"), "{md}");
+    assert!(!md.contains("## Error split"), "{md}");
+    check(&out, 8);
 }

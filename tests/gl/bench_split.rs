@@ -15,6 +15,7 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
     ];
     let cfg = perf::PerfConfig {
         scenes,
+        models: Vec::new(),
         width: 64,
         height: 36,
         out: out.clone(),
@@ -31,6 +32,9 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
         flip: false,
         charts: true,
         progress: false,
+        ceilings: true,
+        grid: perf::Grid::Full,
+        scaled: Vec::new(),
     };
     let report = perf::run(&res, &cfg).expect("bench run");
     // A chart of every row, and one per scene (errors are not comparable across scenes).

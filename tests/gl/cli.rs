@@ -477,3 +477,52 @@ fn a_model_in_millimetres_gets_a_radius_of_its_own_scale() {
         "darker than 0.9: auto radius {auto}, 1 unit {one_unit}"
     );
 }
+
+/// `render --stats` with `env` set: its JSON.
+fn stats_json(env: &[(&str, &str)]) -> serde_json::Value {
+    let dir = common::temp_dir("cli-stats-clock");
+    let out = dir.join(format!("frame{}.png", env.len()));
+    let mut cmd = common::bin();
+    cmd.envs(env.iter().copied()).args([
+        "render", "--stats", "--width", "48", "--height", "32", "--out",
+    ]);
+    let o = cmd.arg(&out).output().expect("run opengl3d");
+    assert!(o.status.success(), "{}", stderr(&o));
+    serde_json::from_slice(&o.stdout).expect("stdout is JSON")
+}
+
+#[test]
+fn stats_name_their_clock_and_software_gl_gets_the_wall_clock() {
+    // Forced onto Mesa's software device: its timer queries do not measure real time, so every
+    // figure is the wall clock around glFinish, and says so.
+    let soft = stats_json(&[("OPENGL3D_DEVICE", "software")]);
+    let renderer = soft["renderer"].as_str().unwrap().to_ascii_lowercase();
+    assert!(
+        renderer.contains("llvmpipe") || renderer.contains("softpipe"),
+        "{renderer}"
+    );
+    assert_eq!(soft["clock"], "wall clock", "{soft}");
+    assert!(
+        soft["timing"].as_str().unwrap().contains("glFinish"),
+        "{soft}"
+    );
+    let passes = soft["passes"].as_array().unwrap();
+    assert!(!passes.is_empty());
+    for p in passes {
+        assert_eq!(p["clock"], "wall clock", "{p}");
+        // On the wall clock the figure is the wall time itself.
+        assert_eq!(p["ms"], p["wall_ms"], "{p}");
+    }
+    // Whatever device the machine has, each pass names one of the two clocks, and the GPU timer
+    // only off software GL.
+    let any = stats_json(&[]);
+    let renderer = any["renderer"].as_str().unwrap().to_ascii_lowercase();
+    let software = renderer.contains("llvmpipe") || renderer.contains("softpipe");
+    let want = if software { "wall clock" } else { "gpu timer" };
+    assert_eq!(any["clock"], want, "{any}");
+    for p in any["passes"].as_array().unwrap() {
+        let clock = p["clock"].as_str().unwrap();
+        assert!(clock == "wall clock" || clock == "gpu timer", "{p}");
+        assert!(p["ms"].as_f64().unwrap() >= 0.0 && p["wall_ms"].as_f64().unwrap() >= 0.0);
+    }
+}

@@ -3,11 +3,11 @@
 
 use crate::common;
 use serde_json::Value;
-use std::process::{Command, Output};
+use std::process::Output;
 
 /// The binary with the locale variables set to exactly `env` (the others removed).
 fn run(env: &[(&str, &str)], args: &[&str]) -> Output {
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_opengl3d"));
+    let mut cmd = crate::common::bin();
     for v in ["LC_ALL", "LC_MESSAGES", "LANG", "LANGUAGE"] {
         cmd.env_remove(v);
     }

@@ -4,6 +4,7 @@
 mod ao_resolution;
 mod bench;
 mod bench_html;
+mod bench_model;
 mod bench_skips;
 mod bench_split;
 mod blur_stripes;

@@ -309,6 +309,7 @@ fn bench_room(out: &std::path::Path, thickness: &str) -> perf::Report {
     .unwrap();
     let cfg = perf::PerfConfig {
         scenes: vec![scene],
+        models: Vec::new(),
         width: 64,
         height: 36,
         out: out.to_path_buf(),
@@ -325,6 +326,9 @@ fn bench_room(out: &std::path::Path, thickness: &str) -> perf::Report {
         flip: false,
         charts: false,
         progress: false,
+        ceilings: true,
+        grid: perf::Grid::Full,
+        scaled: Vec::new(),
     };
     perf::run(&res, &cfg).expect("bench run")
 }

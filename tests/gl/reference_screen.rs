@@ -367,7 +367,7 @@ fn hidden_geometry_is_what_the_depth_buffer_cannot_know() {
 fn cli_writes_the_screen_space_reference() {
     let dir = temp_dir("screen-cli");
     let out = dir.join("ss.pfm");
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+    let run = crate::common::bin()
         .args([
             "reference",
             "--screen-space",
@@ -413,7 +413,7 @@ fn cli_writes_the_screen_space_reference() {
         "the demo scene has occlusion"
     );
     // Obscurance is not something the screen-space reference computes: a clear error.
-    let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+    let run = crate::common::bin()
         .args(["reference", "--screen-space", "--obscurance"])
         .output()
         .unwrap();
@@ -428,7 +428,7 @@ fn cli_writes_the_reference_when_its_cache_cannot_be_written() {
     std::fs::write(&cache, b"not a folder").unwrap();
     for mode in [&[][..], &["--screen-space"][..]] {
         let out = dir.join(format!("ref{}.pfm", mode.len()));
-        let run = std::process::Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        let run = crate::common::bin()
             .arg("reference")
             .args(mode)
             .args(["--width", "16", "--height", "9", "--rays", "4", "--out"])

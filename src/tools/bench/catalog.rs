@@ -123,14 +123,20 @@ pub(crate) fn settings_for(
             }
             v
         }
-        _ => vec![
-            Setting::new(4, 1.0),
-            Setting::new(8, 1.0),
-            Setting::new(16, 1.0),
-            Setting::new(8, 0.5),
-            Setting::new(8, 2.0),
-        ],
+        _ => quick_settings(),
     }
+}
+
+/// The quick grid every method runs in a plain `opengl3d bench`, and the base of the methods
+/// without a grid of their own: samples 4/8/16 at radius 1 m, and radii 0.5/2 m at 8 samples.
+pub(crate) fn quick_settings() -> Vec<Setting> {
+    vec![
+        Setting::new(4, 1.0),
+        Setting::new(8, 1.0),
+        Setting::new(16, 1.0),
+        Setting::new(8, 0.5),
+        Setting::new(8, 2.0),
+    ]
 }
 
 /// A fixed camera of a scene.

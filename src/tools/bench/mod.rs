@@ -30,10 +30,23 @@ pub struct BenchArgs {
     /// Scene files (default: the demo scene). Each is run at its own camera and three variants.
     #[arg(long = "scene")]
     pub scenes: Vec<PathBuf>,
-    #[arg(long, default_value_t = 1920, allow_negative_numbers = true)]
-    pub width: u32,
-    #[arg(long, default_value_t = 1080, allow_negative_numbers = true)]
-    pub height: u32,
+    /// Models (OBJ), each run as a scene of its own: the camera framed from its bounds as
+    /// `render --obj` does, with the same three variants, and (without --radii) the radii scaled
+    /// by the AO radius the framing chose. The demo scene runs only when a --scene is given too.
+    #[arg(long = "obj", value_name = "FILE")]
+    pub models: Vec<PathBuf>,
+    /// Run the full protocol (1920×1080, references at 1/6, every method's whole grid of
+    /// settings, the error split against each method's ceiling) for the options not given.
+    /// Without it, the options not given take a quick run's values (a few minutes on two cores)
+    /// and the reports list what was scaled down or skipped.
+    #[arg(long)]
+    pub full: bool,
+    /// Output width (quick run 640, full protocol 1920).
+    #[arg(long, allow_negative_numbers = true)]
+    pub width: Option<u32>,
+    /// Output height (quick run 360, full protocol 1080).
+    #[arg(long, allow_negative_numbers = true)]
+    pub height: Option<u32>,
     /// Output folder for report.json, report.md and the charts (stress.json and stress.md with --stress).
     #[arg(long, default_value = "out/bench")]
     pub out: PathBuf,
@@ -57,29 +70,34 @@ pub struct BenchArgs {
     /// ultra, comma-separated; replaces their default settings (combined with --radii, default 1 m).
     #[arg(long = "quality", value_delimiter = ',')]
     pub qualities: Vec<String>,
-    /// Rays per pixel of the ray-traced reference (1 to 65536).
-    #[arg(long, default_value_t = 256, allow_negative_numbers = true,
+    /// Rays per pixel of the ray-traced reference (1 to 65536; default 256).
+    #[arg(long, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
-    pub ref_rays: u32,
+    pub ref_rays: Option<u32>,
+    /// Compute the screen-space references (the ceilings) and split each method's error into the
+    /// depth buffer's share and its sampling's (slow; on with --full).
+    #[arg(long)]
+    pub ceilings: bool,
     /// Rays per pixel of the screen-space references (the error split; test cameras only; 1 to
-    /// 65536).
-    #[arg(long, default_value_t = 64, allow_negative_numbers = true,
+    /// 65536; default 64).
+    #[arg(long, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
-    pub screen_rays: u32,
+    pub screen_rays: Option<u32>,
     /// Render the reference at 1/N of the size and box-average the engine's output by N to compare
-    /// (1 to 16).
-    #[arg(long, default_value_t = 1, allow_negative_numbers = true,
+    /// (1 to 16; quick run 4, full protocol 6).
+    #[arg(long, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_SCALE as i64))]
-    pub ref_scale: u32,
-    /// Folder of cached references.
-    #[arg(long, default_value = "out/reference-cache")]
-    pub cache: PathBuf,
-    /// Frames rendered before timing.
-    #[arg(long, default_value_t = 2, allow_negative_numbers = true)]
-    pub warmup: u32,
-    /// Frames timed (the median is reported).
-    #[arg(long, default_value_t = 7, allow_negative_numbers = true)]
-    pub frames: u32,
+    pub ref_scale: Option<u32>,
+    /// Folder of cached references; default: `$OPENGL3D_CACHE`, else
+    /// `$XDG_CACHE_HOME/opengl3d/reference`, else `~/.cache/opengl3d/reference`.
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    /// Frames rendered before timing (quick run 1, full protocol 2).
+    #[arg(long, allow_negative_numbers = true)]
+    pub warmup: Option<u32>,
+    /// Frames timed, the median is reported (quick run 5, full protocol 7).
+    #[arg(long, allow_negative_numbers = true)]
+    pub frames: Option<u32>,
     /// Skip the FLIP metric (reported as 0).
     #[arg(long)]
     pub no_flip: bool,
@@ -115,24 +133,47 @@ impl BenchArgs {
                 })
             })
             .collect::<Result<Vec<_>>>()?;
-        Ok(perf::PerfConfig {
-            scenes: self.scenes.clone(),
+        let given = perf::protocol::Given {
             width: self.width,
             height: self.height,
+            ref_scale: self.ref_scale,
+            ref_rays: self.ref_rays,
+            screen_rays: self.screen_rays,
+            warmup: self.warmup,
+            frames: self.frames,
+            ceilings: self.ceilings,
+            settings: !(self.samples.is_empty()
+                && self.radii.is_empty()
+                && self.qualities.is_empty()),
+        };
+        let base = if self.full {
+            perf::protocol::FULL
+        } else {
+            perf::protocol::QUICK
+        };
+        let (p, scaled) = perf::protocol::resolve(&given, &base);
+        Ok(perf::PerfConfig {
+            scenes: self.scenes.clone(),
+            models: self.models.clone(),
+            width: p.width,
+            height: p.height,
             out: self.out.clone(),
             methods,
             samples: self.samples.clone(),
             radii: self.radii.clone(),
             qualities,
-            ref_rays: self.ref_rays,
-            screen_rays: self.screen_rays,
-            ref_scale: self.ref_scale,
-            cache: self.cache.clone(),
-            warmup: self.warmup,
-            frames: self.frames,
+            ref_rays: p.ref_rays,
+            screen_rays: p.screen_rays,
+            ref_scale: p.ref_scale,
+            cache: crate::tools::reference::reference_cache_dir(self.cache.as_deref())?,
+            warmup: p.warmup,
+            frames: p.frames,
             flip: !self.no_flip,
             charts: true,
             progress: true,
+            ceilings: p.ceilings,
+            grid: p.grid,
+            scaled,
         })
     }
 }
@@ -159,11 +200,11 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
     if args.skips {
         let cfg = skips::SkipsConfig {
             scene: args.scenes.first().cloned(),
-            width: args.width,
-            height: args.height,
+            width: args.width.unwrap_or(perf::protocol::FULL.width),
+            height: args.height.unwrap_or(perf::protocol::FULL.height),
             out: args.out.clone(),
-            warmup: args.warmup,
-            frames: args.frames,
+            warmup: args.warmup.unwrap_or(perf::protocol::FULL.warmup),
+            frames: args.frames.unwrap_or(perf::protocol::FULL.frames),
             progress: true,
         };
         let report = skips::run(res, &cfg)?;

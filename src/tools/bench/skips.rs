@@ -128,7 +128,12 @@ fn frame(engine: &mut Engine) -> Result<Vec<PassStat>> {
 fn side(frames: &[Vec<PassStat>]) -> Side {
     let sum = |f: &Vec<PassStat>, g: fn(&PassStat) -> f64| f.iter().map(g).sum::<f64>();
     Side {
-        frame_ms: median(&mut frames.iter().map(|f| sum(f, |p| p.ms)).collect::<Vec<_>>()),
+        frame_ms: median(
+            &mut frames
+                .iter()
+                .map(|f| sum(f, |p| p.wall_ms))
+                .collect::<Vec<_>>(),
+        ),
         frame_cpu_ms: median(
             &mut frames
                 .iter()

@@ -7,6 +7,7 @@
 //! [`crate::math::Camera`]; `camera.rs` adds the reference's robust frame and ray directions.
 
 mod cache;
+mod cache_dir;
 mod camera;
 mod depth_buffer;
 mod hash;
@@ -20,6 +21,7 @@ mod screen_box;
 mod trace;
 
 pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
+pub use cache_dir::{reference_cache_dir, CACHE_ENV};
 pub use camera::{pixel_dir, view_direction};
 pub use depth_buffer::{Capture, DepthBuffer};
 pub use image::RefImage;

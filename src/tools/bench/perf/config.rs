@@ -1,5 +1,6 @@
 //! What a bench run measures (the CLI fills it from `BenchArgs`; tests build it directly).
 
+use super::protocol::Grid;
 use crate::ao::AoMethod;
 use crate::tools::bench::limits::{self, MAX_REF_RAYS, MAX_REF_SCALE};
 use anyhow::{bail, Result};
@@ -9,6 +10,8 @@ use std::path::PathBuf;
 #[derive(Clone, Debug)]
 pub struct PerfConfig {
     pub scenes: Vec<PathBuf>,
+    /// Models (`--obj`), each run as a scene of its own framed from its bounds.
+    pub models: Vec<PathBuf>,
     pub width: u32,
     pub height: u32,
     pub out: PathBuf,
@@ -31,6 +34,14 @@ pub struct PerfConfig {
     pub flip: bool,
     pub charts: bool,
     pub progress: bool,
+    /// Screen-space references for the error split against each method's ceiling (slow: only
+    /// when asked, `--ceilings` or `--full`).
+    pub ceilings: bool,
+    /// Each method's full settings grid or the quick one (when no settings are given).
+    pub grid: Grid,
+    /// What the run scaled down or skipped against the full protocol, one line each (the
+    /// reports list them; empty for the full protocol).
+    pub scaled: Vec<String>,
 }
 
 impl PerfConfig {

@@ -61,14 +61,29 @@ pub fn html(report: &Report) -> String {
             "Renderer {}; methods at {}x{}, box-averaged to the truth's {}x{} (ray-traced, {} rays per pixel). \
              Each picture is the first test camera. Error maps: engine minus truth, blue too dark, \
              orange too light, full colour at ±{DEFAULT_RANGE}, white 0, sky grey. AO ms: median \
-             wall clock of the AO chain at {}x{}; PSNR: the mean over the test cameras, and in the \
-             captions at the camera shown.",
+             of the AO chain at {}x{} by the {} ({}); PSNR: the mean over the test cameras, and in \
+             the captions at the camera shown.",
             report.renderer, report.width, report.height, r.width, r.height, r.rays, report.width,
-            report.height
+            report.height, report.clock.name(), report.timing
         ))
     );
+    if !report.scaled.is_empty() {
+        let _ = writeln!(
+            out,
+            "<h2>A quick run</h2>\n<p>Scaled down or skipped against the full protocol (<code>{}</code>):</p>\n<ul>",
+            esc(super::protocol::FULL_COMMAND)
+        );
+        for line in &report.scaled {
+            let _ = writeln!(out, "<li>{}</li>", esc(line));
+        }
+        out.push_str("</ul>\n");
+    }
     out.push_str("<h2>Summary</h2>\n<table><tr><th>scene</th><th>method</th><th>setting</th>");
-    out.push_str("<th>R (m)</th><th>AO ms</th><th>PSNR (dB)</th><th>pictures</th></tr>\n");
+    let _ = writeln!(
+        out,
+        "<th>R (m)</th><th>AO {}</th><th>PSNR (dB)</th><th>pictures</th></tr>",
+        report.clock.unit()
+    );
     for (i, row) in report.rows.iter().enumerate() {
         let link = match &row.pictures {
             Some(p) => format!("<a href=\"#row-{i}\">{}</a>", esc(&p.camera)),
@@ -115,7 +130,7 @@ pub fn html(report: &Report) -> String {
                 "<h3 id=\"row-{i}\">{}</h3><div class=\"pics\">",
                 esc(&title)
             );
-            let cost = format!("AO {:.2} ms", row.total_ms);
+            let cost = format!("AO {:.2} {}", row.total_ms, report.clock.unit());
             figure(
                 &mut out,
                 &p.ao,

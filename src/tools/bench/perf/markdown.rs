@@ -63,12 +63,13 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         "`opengl3d bench` at {}×{} on **{}** ({} CPU threads visible).\n",
         r.width, r.height, r.renderer, r.cpus
     )?;
+    scaled_section(&mut s, r)?;
     writeln!(s, "## How it was measured\n")?;
     writeln!(
         s,
         "- **Timing**: {}. The whole frame (composite view: shadow, opaque, AO chain, sky, bloom, \
          image processing) is rendered {} times to warm up, then {} times timed, at the scene's own \
-         camera. Each pass's column is its median wall ms (and, in brackets, its median CPU ms); **AO ms** is the median of the per-frame sum of \
+         camera. Each pass's column is its median {} (and, in brackets, its median CPU ms); **AO ms** is the median of the per-frame sum of \
          the AO passes (restore + down-sampling + the method + blur + composite); the range is the \
          fastest and slowest frame. **AO CPU ms** is the median CPU time the process (llvmpipe's \
          rasteriser threads included) spent in the same passes (`clock_gettime(CLOCK_PROCESS_CPUTIME_ID)`): \
@@ -76,7 +77,10 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          settings by; on an idle machine wall ≈ CPU / threads for well-parallelised passes. Frame ms is \
          the median whole frame. Timing brackets every pass with \
          glFinish, so passes do not overlap: the sum is slower than an untimed frame.",
-        r.timing, r.warmup_frames, r.timed_frames
+        r.timing,
+        r.warmup_frames,
+        r.timed_frames,
+        r.clock.unit()
     )?;
     writeln!(
         s,
@@ -110,7 +114,14 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          on the test cameras only.",
         metrics::PSNR_CAP_DB
     )?;
-    writeln!(
+    if !r.ceilings {
+        writeln!(
+            s,
+            "- **Error split**: skipped (no screen-space references); `--ceilings` or `--full` \
+             computes them."
+        )?;
+    } else {
+        writeln!(
         s,
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
@@ -136,6 +147,7 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         r.reference.screen_render_s,
         r.reference.screen_cached
     )?;
+    }
     writeln!(s, "- **Cameras** (train / test):")?;
     for (scene, c) in &r.cameras {
         writeln!(
@@ -219,7 +231,9 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         best(&|r| r.psnr),
         best(&|r| r.fitted.psnr)
     )?;
-    split_section(&mut s, r)?;
+    if r.ceilings {
+        split_section(&mut s, r)?;
+    }
     writeln!(s, "## Per camera (PSNR dB, raw / fitted)\n")?;
     for scene in &r.scenes {
         let rows: Vec<&Row> = r.rows.iter().filter(|row| scene_of(row) == scene).collect();
@@ -257,12 +271,31 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
     }
     writeln!(
         s,
-        "Charts: `report.svg` (and `report.png` when a TrueType font was found): RMSE against the AO \
-         chain's median wall ms (left) and CPU ms (right), raw (filled) and fitted (hollow), one colour \
-         per method, each raw point labelled with its setting.\n\nRun time of the whole bench: {:.0} s.",
+        "Charts: `report.svg` (and `report.png` when a TrueType font was found): one panel per scene \
+         and radius, raw PSNR against the AO chain's median {} (each radius has its own truth, so \
+         radii are never mixed), one colour per method on every chart, the Pareto front (no other \
+         setting is both cheaper and closer to the truth) drawn as a line with its settings \
+         labelled; the other points are named in the SVG's tooltips.\n\nRun time of the whole bench: {:.0} s.",
+        r.clock.unit(),
         r.run_s
     )?;
     Ok(s)
+}
+
+/// What a quick run scaled down or skipped against the full protocol (nothing for a full run).
+fn scaled_section(s: &mut String, r: &Report) -> fmt::Result {
+    if r.scaled.is_empty() {
+        return Ok(());
+    }
+    writeln!(
+        s,
+        "## A quick run\n\nScaled down or skipped against the full protocol (`{}`):\n",
+        super::protocol::FULL_COMMAND
+    )?;
+    for line in &r.scaled {
+        writeln!(s, "- {line}")?;
+    }
+    writeln!(s)
 }
 
 /// Mean of a per-camera figure over a row's test cameras.

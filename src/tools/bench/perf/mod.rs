@@ -1,8 +1,9 @@
 //! `opengl3d bench`: run time against error of each AO method and quality setting.
 //!
 //! Timing: the full frame (composite view, every pass) is rendered with `Engine::collect_stats`, which
-//! brackets each pass with glFinish and reads a wall clock (on llvmpipe timer queries measure nothing
-//! useful). After `warmup` frames, `frames` frames are timed at the scene's own camera; each pass
+//! brackets each pass with glFinish and times it by a GL timer query on a hardware driver, by the
+//! wall clock on llvmpipe (whose timer queries measure nothing useful; `crate::gl::PassClock`). After
+//! `warmup` frames, `frames` frames are timed at the scene's own camera; each pass
 //! reports its median, and the AO chain (every pass of the "ao" group: restore, down-sampling, the
 //! method, blur, composite) the median of its per-frame sum.
 //!
@@ -16,8 +17,9 @@
 //! the depth buffer cannot know (screen-space reference against ray-traced) from what the method's
 //! sampling loses (method against screen-space reference).
 //!
-//! Files: `config.rs` (inputs), `references.rs` (ground truth), `setting.rs` (one row), `run.rs`
-//! (the loop), `report.rs` (the figures), `markdown.rs` and `chart.rs` (their presentation),
+//! Files: `config.rs` (inputs), `protocol.rs` (the quick and full protocols, the estimate),
+//! `references.rs` (ground truth), `setting.rs` (one row), `run.rs` (the loop), `report.rs` (the
+//! figures), `markdown.rs` and `chart.rs` (their presentation),
 //! `pictures.rs` and `html.rs` (`report.html`: truth, AO view and signed error map per setting).
 
 mod chart;
@@ -25,11 +27,13 @@ mod config;
 mod html;
 mod markdown;
 mod pictures;
+pub mod protocol;
 mod references;
 mod report;
 mod run;
 mod setting;
 
 pub use config::PerfConfig;
+pub use protocol::Grid;
 pub use report::{CameraError, ReferenceInfo, Report, Row};
 pub use run::run;

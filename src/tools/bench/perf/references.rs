@@ -8,13 +8,14 @@ use crate::ao::settings::LAYER_SEPARATION_OF_RADIUS;
 use crate::ao::{AoMethod, AoSettings, NormalSource, Thickness};
 use crate::render::Engine;
 use crate::res::ResDirs;
+use crate::scene::framing;
 use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
     cache_key, cache_path, load_or_render_cached, load_or_render_screen_box_cached,
     screen_box_cache_key, AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
 };
-use anyhow::Result;
+use anyhow::{Context as _, Result};
 use indicatif::ProgressBar;
 use std::collections::BTreeMap;
 use std::path::Path;
@@ -30,6 +31,9 @@ pub struct SceneData {
     pub desc: SceneDesc,
     pub cameras: Vec<BenchCamera>,
     pub refs: RefMap,
+    /// The settings' radii are multiplied by this on this scene: 1 for a scene file, the AO
+    /// radius framing chose for a model (`--obj`) when no `--radii` are given.
+    pub radius_scale: f32,
 }
 
 /// How many references were rendered this run or read from the cache, and the seconds spent
@@ -64,15 +68,9 @@ fn params(radius: f32, rays: u32, progress: bool) -> RefParams {
     }
 }
 
-/// Loads the scene at `path` at the bench size and its ray-traced references at `radii`.
-pub fn load_scene(
-    res: &ResDirs,
-    path: &Path,
-    radii: &[f32],
-    cfg: &PerfConfig,
-    count: &mut RenderCount,
-) -> Result<SceneData> {
-    let (rw, rh) = cfg.reference_size();
+/// Loads the scene at `path` at the bench size with its cameras, and its triangles for the ray
+/// tracer (the references come from [`trace_references`]).
+pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
     let mut desc = SceneDesc::load(path)?;
     desc.output.width = cfg.width;
     desc.output.height = cfg.height;
@@ -80,35 +78,118 @@ pub fn load_scene(
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
         .unwrap_or_else(|| "scene".into());
+    scene_data(res, name, desc, 1.0)
+}
+
+/// A scene of its cameras (the scene's own and its variants) and triangles.
+fn scene_data(
+    res: &ResDirs,
+    name: String,
+    desc: SceneDesc,
+    radius_scale: f32,
+) -> Result<(SceneData, Scene)> {
     let cameras = catalog::camera_variants(&desc.camera);
     let bvh = Scene::new(desc.world_triangles(res)?)?;
-    let mut refs = BTreeMap::new();
-    for (ci, cam) in cameras.iter().enumerate() {
-        for &r in radii {
-            let params = params(r, cfg.ref_rays, cfg.progress);
-            let camera = cam.camera(&desc.camera);
-            let key = cache_key(bvh.content_hash(), &camera, rw, rh, &params);
-            let hit = cache_path(&cfg.cache, &key).is_file();
-            if cfg.progress {
-                eprintln!(
-                    "reference {name}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
-                    cam.name,
-                    cfg.ref_rays,
-                    if hit { "cached" } else { "rendering" }
-                );
-            }
-            let t = Instant::now();
-            let img = load_or_render_cached(&cfg.cache, &bvh, &camera, rw, rh, &params);
-            count.add(hit, t);
-            refs.insert((ci, r.to_bits()), img);
-        }
-    }
-    Ok(SceneData {
+    let sd = SceneData {
         name,
         desc,
         cameras,
-        refs,
-    })
+        refs: BTreeMap::new(),
+        radius_scale,
+    };
+    Ok((sd, bvh))
+}
+
+/// Loads one model as the whole scene (as `render --obj` does: the demo's light and AO, the
+/// camera framed from the model's bounds), with the same camera variants as a scene file. Without
+/// `--radii` the settings' radii (in metres for the demo's scale) are multiplied by the radius
+/// framing chose, so that they follow the model's size.
+pub fn load_model(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
+    let found = path
+        .canonicalize()
+        .with_context(|| rust_i18n::t!("render.obj_not_found", path = path.display()))?;
+    let data = crate::gl::mesh::MeshData::load_obj(&found)?;
+    let mut desc = SceneDesc::single_obj(&found);
+    desc.output.width = cfg.width;
+    desc.output.height = cfg.height;
+    let framed = match data.bounds() {
+        Some((lo, hi)) => framing::frame_model(&mut desc, lo, hi, framing::Fixed::default()),
+        None => None,
+    };
+    let scale = match framed {
+        Some(radius) if cfg.radii.is_empty() => radius,
+        _ => 1.0,
+    };
+    let name = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "model".into());
+    scene_data(res, name, desc, scale)
+}
+
+/// The cache key of every reference of `sd` at `radii` (camera index, radius, key).
+fn reference_keys(
+    sd: &SceneData,
+    bvh: &Scene,
+    radii: &[f32],
+    cfg: &PerfConfig,
+) -> Vec<(usize, f32, String)> {
+    let (rw, rh) = cfg.reference_size();
+    let mut keys = Vec::new();
+    for (ci, cam) in sd.cameras.iter().enumerate() {
+        for &r in radii {
+            let camera = cam.camera(&sd.desc.camera);
+            let key = cache_key(
+                bvh.content_hash(),
+                &camera,
+                rw,
+                rh,
+                &params(r, cfg.ref_rays, false),
+            );
+            keys.push((ci, r, key));
+        }
+    }
+    keys
+}
+
+/// How many of the scene's references at `radii` are not in the cache yet.
+pub fn missing_references(sd: &SceneData, bvh: &Scene, radii: &[f32], cfg: &PerfConfig) -> usize {
+    reference_keys(sd, bvh, radii, cfg)
+        .iter()
+        .filter(|(_, _, key)| !cache_path(&cfg.cache, key).is_file())
+        .count()
+}
+
+/// Ray-traces (or reads from the cache) the reference of every camera of `sd` at `radii`;
+/// `done` counts the references of the whole run so far, of `total`, for the progress lines.
+pub fn trace_references(
+    sd: &mut SceneData,
+    bvh: &Scene,
+    radii: &[f32],
+    cfg: &PerfConfig,
+    count: &mut RenderCount,
+    (done, total): (&mut usize, usize),
+) {
+    let (rw, rh) = cfg.reference_size();
+    for (ci, r, key) in reference_keys(sd, bvh, radii, cfg) {
+        let params = params(r, cfg.ref_rays, cfg.progress);
+        let camera = sd.cameras[ci].camera(&sd.desc.camera);
+        let hit = cache_path(&cfg.cache, &key).is_file();
+        *done += 1;
+        if cfg.progress {
+            eprintln!(
+                "reference {done}/{total} {}/{} R = {r} m, {rw}x{rh}, {} rays: {}",
+                sd.name,
+                sd.cameras[ci].name,
+                cfg.ref_rays,
+                if hit { "cached" } else { "rendering" }
+            );
+        }
+        let t = Instant::now();
+        let img = load_or_render_cached(&cfg.cache, bvh, &camera, rw, rh, &params);
+        count.add(hit, t);
+        sd.refs.insert((ci, r.to_bits()), img);
+    }
 }
 
 /// Screen-space references keyed by (camera index, radius bits, ceiling).

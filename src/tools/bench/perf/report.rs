@@ -89,7 +89,16 @@ pub struct Row {
 pub struct Report {
     pub renderer: String,
     pub software: bool,
+    /// The clock of every time in the report (`crate::gl::GpuClock::description`).
     pub timing: String,
+    /// That clock: "gpu timer" (hardware GL) or "wall clock" (software GL).
+    pub clock: crate::gl::PassClock,
+    /// Whether the run followed the full protocol; else `scaled` lists what it scaled down or
+    /// skipped (`perf::protocol`).
+    pub full_protocol: bool,
+    pub scaled: Vec<String>,
+    /// Whether the screen-space references (the error split) were computed.
+    pub ceilings: bool,
     pub cpus: usize,
     pub width: u32,
     pub height: u32,

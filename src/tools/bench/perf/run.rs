@@ -2,6 +2,7 @@
 //! every scene, then the report files.
 
 use super::config::PerfConfig;
+use super::protocol::{self, Grid, Work};
 use super::references::{self, Ceiling, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
@@ -26,7 +27,7 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     std::fs::create_dir_all(&cfg.out)
         .with_context(|| format!("cannot create {}", cfg.out.display()))?;
 
-    let scene_paths: Vec<PathBuf> = if cfg.scenes.is_empty() {
+    let scene_paths: Vec<PathBuf> = if cfg.scenes.is_empty() && cfg.models.is_empty() {
         vec![res
             .find("scenes/demo.toml")
             .map_err(|e| anyhow::anyhow!("{e}"))?]
@@ -34,27 +35,55 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         cfg.scenes.clone()
     };
     let plan = plan(cfg)?;
-    let mut radii: Vec<f32> = plan
+    let mut loaded = scene_paths
         .iter()
-        .flat_map(|(_, s)| s.iter().map(|s| s.radius))
+        .map(|path| references::load_scene(res, path, cfg))
+        .chain(
+            cfg.models
+                .iter()
+                .map(|path| references::load_model(res, path, cfg)),
+        )
+        .collect::<Result<Vec<_>>>()?;
+    // Each scene's settings: a model's radii follow its size (`SceneData::radius_scale`).
+    let plans: Vec<Plan> = loaded
+        .iter()
+        .map(|(sd, _)| scaled_plan(&plan, sd.radius_scale))
         .collect();
-    radii.sort_by(|a, b| a.total_cmp(b));
-    radii.dedup();
+    let ctx = HeadlessContext::new()?;
+    let mut work = Work {
+        settings: plans.iter().flatten().map(|(_, s)| s.len()).sum(),
+        cameras: loaded.first().map_or(0, |(sd, _)| sd.cameras.len()),
+        mean_radius: mean(&radii_of(&plan)),
+        ..Work::default()
+    };
+    for ((sd, bvh), plan) in loaded.iter().zip(&plans) {
+        let radii = radii_of(plan);
+        let missing = references::missing_references(sd, bvh, &radii, cfg);
+        work.references += missing;
+        work.cached += sd.cameras.len() * radii.len() - missing;
+        if cfg.ceilings {
+            // One per test camera and radius, twice for vbao (its slabs besides the heightfield).
+            let kinds = 1 + plan.iter().any(|(m, _)| *m == AoMethod::Vbao) as usize;
+            work.screen_references +=
+                sd.cameras.iter().filter(|c| !c.train).count() * radii.len() * kinds;
+        }
+    }
+    if cfg.progress {
+        announce(cfg, &ctx, &work, loaded.len());
+    }
 
     // References first: they are the slow part, and cached for later runs.
     let mut traced = RenderCount::default();
-    let scenes = scene_paths
-        .iter()
-        .map(|path| references::load_scene(res, path, &radii, cfg, &mut traced))
-        .collect::<Result<Vec<_>>>()?;
+    let mut done = 0;
+    let total_refs = work.references + work.cached;
+    for ((sd, bvh), plan) in loaded.iter_mut().zip(&plans) {
+        let progress = (&mut done, total_refs);
+        references::trace_references(sd, bvh, &radii_of(plan), cfg, &mut traced, progress);
+    }
+    let scenes: Vec<_> = loaded.into_iter().map(|(sd, _)| sd).collect();
 
-    let ctx = HeadlessContext::new()?;
-    let timing = if ctx.software {
-        "wall clock around glFinish per pass (software GL: Mesa llvmpipe; timer queries do not measure real time there)"
-    } else {
-        "wall clock around glFinish per pass (hardware GL)"
-    };
-    let total_settings: usize = plan.iter().map(|(_, s)| s.len()).sum::<usize>() * scenes.len();
+    let clock = crate::gl::PassClock::of_context(&ctx.gl);
+    let total_settings = work.settings;
     let pb = progress::bar(
         total_settings as u64,
         "bench {bar:40} {pos}/{len} settings [{elapsed_precise} < {eta_precise}] {msg}",
@@ -63,15 +92,18 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let load_before = load_average();
     let mut rows = Vec::new();
     let mut screen_count = RenderCount::default();
-    for sd in &scenes {
+    for (sd, plan) in scenes.iter().zip(&plans) {
         // The screen-space references read the depth buffer at the bench size, as the methods do,
         // and average their visibility over the blocks the bench averages the methods' output over.
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, cfg.width, cfg.height)?;
-        let ceilings = ceilings(&plan, &engine.ao_settings);
-        let screen =
-            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?;
+        let screen = if cfg.ceilings {
+            let ceilings = ceilings(plan, &engine.ao_settings);
+            references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?
+        } else {
+            Default::default()
+        };
         engine.resize(cfg.width, cfg.height)?;
-        for (method, settings) in &plan {
+        for (method, settings) in plan {
             for s in settings {
                 pb.set_message(format!("{} {} {}", sd.name, method.name(), s.label()));
                 let row = run_setting(&mut engine, sd, &screen, *method, s, cfg)
@@ -86,7 +118,11 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let report = Report {
         renderer: ctx.renderer.clone(),
         software: ctx.software,
-        timing: timing.to_string(),
+        timing: clock.description().to_string(),
+        clock,
+        full_protocol: cfg.scaled.is_empty(),
+        scaled: cfg.scaled.clone(),
+        ceilings: cfg.ceilings,
         cpus: std::thread::available_parallelism().map_or(1, |n| n.get()),
         width: cfg.width,
         height: cfg.height,
@@ -119,6 +155,54 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     Ok(report)
 }
 
+/// Prints what the run will do and how long it should take, before anything slow starts.
+fn announce(cfg: &PerfConfig, ctx: &HeadlessContext, work: &Work, scenes: usize) {
+    let p = protocol::Protocol {
+        width: cfg.width,
+        height: cfg.height,
+        ref_scale: cfg.ref_scale,
+        ref_rays: cfg.ref_rays,
+        screen_rays: cfg.screen_rays,
+        warmup: cfg.warmup,
+        frames: cfg.frames,
+        ceilings: cfg.ceilings,
+        grid: cfg.grid,
+    };
+    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let (rw, rh) = cfg.reference_size();
+    eprintln!(
+        "{}",
+        rust_i18n::t!(
+            "bench.plan",
+            settings = work.settings,
+            scenes = scenes,
+            width = cfg.width,
+            height = cfg.height,
+            refs = work.references,
+            cached = work.cached,
+            ref_width = rw,
+            ref_height = rh,
+            rays = cfg.ref_rays
+        )
+    );
+    if ctx.software {
+        let estimate = protocol::minutes(protocol::estimate_seconds(&p, work, cores));
+        eprintln!(
+            "{}",
+            rust_i18n::t!("bench.estimate", time = estimate, cores = cores)
+        );
+    }
+    if !cfg.scaled.is_empty() {
+        eprintln!(
+            "{}",
+            rust_i18n::t!("bench.quick", command = protocol::FULL_COMMAND)
+        );
+        for line in &cfg.scaled {
+            eprintln!("  - {line}");
+        }
+    }
+}
+
 /// Every (radius, ceiling) whose screen-space reference the plan's error split needs: each
 /// setting's radius with its method's thickness model (`Ceiling::of`) under the scene's AO
 /// settings.
@@ -139,16 +223,63 @@ fn ceilings(plan: &[(AoMethod, Vec<Setting>)], scene_ao: &AoSettings) -> Vec<(f3
     out
 }
 
+/// Every method with its settings.
+type Plan = Vec<(AoMethod, Vec<Setting>)>;
+
+/// The radii of `plan`, ascending, each once.
+fn radii_of(plan: &Plan) -> Vec<f32> {
+    let mut radii: Vec<f32> = plan
+        .iter()
+        .flat_map(|(_, s)| s.iter().map(|s| s.radius))
+        .collect();
+    radii.sort_by(|a, b| a.total_cmp(b));
+    radii.dedup();
+    radii
+}
+
+fn mean(v: &[f32]) -> f64 {
+    v.iter().map(|x| *x as f64).sum::<f64>() / v.len().max(1) as f64
+}
+
+/// `plan` with every radius times `scale` (within the engine's radius range, four significant
+/// digits): a model framed from its bounds is measured at radii that follow its size.
+fn scaled_plan(plan: &Plan, scale: f32) -> Plan {
+    if scale == 1.0 {
+        return plan.clone();
+    }
+    let (lo, hi) = crate::ao::settings::RADIUS_RANGE;
+    let round = |r: f32| {
+        let digits = 10f32.powi(3 - r.abs().log10().floor() as i32);
+        (r * digits).round() / digits
+    };
+    plan.iter()
+        .map(|(m, settings)| {
+            let scaled = settings
+                .iter()
+                .map(|s| Setting {
+                    radius: round((s.radius * scale).clamp(lo, hi)),
+                    ..*s
+                })
+                .collect();
+            (*m, scaled)
+        })
+        .collect()
+}
+
 /// The settings of every method, checked against what the engine accepts.
-fn plan(cfg: &PerfConfig) -> Result<Vec<(AoMethod, Vec<Setting>)>> {
+fn plan(cfg: &PerfConfig) -> Result<Plan> {
     let plan: Vec<(AoMethod, Vec<Setting>)> = cfg
         .methods
         .iter()
         .map(|m| {
-            (
-                *m,
-                catalog::settings_for(*m, &cfg.samples, &cfg.radii, &cfg.qualities),
-            )
+            let given =
+                !(cfg.samples.is_empty() && cfg.radii.is_empty() && cfg.qualities.is_empty());
+            let settings = if cfg.grid == Grid::Quick && !given {
+                catalog::quick_settings()
+            } else {
+                catalog::settings_for(*m, &cfg.samples, &cfg.radii, &cfg.qualities)
+            };
+            (*m, settings)
         })
         .collect();
     for (_, settings) in &plan {
