@@ -12,8 +12,8 @@ use crate::scene::framing;
 use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
-    cache_key, cache_path, load_or_render_cached, load_or_render_screen_box_cached,
-    screen_box_cache_key, AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
+    cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
+    AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
 };
 use anyhow::{Context as _, Result};
 use indicatif::ProgressBar;
@@ -263,8 +263,7 @@ impl Ceiling {
 }
 
 /// Screen-space reference of every test camera and (radius, ceiling) pair, from the engine's depth
-/// buffer at its current size (the bench's), averaged over `ref_scale`² blocks as the methods'
-/// output is, so that it comes out at the ray-traced reference's size.
+/// buffer at its current size (the reference's, so that the pixel centres match).
 pub fn screen_references(
     engine: &mut Engine,
     sd: &SceneData,
@@ -274,8 +273,10 @@ pub fn screen_references(
     count: &mut RenderCount,
 ) -> Result<ScreenMap> {
     let mut out = BTreeMap::new();
-    // The ceilings read what the scene's engine methods read: its normals and its guard band.
+    // The ceilings read what the scene's engine methods read: its normals and its guard band (scaled
+    // from the bench's output size to the reference's).
     let normals = sd.desc.ao.normals == NormalSource::Geometric;
+    let ref_width = engine.size().0;
     for (ci, cam) in sd.cameras.iter().enumerate().filter(|(_, c)| !c.train) {
         let camera = cam.camera(&sd.desc.camera);
         engine.camera = camera;
@@ -286,7 +287,7 @@ pub fn screen_references(
             let params = params(r, cfg.screen_rays, cfg.progress);
             let band =
                 guard_band_pixels(sd.desc.ao.guard_band, &camera, (cfg.width, cfg.height), r);
-            let guard = band;
+            let guard = (band as u64 * ref_width as u64 / cfg.width.max(1) as u64) as u32;
             let back_faces = matches!(ceiling, Ceiling::BackFaces { .. });
             // The scene's second layer, its separation following the ceiling's radius.
             let second_layer = (sd.desc.ao.layers >= 2).then_some(LAYER_SEPARATION_OF_RADIUS * r);
@@ -308,13 +309,12 @@ pub fn screen_references(
                 Ceiling::Heightfield => buffer,
                 Ceiling::Slabs(t) | Ceiling::BackFaces { fallback: t } => buffer.with_thickness(t),
             };
-            let key = screen_box_cache_key(&depth, cfg.ref_scale, &params);
+            let key = screen_cache_key(&depth, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
-            let s = cfg.ref_scale;
             if cfg.progress {
                 pb.suspend(|| {
                     eprintln!(
-                        "screen-space reference {}/{} R = {r} m, ceiling {}, {}x{} in {s}x{s} blocks, {} rays: {}",
+                        "screen-space reference {}/{} R = {r} m, ceiling {}, {}x{}, {} rays: {}",
                         sd.name,
                         cam.name,
                         ceiling.label(),
@@ -326,9 +326,7 @@ pub fn screen_references(
                 });
             }
             let t = Instant::now();
-            let img = pb.suspend(|| {
-                load_or_render_screen_box_cached(&cfg.cache, &depth, cfg.ref_scale, &params)
-            })?;
+            let img = pb.suspend(|| load_or_render_screen_cached(&cfg.cache, &depth, &params))?;
             count.add(hit, t);
             out.insert((ci, r.to_bits(), ceiling.key()), img);
         }
