@@ -129,11 +129,11 @@ pub fn run() -> Result<()> {
                 match platform::window::run(res.clone(), scene, View::Composite, None, None) {
                     Ok(()) => return Ok(()),
                     Err(e) => {
-                        eprintln!("could not open a window ({e:#}); rendering headless instead")
+                        eprintln!("{}", t!("cli.window_failed", error = format!("{e:#}")))
                     }
                 }
             } else {
-                eprintln!("no display found (DISPLAY / WAYLAND_DISPLAY unset): rendering one frame headless");
+                eprintln!("{}", t!("cli.no_display", path = "out/frame.png"));
             }
             let args = RenderArgs {
                 scene: SceneArgs::default(),
@@ -174,7 +174,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         path = args.out.display(),
         width = scene.output.width,
         height = scene.output.height,
-        view = view.label(),
+        view = view_label(view),
         renderer = ctx.renderer
     );
     if args.stats {
@@ -281,6 +281,9 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     crate::outln!("{}", t!("lesson.showing", n = n, view = view_label(view)));
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
+        if !args.headless {
+            eprintln!("{}", t!("cli.no_display", path = args.out.display()));
+        }
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         engine.view = view;
