@@ -238,7 +238,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .dir
             .as_ref()
             .with_context(|| t!("lesson.start_usage"))?;
-        let files = crate::tools::lesson::start(dir)?;
+        let files = crate::tools::lesson::start(dir, crate::i18n::current())?;
         let shown = dir.display();
         crate::outln!(
             "{}",

@@ -78,6 +78,13 @@ fn lesson_start_speaks_japanese() {
     let s = out(&o);
     assert!(s.contains("個のファイルを書き出しました"), "{s}");
     assert!(s.contains("5 つの課題シェーダーはスタブです"), "{s}");
+    // The stubs are commented in Japanese and point to the Japanese pages.
+    let stub = std::fs::read_to_string(d.join("sao_restore_depth.frag")).unwrap();
+    assert!(
+        stub.contains("lessons/ja/02-restore-pass.md") && stub.contains("課題のステップ2"),
+        "{stub}"
+    );
+    assert!(!stub.contains("Lesson step"), "{stub}");
     let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
     assert!(out(&o).contains("そのまま残しました"), "{}", out(&o));
     // The step list names each step's view in Japanese too.

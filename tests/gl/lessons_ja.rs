@@ -1,6 +1,7 @@
 //! The Japanese lessons (`lessons/ja/`) stay in step with the English ones: the same pages, the same
-//! heading structure, the same code blocks (every checkpoint command and listing, verbatim) and the same
-//! images; `README.ja.md` and `README.md` link each other.
+//! heading structure, the same code blocks (every checkpoint command and listing, verbatim once the
+//! comments, which each language writes in its own words, are taken out) and the same images;
+//! `README.ja.md` and `README.md` link each other.
 
 use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
@@ -33,7 +34,7 @@ fn pages(dir: &Path, skip: &str) -> BTreeSet<PathBuf> {
 struct Outline {
     /// Heading levels, in order.
     headings: Vec<usize>,
-    /// Fenced code blocks, verbatim.
+    /// Fenced code blocks without their comments (`comment_free`).
     code: Vec<String>,
     /// Image targets resolved against the page's folder, in order.
     images: Vec<PathBuf>,
@@ -54,16 +55,53 @@ fn normalise(p: &Path) -> PathBuf {
     out
 }
 
+/// Where the comment of `line` starts in a block of language `lang`: `//` outside a string in
+/// GLSL, Rust and C++; `#` at the start or after a space in shell and TOML. Other blocks (formulas,
+/// output) have no comments.
+fn comment_start(lang: &str, line: &str) -> Option<usize> {
+    match lang {
+        "glsl" | "rust" | "cpp" | "c++" | "c" => line
+            .match_indices("//")
+            .map(|(i, _)| i)
+            .find(|&i| line[..i].matches('"').count() % 2 == 0),
+        "sh" | "bash" | "toml" => line.char_indices().find_map(|(i, c)| {
+            let starts = i == 0 || line[..i].ends_with(char::is_whitespace);
+            let ends = line[i + 1..].is_empty() || line[i + 1..].starts_with(char::is_whitespace);
+            (c == '#' && starts && ends).then_some(i)
+        }),
+        _ => None,
+    }
+}
+
+/// A code block without its comments: each line cut at its comment and trimmed at the end, lines
+/// left empty dropped (so a comment may take more or fewer lines in a translation).
+fn comment_free(lang: &str, body: &str) -> String {
+    let mut out = String::new();
+    for line in body.lines() {
+        let code = match comment_start(lang, line) {
+            Some(i) => &line[..i],
+            None => line,
+        }
+        .trim_end();
+        if !code.is_empty() {
+            out.push_str(code);
+            out.push('\n');
+        }
+    }
+    out
+}
+
 fn outline(file: &Path) -> Outline {
     let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     let dir = file.parent().unwrap();
     let mut o = Outline::default();
-    let mut fence: Option<(String, String)> = None;
+    // The open fence: its marker, its language and the body so far.
+    let mut fence: Option<(String, String, String)> = None;
     for line in text.lines() {
         let t = line.trim_start();
-        if let Some((marker, body)) = &mut fence {
+        if let Some((marker, lang, body)) = &mut fence {
             if t.starts_with(marker.as_str()) {
-                o.code.push(std::mem::take(body));
+                o.code.push(comment_free(lang, body));
                 fence = None;
             } else {
                 body.push_str(line);
@@ -72,7 +110,7 @@ fn outline(file: &Path) -> Outline {
             continue;
         }
         if t.starts_with("```") || t.starts_with("~~~") {
-            fence = Some((t[..3].to_string(), String::new()));
+            fence = Some((t[..3].to_string(), t[3..].trim().to_string(), String::new()));
             continue;
         }
         let hashes = line.chars().take_while(|c| *c == '#').count();
@@ -161,6 +199,22 @@ fn readmes_link_each_other() {
         "README code blocks (the commands) must be the same"
     );
     assert_eq!(e.images, j.images, "README images must be the same");
+}
+
+#[test]
+fn comments_may_differ_but_code_may_not() {
+    let en = "float a = 1.0; // one\n// two lines\n// of comment\nb = \"x//y\";\n";
+    let ja = "float a = 1.0; // 一\n// 日本語のコメント\nb = \"x//y\";\n";
+    assert_eq!(comment_free("glsl", en), comment_free("glsl", ja));
+    assert_eq!(comment_free("glsl", en), "float a = 1.0;\nb = \"x//y\";\n");
+    let changed = "float a = 2.0; // one\nb = \"x//y\";\n";
+    assert_ne!(comment_free("glsl", en), comment_free("glsl", changed));
+    assert_eq!(
+        comment_free("sh", "cargo test   # everything\necho '#1'\n"),
+        "cargo test\necho '#1'\n"
+    );
+    // Formulas keep every character.
+    assert_eq!(comment_free("", "x = y // 2\n"), "x = y // 2\n");
 }
 
 #[test]
