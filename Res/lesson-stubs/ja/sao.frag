@@ -1,6 +1,6 @@
 #version 450
 
-// 課題のステップ6～9(lessons/ja/06-view-position-and-normal.md ～ 09-2x2-smoothing.md):
+// 課題のステップ6～9(lessons/ja/06-view-position-and-normal.md～09-2x2-smoothing.md):
 // このピクセルの遮蔽率をSAOで計算します。書き上げるまで、このスタブは遮蔽なし(0)を書き込みます。
 
 layout(location=1) in vec2 inTexcoord;
