@@ -1,6 +1,7 @@
 //! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
 
 mod args;
+mod help_text;
 mod output;
 mod render_error;
 mod res_check;
@@ -19,7 +20,7 @@ use crate::platform::{self, HeadlessContext};
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use anyhow::{bail, Context as _, Result};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use rust_i18n::t;
 use std::path::{Path, PathBuf};
 
@@ -82,7 +83,17 @@ fn res_use(command: &Option<Command>) -> Option<ResUse> {
 
 pub fn run() -> Result<()> {
     let argv: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| usage_errors::exit(e, &argv));
+    // The language is known before parsing so that `--help` is written in it.
+    let lang = crate::i18n::from_env(usage_errors::lang_in_args(&argv));
+    crate::i18n::set(lang);
+    let command = match lang {
+        crate::i18n::Lang::Ja => help_text::japanese(Cli::command()),
+        crate::i18n::Lang::En => Cli::command(),
+    };
+    let cli = command
+        .try_get_matches_from(&argv)
+        .and_then(|m| Cli::from_arg_matches(&m))
+        .unwrap_or_else(|e| usage_errors::exit(e, &argv));
     crate::i18n::set(crate::i18n::from_env(cli.lang.lang));
     if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
         check_res(dir, what)?;

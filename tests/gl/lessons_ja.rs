@@ -286,8 +286,8 @@ fn is_japanese(c: char) -> bool {
     matches!(c, '\u{3001}'..='\u{30ff}' | '\u{4e00}'..='\u{9fff}' | '\u{ff01}'..='\u{ffef}')
 }
 
-/// Lines of `text` (outside code blocks and inline code) with a space between Japanese and a
-/// half-width letter, digit or code span.
+/// Lines of `text` (outside code blocks, inline code and quotations in 「」, which keep their
+/// source's wording) with a space between Japanese and a half-width letter, digit or code span.
 fn spaced_lines(text: &str) -> Vec<usize> {
     let mut out = Vec::new();
     let mut fenced = false;
@@ -300,9 +300,20 @@ fn spaced_lines(text: &str) -> Vec<usize> {
             continue;
         }
         // Inline code becomes one backtick, so its inside is never looked at.
-        let mut plain = String::new();
+        let mut code_free = String::new();
         for (i, part) in line.split('`').enumerate() {
-            plain.push_str(if i % 2 == 0 { part } else { "`" });
+            code_free.push_str(if i % 2 == 0 { part } else { "`" });
+        }
+        let mut plain = String::new();
+        let mut quoted = false;
+        for c in code_free.chars() {
+            match c {
+                '「' => quoted = true,
+                '」' => quoted = false,
+                _ if quoted => continue,
+                _ => {}
+            }
+            plain.push(c);
         }
         let chars: Vec<char> = plain.chars().collect();
         let half_width = |c: char| c.is_ascii_alphanumeric() || c == '`';
@@ -364,5 +375,8 @@ fn the_glossary_check_sees_a_variant_but_not_the_term_that_contains_it() {
     let found = variants_in("一行目\nシェーダを書く。講義資料では", &glossary);
     let said: Vec<_> = found.iter().map(|(l, v, _)| (*l, v.as_str())).collect();
     assert_eq!(said, [(2, "シェーダ"), (2, "講義"), (2, "講義資料")]);
-    assert_eq!(spaced_lines("レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床"), [1]);
+    assert_eq!(
+        spaced_lines("レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床\n「講座 2024 前期」の"),
+        [1]
+    );
 }
