@@ -13,22 +13,42 @@ fn translated(key: &str) -> Option<String> {
     (text != key).then_some(text)
 }
 
+/// The help's headings in the current language. clap keeps headings as `&'static str`; they are
+/// made once per process, so leaking them costs a few bytes.
+#[derive(Clone, Copy)]
+struct Headings {
+    commands: &'static str,
+    arguments: &'static str,
+    options: &'static str,
+}
+
+impl Headings {
+    fn new() -> Headings {
+        let leak = |key: &str| -> &'static str { Box::leak(t!(key).into_owned().into_boxed_str()) };
+        Headings {
+            commands: leak("help.commands"),
+            arguments: leak("help.arguments"),
+            options: leak("help.options"),
+        }
+    }
+}
+
 /// `cmd` (built, so that the help and version flags and the `help` command exist) with its help
 /// in the current language; `path` is its key in `help.about.*` ("" for the program itself).
-fn localise(mut cmd: Command, path: &str) -> Command {
+fn localise(mut cmd: Command, path: &str, headings: Headings) -> Command {
     let key = if path.is_empty() { "opengl3d" } else { path };
     cmd = cmd
         .help_template(t!("help.template").into_owned())
-        .subcommand_help_heading(t!("help.commands").into_owned());
+        .subcommand_help_heading(headings.commands);
     if let Some(about) = translated(&format!("help.about.{key}")) {
         cmd = cmd.about(about.clone()).long_about(about);
     }
     let args_key = key.to_string();
     cmd = cmd.mut_args(|a| {
         let heading = if a.is_positional() {
-            "help.arguments"
+            headings.arguments
         } else {
-            "help.options"
+            headings.options
         };
         let id = a.get_id().as_str().to_string();
         let own = match id.as_str() {
@@ -37,7 +57,11 @@ fn localise(mut cmd: Command, path: &str) -> Command {
             _ => translated(&format!("help.arg.{args_key}.{id}"))
                 .or_else(|| translated(&format!("help.arg.{id}"))),
         };
-        let a = a.help_heading(t!(heading).into_owned());
+        let mut a = a.help_heading(heading);
+        // Under a heading of its own clap lists positionals by name: keep their order.
+        if let Some(index) = a.get_index() {
+            a = a.display_order(index);
+        }
         match own {
             Some(text) => a.help(text.clone()).long_help(text),
             None => a,
@@ -55,7 +79,7 @@ fn localise(mut cmd: Command, path: &str) -> Command {
         } else {
             format!("{path}.{name}")
         };
-        cmd = cmd.mut_subcommand(&name, |s| localise(s, &sub));
+        cmd = cmd.mut_subcommand(&name, |s| localise(s, &sub, headings));
     }
     cmd
 }
@@ -63,5 +87,5 @@ fn localise(mut cmd: Command, path: &str) -> Command {
 /// The program's command tree with its help in Japanese.
 pub fn japanese(mut cmd: Command) -> Command {
     cmd.build();
-    localise(cmd, "")
+    localise(cmd, "", Headings::new())
 }
