@@ -461,10 +461,16 @@ fn help_is_written_in_japanese() {
     }
     assert!(!s.contains("Usage:") && !s.contains("Print help"), "{s}");
     let s = out(&run(&[JA], &["lesson", "--help"]));
-    assert!(s.contains("ステップの番号 1〜12") && s.contains("引数:"), "{s}");
+    assert!(
+        s.contains("ステップの番号 1〜12") && s.contains("引数:"),
+        "{s}"
+    );
     // English stays clap's own.
     let s = out(&run(&[C], &["--help"]));
-    assert!(s.contains("Usage: opengl3d") && s.contains("Print help"), "{s}");
+    assert!(
+        s.contains("Usage: opengl3d") && s.contains("Print help"),
+        "{s}"
+    );
 }
 
 #[test]
@@ -479,7 +485,13 @@ fn errors_and_the_headless_fallback_are_said_in_japanese() {
     let dir = common::temp_dir("i18n-no-display");
     let png = dir.join("step3.png");
     let mut cmd = Command::new(env!("CARGO_BIN_EXE_opengl3d"));
-    for v in ["LC_ALL", "LC_MESSAGES", "LANGUAGE", "DISPLAY", "WAYLAND_DISPLAY"] {
+    for v in [
+        "LC_ALL",
+        "LC_MESSAGES",
+        "LANGUAGE",
+        "DISPLAY",
+        "WAYLAND_DISPLAY",
+    ] {
         cmd.env_remove(v);
     }
     let args = ["lesson", "3", "--width", "32", "--height", "24", "--out"];

@@ -267,7 +267,10 @@ fn variants_in(text: &str, glossary: &[(String, Vec<String>)]) -> Vec<(usize, St
             for (at, _) in text.match_indices(v.as_str()) {
                 let inside_a_term = glossary.iter().any(|(t, _)| {
                     t.match_indices(v.as_str()).any(|(k, _)| {
-                        at >= k && text.get(at - k..).is_some_and(|rest| rest.starts_with(t.as_str()))
+                        at >= k
+                            && text
+                                .get(at - k..)
+                                .is_some_and(|rest| rest.starts_with(t.as_str()))
                     })
                 });
                 if !inside_a_term {
@@ -334,7 +337,10 @@ fn japanese_text_uses_the_glossary_terms_and_spacing() {
     let glossary = glossary();
     assert!(glossary.len() > 20, "{glossary:?}");
     let mut files = vec![root().join("README.ja.md"), root().join("locales/ja.yml")];
-    let mut stack = vec![root().join("lessons/ja"), root().join("Res/lesson-stubs/ja")];
+    let mut stack = vec![
+        root().join("lessons/ja"),
+        root().join("Res/lesson-stubs/ja"),
+    ];
     while let Some(d) = stack.pop() {
         for e in std::fs::read_dir(&d).unwrap() {
             let p = e.unwrap().path();
@@ -347,18 +353,25 @@ fn japanese_text_uses_the_glossary_terms_and_spacing() {
     }
     let mut problems = Vec::new();
     for f in &files {
-        if !f.extension().is_some_and(|x| x == "md" || x == "frag" || x == "yml") {
+        if !f
+            .extension()
+            .is_some_and(|x| x == "md" || x == "frag" || x == "yml")
+        {
             continue;
         }
         let text = std::fs::read_to_string(f).unwrap();
         let name = f.strip_prefix(root()).unwrap().display().to_string();
         for (line, variant, term) in variants_in(&text, &glossary) {
-            problems.push(format!("{name}:{line}: {variant} (the glossary says {term})"));
+            problems.push(format!(
+                "{name}:{line}: {variant} (the glossary says {term})"
+            ));
         }
         // The step pages, appendices and their index follow the spacing convention.
         if f.parent() == Some(root().join("lessons/ja").as_path()) {
             for line in spaced_lines(&text) {
-                problems.push(format!("{name}:{line}: a space between Japanese and half-width text"));
+                problems.push(format!(
+                    "{name}:{line}: a space between Japanese and half-width text"
+                ));
             }
         }
     }
@@ -369,14 +382,19 @@ fn japanese_text_uses_the_glossary_terms_and_spacing() {
 fn the_glossary_check_sees_a_variant_but_not_the_term_that_contains_it() {
     let glossary = vec![
         ("シェーダー".to_string(), vec!["シェーダ".to_string()]),
-        ("講座".to_string(), vec!["講義資料".to_string(), "講義".to_string()]),
+        (
+            "講座".to_string(),
+            vec!["講義資料".to_string(), "講義".to_string()],
+        ),
     ];
     assert!(variants_in("シェーダーを書く", &glossary).is_empty());
     let found = variants_in("一行目\nシェーダを書く。講義資料では", &glossary);
     let said: Vec<_> = found.iter().map(|(l, v, _)| (*l, v.as_str())).collect();
     assert_eq!(said, [(2, "シェーダ"), (2, "講義"), (2, "講義資料")]);
     assert_eq!(
-        spaced_lines("レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床\n「講座 2024 前期」の"),
+        spaced_lines(
+            "レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床\n「講座 2024 前期」の"
+        ),
         [1]
     );
 }
