@@ -63,7 +63,7 @@ fn comment_start(lang: &str, line: &str) -> Option<usize> {
         "glsl" | "rust" | "cpp" | "c++" | "c" => line
             .match_indices("//")
             .map(|(i, _)| i)
-            .find(|&i| line[..i].matches('"').count() % 2 == 0),
+            .find(|&i| line[..i].matches('"').count().is_multiple_of(2)),
         "sh" | "bash" | "toml" => line.char_indices().find_map(|(i, c)| {
             let starts = i == 0 || line[..i].ends_with(char::is_whitespace);
             let ends = line[i + 1..].is_empty() || line[i + 1..].starts_with(char::is_whitespace);
