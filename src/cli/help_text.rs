@@ -7,10 +7,10 @@
 use clap::Command;
 use rust_i18n::t;
 
-/// The translation of `key`, if the locale files have one.
+/// The translation of `key`, if the locale files have one (English holds these keys empty).
 fn translated(key: &str) -> Option<String> {
     let text = t!(key).into_owned();
-    (text != key).then_some(text)
+    (text != key && !text.is_empty()).then_some(text)
 }
 
 /// The help's headings in the current language. clap keeps headings as `&'static str`; they are
