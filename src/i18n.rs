@@ -66,6 +66,11 @@ pub fn current() -> Lang {
     }
 }
 
+/// What an error message starts with in the current language ("error: ").
+pub fn error_prefix() -> String {
+    rust_i18n::t!("usage.error").into_owned()
+}
+
 /// One message in English (what `--json` keeps) and, when the chosen language is another, in that
 /// language too.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -3,7 +3,7 @@ fn main() {
         .format_timestamp(None)
         .init();
     if let Err(e) = opengl3d::cli::run() {
-        eprintln!("error: {e:#}");
+        eprintln!("{}{e:#}", opengl3d::i18n::error_prefix());
         std::process::exit(1);
     }
     // A closed pipe (`| head`) keeps the status; output lost otherwise (a full disk) does not.

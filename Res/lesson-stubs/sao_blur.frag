@@ -8,6 +8,11 @@ layout(binding=1) uniform sampler2D texDepth;
 
 out vec4 outColor;
 
+// The engine injects the far plane; this default lets the file compile on its own.
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
+
 void main()
 {
   outColor = texelFetch(texColor, ivec2(gl_FragCoord.xy), 0);

@@ -7,6 +7,14 @@ out float outColor;
 
 layout(binding=0) uniform sampler2D texDepth;
 
+// The engine injects the camera's planes; these defaults let the file compile on its own.
+#ifndef CAMERA_NEAR
+#define CAMERA_NEAR 0.35
+#endif
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
+
 void main()
 {
   outColor = 0;

@@ -1,6 +1,7 @@
 //! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
 
 mod args;
+mod help_text;
 mod output;
 mod render_error;
 mod res_check;
@@ -19,7 +20,7 @@ use crate::platform::{self, HeadlessContext};
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use anyhow::{bail, Context as _, Result};
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use rust_i18n::t;
 use std::path::{Path, PathBuf};
 
@@ -82,7 +83,17 @@ fn res_use(command: &Option<Command>) -> Option<ResUse> {
 
 pub fn run() -> Result<()> {
     let argv: Vec<std::ffi::OsString> = std::env::args_os().collect();
-    let cli = Cli::try_parse_from(&argv).unwrap_or_else(|e| usage_errors::exit(e, &argv));
+    // The language is known before parsing so that `--help` is written in it.
+    let lang = crate::i18n::from_env(usage_errors::lang_in_args(&argv));
+    crate::i18n::set(lang);
+    let command = match lang {
+        crate::i18n::Lang::Ja => help_text::japanese(Cli::command()),
+        crate::i18n::Lang::En => Cli::command(),
+    };
+    let cli = command
+        .try_get_matches_from(&argv)
+        .and_then(|m| Cli::from_arg_matches(&m))
+        .unwrap_or_else(|e| usage_errors::exit(e, &argv));
     crate::i18n::set(crate::i18n::from_env(cli.lang.lang));
     if let (Some(dir), Some(what)) = (&cli.res, res_use(&cli.command)) {
         check_res(dir, what)?;
@@ -129,11 +140,11 @@ pub fn run() -> Result<()> {
                 match platform::window::run(res.clone(), scene, View::Composite, None, None) {
                     Ok(()) => return Ok(()),
                     Err(e) => {
-                        eprintln!("could not open a window ({e:#}); rendering headless instead")
+                        eprintln!("{}", t!("cli.window_failed", error = format!("{e:#}")))
                     }
                 }
             } else {
-                eprintln!("no display found (DISPLAY / WAYLAND_DISPLAY unset): rendering one frame headless");
+                eprintln!("{}", t!("cli.no_display", path = "out/frame.png"));
             }
             let args = RenderArgs {
                 scene: SceneArgs::default(),
@@ -174,7 +185,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         path = args.out.display(),
         width = scene.output.width,
         height = scene.output.height,
-        view = view.label(),
+        view = view_label(view),
         renderer = ctx.renderer
     );
     if args.stats {
@@ -235,7 +246,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             .dir
             .as_ref()
             .with_context(|| t!("lesson.start_usage"))?;
-        let files = crate::tools::lesson::start(dir)?;
+        let files = crate::tools::lesson::start(dir, crate::i18n::current())?;
         let shown = dir.display();
         crate::outln!(
             "{}",
@@ -278,6 +289,9 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     crate::outln!("{}", t!("lesson.showing", n = n, view = view_label(view)));
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
+        if !args.headless {
+            eprintln!("{}", t!("cli.no_display", path = args.out.display()));
+        }
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
         engine.view = view;

@@ -24,6 +24,10 @@ fn glyph(c: char) -> Option<&'static [&'static str; 5]> {
         'e' => &["...", "###", "#.#", "##.", "###"],
         'm' => &[".....", ".....", "####.", "#.#.#", "#.#.#"],
         'a' => &["...", "...", ".##", "#.#", ".##"],
+        'c' => &["...", "...", "###", "#..", "###"],
+        'f' => &[".##", "#..", "###", "#..", "#.."],
+        's' => &["...", ".##", "#..", "..#", "##."],
+        'u' => &["...", "...", "#.#", "#.#", "###"],
         'x' => &["...", "...", "#.#", ".#.", "#.#"],
         'd' => &["..#", "..#", "###", "#.#", "###"],
         'g' => &["...", "###", "#.#", "###", ".##"],
@@ -156,14 +160,20 @@ pub fn draw_scale(img: &mut RgbImage, top: u32, scale: &Scale, colour: impl Fn(f
     }
 }
 
-/// The heat maps' scale: the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1" under
-/// its ends, and above it a marker at `max` (the largest difference in the picture; at the right
-/// end when it is over 1) labelled "max VALUE".
+/// The heat maps' scale: the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1 full"
+/// (the step's full scale) under its ends, and above it a marker at `max` (the largest difference in
+/// the picture) labelled "max VALUE"; over 1 the marker stays at the right end and its label says
+/// "off scale", so "max 2 off scale" reads as twice the full scale.
 pub fn draw(img: &mut RgbImage, top: u32, max: f32, heat: impl Fn(f32) -> [u8; 3]) {
     let t = if max.is_finite() { max } else { 1.0 };
+    let text = if max > 1.0 || !max.is_finite() {
+        format!("max {} off scale", label(max))
+    } else {
+        format!("max {}", label(max))
+    };
     let scale = Scale {
-        ticks: &[(0.0, "0".into()), (1.0, "1".into())],
-        marker: Some((t, format!("max {}", label(max)))),
+        ticks: &[(0.0, "0".into()), (1.0, "1 full".into())],
+        marker: Some((t, text)),
     };
     draw_scale(img, top, &scale, heat);
 }
@@ -185,7 +195,7 @@ mod tests {
 
     #[test]
     fn every_label_character_has_a_glyph_of_five_even_rows() {
-        for c in "0123456789.-+emax toodarklight".chars() {
+        for c in "0123456789.-+emax toodarklight1 fullmax 2 off scale".chars() {
             let g = glyph(c).unwrap_or_else(|| panic!("no glyph for {c:?}"));
             assert!(g.iter().all(|r| r.len() == g[0].len()), "{c:?}");
         }

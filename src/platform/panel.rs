@@ -238,10 +238,10 @@ impl Panel {
 
         ui.separator();
         egui::ComboBox::from_label(tr("panel.view"))
-            .selected_text(engine.view.label())
+            .selected_text(tr(&format!("view.{}", engine.view.name())))
             .show_ui(ui, |ui| {
                 for v in View::ALL {
-                    ui.selectable_value(&mut engine.view, v, v.label());
+                    ui.selectable_value(&mut engine.view, v, tr(&format!("view.{}", v.name())));
                 }
             });
         if ui.button(tr("panel.rebuild")).clicked() {

@@ -331,7 +331,8 @@ impl App {
                 s.engine = engine;
                 self.res = fb.student_res.clone();
                 self.fallback = None;
-                eprintln!("shaders rebuilt: using {}", self.res.dirs()[0].display());
+                let dir = self.res.dirs()[0].display();
+                eprintln!("{}", rust_i18n::t!("window.rebuilt_using", dir = dir));
             }
             Err(e) => {
                 let text = match startup_shader_error(&e) {
@@ -339,7 +340,7 @@ impl App {
                     None => format!("{e:#}"),
                 };
                 if self.shader_errors.text() != text {
-                    eprintln!("{text}\n(the project's own shaders keep running)");
+                    eprintln!("{text}\n{}", rust_i18n::t!("window.project_shaders_run"));
                 }
                 self.shader_errors.clear();
                 match startup_shader_error(&e) {
@@ -360,18 +361,19 @@ impl App {
     fn update_title(&mut self) {
         if let Some(s) = &self.state {
             let e = &s.engine;
-            let mut t = format!(
-                "opengl3d — {} (M) — view: {} (V) — AO {} (Space) — blur {} (B) — panel (F1)",
-                e.ao_settings.method.name(),
-                e.view.label(),
-                if e.ao_settings.enabled { "on" } else { "off" },
-                if e.ao_settings.blur { "on" } else { "off" }
-            );
+            let on_off = |on: bool| rust_i18n::t!(if on { "window.on" } else { "window.off" });
+            let view_key = format!("view.{}", e.view.name());
+            let mut t = rust_i18n::t!(
+                "window.title",
+                method = e.ao_settings.method.name(),
+                view = rust_i18n::t!(&view_key),
+                ao = on_off(e.ao_settings.enabled),
+                blur = on_off(e.ao_settings.blur)
+            )
+            .into_owned();
             if let Some(first) = self.shader_errors.entries.first() {
-                t = format!(
-                    "SHADER ERROR {} — {t}",
-                    first.text.lines().next().unwrap_or("")
-                );
+                let error = first.text.lines().next().unwrap_or("");
+                t = rust_i18n::t!("window.title_error", error = error, title = t).into_owned();
             }
             // Setting the title is a round trip to the display server: only on change.
             if t != self.title {
@@ -400,12 +402,12 @@ impl App {
                 .map(|e| e.to_string())
                 .collect::<Vec<_>>()
                 .join("\n");
-            eprintln!("{text}\n(the last working shaders keep running)");
+            eprintln!("{text}\n{}", rust_i18n::t!("window.last_working_run"));
         }
         if self.shader_errors.is_empty() && (had_errors || force) {
             // Constants changed while a shader was broken were not applied: apply them now.
             match s.engine.sync_shader_constants() {
-                Ok(()) => eprintln!("shaders rebuilt"),
+                Ok(()) => eprintln!("{}", rust_i18n::t!("window.rebuilt")),
                 Err(e) => {
                     eprintln!("{e:#}");
                     self.shader_errors.record_any(&e);

@@ -1,6 +1,7 @@
 //! The student's loop: `opengl3d lesson N` runs the engine at step N of the AO lesson, and
 //! `opengl3d lesson start DIR` writes a working copy of `Res/` with the lesson's shaders as stubs.
 
+use crate::i18n::Lang;
 use crate::render::View;
 use crate::res::project_res_dir;
 use anyhow::{bail, Result};
@@ -77,9 +78,15 @@ pub fn begun_at_step(n: u32) -> Option<Begun> {
 }
 
 /// Writes the starting folder: every shader and scene of `Res/`, with the lesson's five shaders
-/// replaced by stubs that compile. Existing files are never overwritten. Returns the files written.
-pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
+/// replaced by stubs that compile, commented in `lang` and pointing to that language's lesson pages
+/// (`Res/lesson-stubs/`, `Res/lesson-stubs/ja/`). Existing files are never overwritten. Returns the
+/// files written.
+pub fn start(dir: &Path, lang: Lang) -> Result<Vec<PathBuf>> {
     let res = project_res_dir();
+    let stubs = match lang {
+        Lang::En => res.join("lesson-stubs"),
+        Lang::Ja => res.join("lesson-stubs").join("ja"),
+    };
     crate::io::create_dir_all(&dir.join("scenes"))?;
     let mut written = Vec::new();
     let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
@@ -101,7 +108,7 @@ pub fn start(dir: &Path) -> Result<Vec<PathBuf>> {
             continue;
         }
         if LESSON_SHADERS.contains(&name.as_str()) {
-            copy(res.join("lesson-stubs").join(&name), dir.join(&name))?;
+            copy(stubs.join(&name), dir.join(&name))?;
         } else {
             copy(p.clone(), dir.join(&name))?;
         }

@@ -47,6 +47,7 @@ fn every_shader_in_res_compiles_and_links() {
         "",
         "ao",
         "lesson-stubs",
+        "lesson-stubs/ja",
         "lesson-checkpoints/6",
         "lesson-checkpoints/7",
     ] {
@@ -70,6 +71,7 @@ fn every_shader_in_res_compiles_and_links() {
         "sao_blur.frag",
         "simple.frag",
         "lesson-stubs/simple.frag",
+        "lesson-stubs/ja/simple.frag",
         "lesson-checkpoints/6/sao.frag",
         "lesson-checkpoints/7/sao.frag",
     ] {

@@ -78,6 +78,13 @@ fn lesson_start_speaks_japanese() {
     let s = out(&o);
     assert!(s.contains("個のファイルを書き出しました"), "{s}");
     assert!(s.contains("5 つの課題シェーダーはスタブです"), "{s}");
+    // The stubs are commented in Japanese and point to the Japanese pages.
+    let stub = std::fs::read_to_string(d.join("sao_restore_depth.frag")).unwrap();
+    assert!(
+        stub.contains("lessons/ja/02-restore-pass.md") && stub.contains("課題のステップ2"),
+        "{stub}"
+    );
+    assert!(!stub.contains("Lesson step"), "{stub}");
     let o = run(&[JA], &["lesson", "start", d.to_str().unwrap()]);
     assert!(out(&o).contains("そのまま残しました"), "{}", out(&o));
     // The step list names each step's view in Japanese too.
@@ -436,4 +443,70 @@ fn the_class_summary_and_a_refused_zip_in_japanese() {
     // The machine-read files stay English.
     let junit = std::fs::read_to_string(report.join("junit.xml")).unwrap();
     assert!(junit.contains("the archive is refused"), "{junit}");
+}
+
+#[test]
+fn help_is_written_in_japanese() {
+    let o = run(&[JA], &["--help"]);
+    assert!(o.status.success(), "{}", err(&o));
+    let s = out(&o);
+    for says in [
+        "使い方: opengl3d",
+        "コマンド:",
+        "オプション:",
+        "ヘルプを表示します",
+        "採点します",
+    ] {
+        assert!(s.contains(says), "{says}: {s}");
+    }
+    assert!(!s.contains("Usage:") && !s.contains("Print help"), "{s}");
+    let s = out(&run(&[JA], &["lesson", "--help"]));
+    assert!(
+        s.contains("ステップの番号 1〜12") && s.contains("引数:"),
+        "{s}"
+    );
+    // English stays clap's own.
+    let s = out(&run(&[C], &["--help"]));
+    assert!(
+        s.contains("Usage: opengl3d") && s.contains("Print help"),
+        "{s}"
+    );
+}
+
+#[test]
+fn errors_and_the_headless_fallback_are_said_in_japanese() {
+    let o = run(&[JA], &["render", "--obj", "nowhere.obj"]);
+    assert!(err(&o).starts_with("エラー: "), "{}", err(&o));
+    assert!(
+        err(&run(&[C], &["render", "--obj", "nowhere.obj"])).starts_with("error: "),
+        "English keeps its prefix"
+    );
+    // Without a display, `lesson N` says why it writes a file instead of opening a window.
+    let dir = common::temp_dir("i18n-no-display");
+    let png = dir.join("step3.png");
+    let mut cmd = Command::new(env!("CARGO_BIN_EXE_opengl3d"));
+    for v in [
+        "LC_ALL",
+        "LC_MESSAGES",
+        "LANGUAGE",
+        "DISPLAY",
+        "WAYLAND_DISPLAY",
+    ] {
+        cmd.env_remove(v);
+    }
+    let args = ["lesson", "3", "--width", "32", "--height", "24", "--out"];
+    let o = cmd
+        .env("LANG", "ja_JP.UTF-8")
+        .args(args)
+        .arg(&png)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", err(&o));
+    let e = err(&o);
+    assert!(
+        e.contains("ディスプレイが見つからない") && e.contains(png.to_str().unwrap()),
+        "{e}"
+    );
+    assert!(out(&o).contains("線形距離 を表示します"), "{}", out(&o));
+    assert!(png.is_file());
 }

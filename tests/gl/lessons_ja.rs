@@ -1,6 +1,7 @@
 //! The Japanese lessons (`lessons/ja/`) stay in step with the English ones: the same pages, the same
-//! heading structure, the same code blocks (every checkpoint command and listing, verbatim) and the same
-//! images; `README.ja.md` and `README.md` link each other.
+//! heading structure, the same code blocks (every checkpoint command and listing, verbatim once the
+//! comments, which each language writes in its own words, are taken out) and the same images;
+//! `README.ja.md` and `README.md` link each other.
 
 use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
@@ -33,7 +34,7 @@ fn pages(dir: &Path, skip: &str) -> BTreeSet<PathBuf> {
 struct Outline {
     /// Heading levels, in order.
     headings: Vec<usize>,
-    /// Fenced code blocks, verbatim.
+    /// Fenced code blocks without their comments (`comment_free`).
     code: Vec<String>,
     /// Image targets resolved against the page's folder, in order.
     images: Vec<PathBuf>,
@@ -54,16 +55,53 @@ fn normalise(p: &Path) -> PathBuf {
     out
 }
 
+/// Where the comment of `line` starts in a block of language `lang`: `//` outside a string in
+/// GLSL, Rust and C++; `#` at the start or after a space in shell and TOML. Other blocks (formulas,
+/// output) have no comments.
+fn comment_start(lang: &str, line: &str) -> Option<usize> {
+    match lang {
+        "glsl" | "rust" | "cpp" | "c++" | "c" => line
+            .match_indices("//")
+            .map(|(i, _)| i)
+            .find(|&i| line[..i].matches('"').count().is_multiple_of(2)),
+        "sh" | "bash" | "toml" => line.char_indices().find_map(|(i, c)| {
+            let starts = i == 0 || line[..i].ends_with(char::is_whitespace);
+            let ends = line[i + 1..].is_empty() || line[i + 1..].starts_with(char::is_whitespace);
+            (c == '#' && starts && ends).then_some(i)
+        }),
+        _ => None,
+    }
+}
+
+/// A code block without its comments: each line cut at its comment and trimmed at the end, lines
+/// left empty dropped (so a comment may take more or fewer lines in a translation).
+fn comment_free(lang: &str, body: &str) -> String {
+    let mut out = String::new();
+    for line in body.lines() {
+        let code = match comment_start(lang, line) {
+            Some(i) => &line[..i],
+            None => line,
+        }
+        .trim_end();
+        if !code.is_empty() {
+            out.push_str(code);
+            out.push('\n');
+        }
+    }
+    out
+}
+
 fn outline(file: &Path) -> Outline {
     let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
     let dir = file.parent().unwrap();
     let mut o = Outline::default();
-    let mut fence: Option<(String, String)> = None;
+    // The open fence: its marker, its language and the body so far.
+    let mut fence: Option<(String, String, String)> = None;
     for line in text.lines() {
         let t = line.trim_start();
-        if let Some((marker, body)) = &mut fence {
+        if let Some((marker, lang, body)) = &mut fence {
             if t.starts_with(marker.as_str()) {
-                o.code.push(std::mem::take(body));
+                o.code.push(comment_free(lang, body));
                 fence = None;
             } else {
                 body.push_str(line);
@@ -72,7 +110,7 @@ fn outline(file: &Path) -> Outline {
             continue;
         }
         if t.starts_with("```") || t.starts_with("~~~") {
-            fence = Some((t[..3].to_string(), String::new()));
+            fence = Some((t[..3].to_string(), t[3..].trim().to_string(), String::new()));
             continue;
         }
         let hashes = line.chars().take_while(|c| *c == '#').count();
@@ -164,6 +202,22 @@ fn readmes_link_each_other() {
 }
 
 #[test]
+fn comments_may_differ_but_code_may_not() {
+    let en = "float a = 1.0; // one\n// two lines\n// of comment\nb = \"x//y\";\n";
+    let ja = "float a = 1.0; // 一\n// 日本語のコメント\nb = \"x//y\";\n";
+    assert_eq!(comment_free("glsl", en), comment_free("glsl", ja));
+    assert_eq!(comment_free("glsl", en), "float a = 1.0;\nb = \"x//y\";\n");
+    let changed = "float a = 2.0; // one\nb = \"x//y\";\n";
+    assert_ne!(comment_free("glsl", en), comment_free("glsl", changed));
+    assert_eq!(
+        comment_free("sh", "cargo test   # everything\necho '#1'\n"),
+        "cargo test\necho '#1'\n"
+    );
+    // Formulas keep every character.
+    assert_eq!(comment_free("", "x = y // 2\n"), "x = y // 2\n");
+}
+
+#[test]
 fn the_outline_check_notices_a_dropped_code_block_and_a_moved_image() {
     let dir = std::env::temp_dir().join(format!("opengl3d-ja-outline-{}", std::process::id()));
     std::fs::create_dir_all(dir.join("sub")).unwrap();
@@ -181,4 +235,166 @@ fn the_outline_check_notices_a_dropped_code_block_and_a_moved_image() {
         "an image link not rewritten for the deeper folder is seen"
     );
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The glossary's terms and, for each, the variants the Japanese text never uses: the rows of the
+/// table under `## 用語` in `lessons/ja/glossary.md` (first column the term, last the variants).
+fn glossary() -> Vec<(String, Vec<String>)> {
+    let text = std::fs::read_to_string(root().join("lessons/ja/glossary.md")).unwrap();
+    let table = text.split("## 用語\n").nth(1).expect("a 用語 section");
+    let mut out = Vec::new();
+    for line in table.lines().filter(|l| l.starts_with('|')).skip(2) {
+        let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
+        let variants = cells
+            .last()
+            .unwrap()
+            .split('、')
+            .map(str::trim)
+            .filter(|v| !v.is_empty())
+            .map(String::from)
+            .collect();
+        out.push((cells[0].to_string(), variants));
+    }
+    out
+}
+
+/// Each use of a variant in `text` (line number, variant, its term), except where the variant is part
+/// of a term written out (シェーダ inside シェーダー).
+fn variants_in(text: &str, glossary: &[(String, Vec<String>)]) -> Vec<(usize, String, String)> {
+    let mut found = Vec::new();
+    for (term, variants) in glossary {
+        for v in variants {
+            for (at, _) in text.match_indices(v.as_str()) {
+                let inside_a_term = glossary.iter().any(|(t, _)| {
+                    t.match_indices(v.as_str()).any(|(k, _)| {
+                        at >= k
+                            && text
+                                .get(at - k..)
+                                .is_some_and(|rest| rest.starts_with(t.as_str()))
+                    })
+                });
+                if !inside_a_term {
+                    let line = text[..at].matches('\n').count() + 1;
+                    found.push((line, v.clone(), term.clone()));
+                }
+            }
+        }
+    }
+    found.sort();
+    found
+}
+
+/// Japanese text, where a space between it and half-width text breaks the glossary's convention.
+fn is_japanese(c: char) -> bool {
+    matches!(c, '\u{3001}'..='\u{30ff}' | '\u{4e00}'..='\u{9fff}' | '\u{ff01}'..='\u{ffef}')
+}
+
+/// Lines of `text` (outside code blocks, inline code and quotations in 「」, which keep their
+/// source's wording) with a space between Japanese and a half-width letter, digit or code span.
+fn spaced_lines(text: &str) -> Vec<usize> {
+    let mut out = Vec::new();
+    let mut fenced = false;
+    for (n, line) in text.lines().enumerate() {
+        if line.trim_start().starts_with("```") {
+            fenced = !fenced;
+            continue;
+        }
+        if fenced || line.starts_with("    ") {
+            continue;
+        }
+        // Inline code becomes one backtick, so its inside is never looked at.
+        let mut code_free = String::new();
+        for (i, part) in line.split('`').enumerate() {
+            code_free.push_str(if i % 2 == 0 { part } else { "`" });
+        }
+        let mut plain = String::new();
+        let mut quoted = false;
+        for c in code_free.chars() {
+            match c {
+                '「' => quoted = true,
+                '」' => quoted = false,
+                _ if quoted => continue,
+                _ => {}
+            }
+            plain.push(c);
+        }
+        let chars: Vec<char> = plain.chars().collect();
+        let half_width = |c: char| c.is_ascii_alphanumeric() || c == '`';
+        let spaced = chars.windows(3).any(|w| {
+            w[1] == ' '
+                && ((is_japanese(w[0]) && half_width(w[2]))
+                    || (half_width(w[0]) && is_japanese(w[2])))
+        });
+        if spaced {
+            out.push(n + 1);
+        }
+    }
+    out
+}
+
+#[test]
+fn japanese_text_uses_the_glossary_terms_and_spacing() {
+    let glossary = glossary();
+    assert!(glossary.len() > 20, "{glossary:?}");
+    let mut files = vec![root().join("README.ja.md"), root().join("locales/ja.yml")];
+    let mut stack = vec![
+        root().join("lessons/ja"),
+        root().join("Res/lesson-stubs/ja"),
+    ];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.file_name().is_some_and(|n| n != "glossary.md") {
+                files.push(p);
+            }
+        }
+    }
+    let mut problems = Vec::new();
+    for f in &files {
+        if !f
+            .extension()
+            .is_some_and(|x| x == "md" || x == "frag" || x == "yml")
+        {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        let name = f.strip_prefix(root()).unwrap().display().to_string();
+        for (line, variant, term) in variants_in(&text, &glossary) {
+            problems.push(format!(
+                "{name}:{line}: {variant} (the glossary says {term})"
+            ));
+        }
+        // The step pages, appendices and their index follow the spacing convention.
+        if f.parent() == Some(root().join("lessons/ja").as_path()) {
+            for line in spaced_lines(&text) {
+                problems.push(format!(
+                    "{name}:{line}: a space between Japanese and half-width text"
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn the_glossary_check_sees_a_variant_but_not_the_term_that_contains_it() {
+    let glossary = vec![
+        ("シェーダー".to_string(), vec!["シェーダ".to_string()]),
+        (
+            "講座".to_string(),
+            vec!["講義資料".to_string(), "講義".to_string()],
+        ),
+    ];
+    assert!(variants_in("シェーダーを書く", &glossary).is_empty());
+    let found = variants_in("一行目\nシェーダを書く。講義資料では", &glossary);
+    let said: Vec<_> = found.iter().map(|(l, v, _)| (*l, v.as_str())).collect();
+    assert_eq!(said, [(2, "シェーダ"), (2, "講義"), (2, "講義資料")]);
+    assert_eq!(
+        spaced_lines(
+            "レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床\n「講座 2024 前期」の"
+        ),
+        [1]
+    );
 }
