@@ -484,7 +484,7 @@ fn errors_and_the_headless_fallback_are_said_in_japanese() {
     // Without a display, `lesson N` says why it writes a file instead of opening a window.
     let dir = common::temp_dir("i18n-no-display");
     let png = dir.join("step3.png");
-    let mut cmd = Command::new(env!("CARGO_BIN_EXE_opengl3d"));
+    let mut cmd = common::bin();
     for v in [
         "LC_ALL",
         "LC_MESSAGES",
