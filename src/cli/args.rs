@@ -93,8 +93,9 @@ pub struct SceneArgs {
     /// Scene file (TOML); default: Res/scenes/demo.toml.
     #[arg(long, value_name = "FILE", conflicts_with = "obj")]
     pub scene: Option<PathBuf>,
-    /// Load one OBJ as the whole scene (identity transform, demo lighting and AO).
-    #[arg(long, value_name = "FILE")]
+    /// Load one model as the whole scene (identity transform, demo lighting and AO): a Wavefront
+    /// OBJ, or glTF 2.0 (`.gltf`, `.glb`) with its node transforms.
+    #[arg(long, value_name = "FILE", visible_alias = "model")]
     pub obj: Option<PathBuf>,
     /// Camera position, "x,y,z".
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]

@@ -25,7 +25,7 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         let path = obj
             .canonicalize()
             .with_context(|| t!("render.obj_not_found", path = obj.display()))?;
-        let data = crate::gl::mesh::MeshData::load_obj(&path)?;
+        let data = crate::gl::mesh::MeshData::load_model(&path)?;
         let desc = SceneDesc::single_obj(&path);
         (desc, Origin::Obj(path.display().to_string()), data.bounds())
     } else {

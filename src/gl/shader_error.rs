@@ -25,6 +25,14 @@ pub enum ProgramError {
         name: String,
         target: String,
     },
+    /// Refused before compiling: the arrays declared at `line` of `path` (or its macros) would
+    /// exhaust the driver's memory (`super::shader_storage`).
+    #[error("{path}:{line}: {message}")]
+    Storage {
+        path: String,
+        line: usize,
+        message: String,
+    },
     #[error("{vert} + {frag}: link error: {log}")]
     Link {
         vert: String,
@@ -45,6 +53,7 @@ impl ProgramError {
                 let mut parts = m.splitn(3, ':');
                 Some(format!("{}:{}", parts.next()?, parts.next()?))
             }),
+            ProgramError::Storage { path, line, .. } => Some(format!("{path}:{line}")),
             _ => None,
         }
     }
