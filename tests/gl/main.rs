@@ -15,6 +15,7 @@ mod composite_modes;
 mod engine_options;
 mod error_map;
 mod gl_basics;
+mod gltf_files;
 mod grade;
 mod grade_class;
 mod grade_class_zip;
