@@ -217,7 +217,7 @@ pub struct WindowArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub frames: Option<u32>,
     /// Save the last frame shown to this PNG (with --frames): the engine's frame, as `render` draws it.
-    #[arg(long)]
+    #[arg(long, requires = "frames")]
     pub screenshot: Option<PathBuf>,
     /// The screenshot holds what is on screen, parameter panel and error overlay included.
     #[arg(long)]
