@@ -35,7 +35,7 @@ fn buffer_of(meshes: &[&MeshData]) -> (Vec<u8>, Value, Value, Value) {
         let floats = |f: &dyn Fn(&opengl3d::gl::Vertex) -> [f32; 3]| -> Vec<u8> {
             m.vertices
                 .iter()
-                .flat_map(|v| f(v))
+                .flat_map(f)
                 .flat_map(f32::to_le_bytes)
                 .collect()
         };
@@ -89,11 +89,11 @@ fn document(
 /// A binary glTF: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).
 fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json_bytes = serde_json::to_vec(doc).unwrap();
-    while json_bytes.len() % 4 != 0 {
+    while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
     }
     let mut bin = bin.to_vec();
-    while bin.len() % 4 != 0 {
+    while !bin.len().is_multiple_of(4) {
         bin.push(0);
     }
     let total = 12 + 8 + json_bytes.len() + 8 + bin.len();

@@ -118,3 +118,24 @@ fn screenshot_display_and_size_messages_are_plain() {
     );
     assert_eq!(e.matches("are refused").count(), 1, "{e}");
 }
+
+#[test]
+fn a_class_report_cell_says_not_submitted_once() {
+    let dir = temp_dir("misread-class");
+    std::fs::create_dir_all(dir.join("class/bob")).unwrap();
+    let report = dir.join("report");
+    let o = run(&[
+        "grade",
+        "--class",
+        s(&dir.join("class")),
+        "--out",
+        s(&report),
+    ]);
+    assert!(!o.status.success(), "bob passed nothing");
+    let html = std::fs::read_to_string(report.join("report.html")).unwrap();
+    assert!(
+        html.contains("<b>not submitted</b><div class=\"why\">no sao.frag in"),
+        "{html}"
+    );
+    assert!(!html.contains("<div class=\"why\">not submitted"), "{html}");
+}
