@@ -4,12 +4,42 @@
 use std::path::{Path, PathBuf};
 use std::time::SystemTime;
 
-/// A file that none of the searched folders holds.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("'{name}' not found in {searched}")]
+/// A file that none of the searched folders holds, or that a folder holds as something other than a
+/// readable file (a folder, a symbolic link that leads nowhere or loops): then the search stops
+/// there, since taking the next folder's file would silently ignore the student's.
+#[derive(Debug, Clone, PartialEq, Eq)]
 pub struct NotFound {
     pub name: String,
     pub searched: String,
+    /// What stands at the name in the first folder that has something there, in words.
+    pub blocked: Option<String>,
+}
+
+impl std::fmt::Display for NotFound {
+    fn fmt(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+        match &self.blocked {
+            Some(what) => write!(f, "{what}"),
+            None => write!(f, "'{}' not found in {}", self.name, self.searched),
+        }
+    }
+}
+
+impl std::error::Error for NotFound {}
+
+/// What stands at `path` when it is not a file that can be read, in words (`None` when nothing is
+/// there, or a readable file is).
+pub fn blocking_entry(path: &Path) -> Option<String> {
+    let link = std::fs::symlink_metadata(path).ok()?;
+    let shown = path.display();
+    match std::fs::metadata(path) {
+        Ok(m) if m.is_file() => None,
+        Ok(m) if m.is_dir() => Some(rust_i18n::t!("res.blocked_folder", path = shown).into_owned()),
+        Ok(_) => Some(rust_i18n::t!("res.blocked_special", path = shown).into_owned()),
+        Err(_) if link.file_type().is_symlink() => {
+            Some(rust_i18n::t!("res.blocked_link", path = shown).into_owned())
+        }
+        Err(e) => Some(format!("{shown}: {e}")),
+    }
 }
 
 /// When the file was last written (`None` when it cannot be read): the window's and the programs'
@@ -82,13 +112,19 @@ impl ResDirs {
 
     /// `find` for a relative path that need not be UTF-8.
     pub fn find_path(&self, name: &Path) -> Result<PathBuf, NotFound> {
+        let mut blocked = None;
         for d in &self.dirs {
             let p = d.join(name);
             if p.is_file() {
                 return Ok(p);
             }
+            blocked = blocking_entry(&p);
+            if blocked.is_some() {
+                break;
+            }
         }
         Err(NotFound {
+            blocked,
             name: name.display().to_string(),
             searched: self
                 .dirs

@@ -99,8 +99,9 @@ pub struct SceneArgs {
     /// Scene file (TOML); default: Res/scenes/demo.toml.
     #[arg(long, value_name = "FILE", conflicts_with = "obj")]
     pub scene: Option<PathBuf>,
-    /// Load one OBJ as the whole scene (identity transform, demo lighting and AO).
-    #[arg(long, value_name = "FILE")]
+    /// Load one model as the whole scene (identity transform, demo lighting and AO): a Wavefront
+    /// OBJ, or glTF 2.0 (`.gltf`, `.glb`) with its node transforms.
+    #[arg(long, value_name = "FILE", visible_alias = "model")]
     pub obj: Option<PathBuf>,
     /// Camera position, "x,y,z".
     #[arg(long, value_parser = parse_vec3, allow_hyphen_values = true)]
@@ -226,7 +227,7 @@ pub struct WindowArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub frames: Option<u32>,
     /// Save the last frame shown to this PNG (with --frames): the engine's frame, as `render` draws it.
-    #[arg(long)]
+    #[arg(long, requires = "frames")]
     pub screenshot: Option<PathBuf>,
     /// The screenshot holds what is on screen, parameter panel and error overlay included.
     #[arg(long)]

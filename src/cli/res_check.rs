@@ -34,7 +34,11 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
         Ok(_) => {}
     }
     let is_shader = |n: &str| n.ends_with(".vert") || n.ends_with(".frag") || n.ends_with(".glsl");
-    let is_scene = |n: &str| n.ends_with(".toml") || n.ends_with(".obj");
+    let is_scene = |n: &str| {
+        [".toml", ".obj", ".gltf", ".glb"]
+            .iter()
+            .any(|ext| n.ends_with(ext))
+    };
     let (found, wanted) = match what {
         ResUse::Folder => return Ok(()),
         ResUse::AnyOf(names) => (
@@ -51,6 +55,17 @@ pub fn check_res(dir: &Path, what: ResUse) -> Result<()> {
         ),
     };
     if !found {
+        // A wanted name that is a folder or a broken link: say so rather than "holds none".
+        let named = |n: &str| is_shader(n) || is_scene(n);
+        if let Some(what) = std::fs::read_dir(dir)
+            .into_iter()
+            .flatten()
+            .flatten()
+            .filter(|e| named(&e.file_name().to_string_lossy()))
+            .find_map(|e| crate::res::blocking_entry(&e.path()))
+        {
+            bail!("{what}");
+        }
         bail!("{}", t!("cli.res_empty", dir = shown, wanted = wanted));
     }
     Ok(())

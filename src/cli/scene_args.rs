@@ -25,7 +25,7 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         let path = obj
             .canonicalize()
             .with_context(|| t!("render.obj_not_found", path = obj.display()))?;
-        let data = crate::gl::mesh::MeshData::load_obj(&path)?;
+        let data = crate::gl::mesh::MeshData::load_model(&path)?;
         let desc = SceneDesc::single_obj(&path);
         (desc, Origin::Obj(path.display().to_string()), data.bounds())
     } else {
@@ -36,6 +36,7 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
                 .map_err(|e| anyhow::anyhow!("{e}"))?,
         };
         let file = SceneFile::read(&path)?;
+        check_meshes(&file, res)?;
         (file.desc.clone(), Origin::File(Box::new(file)), None)
     };
     let flags = apply_flags(args, &mut desc)?;
@@ -55,6 +56,41 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         bail!("{}", lines.join("\n"));
     }
     Ok(desc)
+}
+
+/// Every object's mesh is found: one that is not is an error at its line of the scene file, naming
+/// the folders searched (beside the scene file, then `Res/`); a folder or a broken link standing at
+/// the name is named as such.
+fn check_meshes(file: &SceneFile, res: &ResDirs) -> Result<()> {
+    let folder = match file.path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => std::path::Path::new("."),
+    };
+    for (i, o) in file.desc.objects.iter().enumerate() {
+        let place = file
+            .place(&format!("object[{i}].mesh"))
+            .unwrap_or_else(|| file.path.display().to_string());
+        let mesh = std::path::Path::new(&o.mesh);
+        if let Some(what) = crate::res::blocking_entry(&folder.join(mesh)) {
+            bail!("{place}: {what}");
+        }
+        let Err(e) = file.desc.mesh_path(&o.mesh, res) else {
+            continue;
+        };
+        if let Some(what) = e.blocked {
+            bail!("{place}: {what}");
+        }
+        let beside = std::path::absolute(folder).unwrap_or_else(|_| folder.to_path_buf());
+        let searched = format!("{}, {}", beside.display(), e.searched);
+        let message = t!(
+            "scene.mesh_not_found",
+            place = place,
+            mesh = o.mesh,
+            searched = searched
+        );
+        bail!("{message}");
+    }
+    Ok(())
 }
 
 /// One issue with its source: "--near 1e-30: ...", "FILE:LINE:COL: camera.near = 1e-30: ...".

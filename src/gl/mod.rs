@@ -4,13 +4,16 @@
 
 pub mod clip_control;
 pub mod framebuffer;
+pub mod gltf_file;
 pub mod mesh;
+pub mod model;
 pub mod obj;
 pub mod pass_state;
 pub mod preprocess;
 pub mod program;
 pub mod readback;
 pub mod shader_error;
+pub mod shader_storage;
 pub mod texture;
 pub mod timer;
 

@@ -28,9 +28,9 @@ impl ShaderSource {
     /// is read.
     pub fn load(path: &Path) -> Result<ShaderSource, ProgramError> {
         let shown = path.display().to_string();
-        let io = |source| ProgramError::Io {
+        let io = |cause| ProgramError::Io {
             path: shown.clone(),
-            source,
+            cause,
         };
         let file = std::fs::File::open(path).map_err(io)?;
         let size = file.metadata().map_err(io)?.len();
@@ -189,10 +189,7 @@ pub fn resolve_include(shader: &Path, line: usize, name: &str) -> Result<PathBuf
     let path = dir.join(name);
     let io = |p: &Path| {
         let shown = format!("{} (included at {}:{line})", p.display(), shader.display());
-        move |source| ProgramError::Io {
-            path: shown,
-            source,
-        }
+        move |cause| ProgramError::Io { path: shown, cause }
     };
     let real_dir = dir.canonicalize().map_err(io(dir))?;
     let real = path.canonicalize().map_err(io(&path))?;

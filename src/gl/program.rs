@@ -217,6 +217,7 @@ fn compile(
         );
     }
     let (text, includes) = prepare_source_with_includes(&src, defines)?;
+    check_storage(&text, path, &includes)?;
     unsafe {
         let sh = gl.create_shader(kind).map_err(ProgramError::Gl)?;
         gl.shader_source(sh, &text);
@@ -232,6 +233,47 @@ fn compile(
         }
         Ok(sh)
     }
+}
+
+/// Refuses a shader whose declared arrays or macro expansions would exhaust the driver's memory
+/// (`super::shader_storage`), naming the file among the shader and its includes, and the line.
+fn check_storage(text: &str, path: &Path, includes: &[PathBuf]) -> Result<(), ProgramError> {
+    use super::shader_storage::{check, Refusal, MAX_DECLARED_COMPONENTS as LIMIT};
+    let file = |source: usize| {
+        let file = source
+            .checked_sub(1)
+            .and_then(|k| includes.get(k))
+            .map_or(path, PathBuf::as_path);
+        file.display().to_string()
+    };
+    let (path, line, message) = match check(text) {
+        Ok(()) => return Ok(()),
+        Err(Refusal::Storage {
+            source,
+            line,
+            name,
+            components,
+            total,
+        }) => {
+            let message = rust_i18n::t!(
+                "shader.too_much_storage",
+                name = name,
+                components = components,
+                total = total,
+                limit = LIMIT
+            );
+            (file(source), line, message)
+        }
+        Err(Refusal::Macros { source, line }) => {
+            (file(source), line, rust_i18n::t!("shader.macro_too_large"))
+        }
+    };
+    let message = message.into_owned();
+    Err(ProgramError::Storage {
+        path,
+        line,
+        message,
+    })
 }
 
 fn build(

@@ -2,11 +2,9 @@
 
 #[derive(Debug, thiserror::Error)]
 pub enum ProgramError {
-    #[error("{path}: cannot read shader file: {source}")]
-    Io {
-        path: String,
-        source: std::io::Error,
-    },
+    /// The cause is part of the message (not a chained source, which would print it twice).
+    #[error("{path}: cannot read shader file: {cause}")]
+    Io { path: String, cause: std::io::Error },
     #[error("{path}: shader file is neither UTF-8, UTF-16 nor Shift-JIS text; save it as UTF-8")]
     Encoding { path: String },
     #[error("{path}: no '#version' line (the course's shaders start with '#version 450')")]
@@ -24,6 +22,14 @@ pub enum ProgramError {
         line: usize,
         name: String,
         target: String,
+    },
+    /// Refused before compiling: the arrays declared at `line` of `path` (or its macros) would
+    /// exhaust the driver's memory (`super::shader_storage`).
+    #[error("{path}:{line}: {message}")]
+    Storage {
+        path: String,
+        line: usize,
+        message: String,
     },
     #[error("{vert} + {frag}: link error: {log}")]
     Link {
@@ -45,6 +51,7 @@ impl ProgramError {
                 let mut parts = m.splitn(3, ':');
                 Some(format!("{}:{}", parts.next()?, parts.next()?))
             }),
+            ProgramError::Storage { path, line, .. } => Some(format!("{path}:{line}")),
             _ => None,
         }
     }

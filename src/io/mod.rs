@@ -43,7 +43,7 @@ pub fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>> {
     if meta.is_file() && meta.len() > limit {
         return Err(too_large());
     }
-    let file = std::fs::File::open(path).map_err(|e| io_error(path, "read", &e))?;
+    let file = open_without_waiting(path).map_err(|e| io_error(path, "read", &e))?;
     let mut bytes = Vec::new();
     file.take(limit + 1)
         .read_to_end(&mut bytes)
@@ -52,6 +52,27 @@ pub fn read_capped(path: &Path, limit: u64) -> Result<Vec<u8>> {
         return Err(too_large());
     }
     Ok(bytes)
+}
+
+/// Opens `path` for reading without waiting for a writer: a FIFO nobody writes to would block the
+/// open forever, and read this way it reads as empty. Reads then block as usual (a pipe with a
+/// writer, such as a shell's `<(command)`, is read to its end).
+fn open_without_waiting(path: &Path) -> std::io::Result<std::fs::File> {
+    use std::os::unix::fs::OpenOptionsExt as _;
+    use std::os::unix::io::AsRawFd as _;
+    let file = std::fs::OpenOptions::new()
+        .read(true)
+        .custom_flags(libc::O_NONBLOCK)
+        .open(path)?;
+    // SAFETY: fcntl on a descriptor this function owns, changing only its O_NONBLOCK flag.
+    unsafe {
+        let fd = file.as_raw_fd();
+        let flags = libc::fcntl(fd, libc::F_GETFL);
+        if flags >= 0 {
+            libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK);
+        }
+    }
+    Ok(file)
 }
 
 /// Writes `bytes` to `path` (errors as `io_error`).

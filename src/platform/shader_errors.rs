@@ -26,7 +26,8 @@ fn error_file(e: &ProgramError) -> Option<PathBuf> {
         | ProgramError::Encoding { path }
         | ProgramError::NoVersion { path }
         | ProgramError::Compile { path, .. }
-        | ProgramError::IncludeCycle { path, .. } => Some(PathBuf::from(path)),
+        | ProgramError::IncludeCycle { path, .. }
+        | ProgramError::Storage { path, .. } => Some(PathBuf::from(path)),
         ProgramError::Link { frag, .. } => Some(PathBuf::from(frag)),
         ProgramError::NotFound(_) | ProgramError::Gl(_) => None,
     }

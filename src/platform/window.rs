@@ -149,9 +149,25 @@ pub fn run(
     )
 }
 
+/// winit's message without the source file and line it may carry ("os error at
+/// .../linux/mod.rs:788: Failed to open connection to X server"): a user cannot act on those.
+fn without_source_location(message: &str) -> String {
+    match message.find(".rs:") {
+        Some(at) => {
+            let rest = &message[at + 4..];
+            let rest = rest.trim_start_matches(|c: char| c.is_ascii_digit());
+            rest.trim_start_matches(':').trim().to_string()
+        }
+        None => message.to_string(),
+    }
+}
+
 /// Opens the window with `options` and runs until it is closed (or the frames were shown).
 pub fn run_with(res: ResDirs, scene: SceneDesc, options: WindowOptions) -> Result<()> {
-    let event_loop = EventLoop::new().context("cannot connect to the display")?;
+    let event_loop = EventLoop::new().map_err(|e| {
+        let cause = without_source_location(&e.to_string());
+        anyhow::anyhow!("{}", rust_i18n::t!("window.no_display", cause = cause))
+    })?;
     let fwd = (Vec3::from(scene.camera.target) - Vec3::from(scene.camera.eye)).normalize_or_zero();
     let mut app = App {
         res,

@@ -107,7 +107,7 @@ impl Engine {
         for (i, o) in scene.objects.iter().enumerate() {
             let what = || format!("scene object {} ({})", i + 1, o.mesh);
             let path = scene.mesh_path(&o.mesh, &res).with_context(what)?;
-            let mesh = meshes.load_obj(&o.mesh, &path).with_context(what)?;
+            let mesh = meshes.load_model(&o.mesh, &path).with_context(what)?;
             let data = meshes
                 .data(&o.mesh)
                 .ok_or_else(|| anyhow!("{}: mesh data missing after loading", what()))?;

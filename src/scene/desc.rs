@@ -102,7 +102,8 @@ impl Default for BloomDesc {
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
-    /// OBJ path: absolute, or relative to the scene file's folder, else to `Res/`.
+    /// Model path (OBJ, or glTF `.gltf`/`.glb`): absolute, or relative to the scene file's folder, else
+    /// to `Res/`.
     pub mesh: String,
     #[serde(default)]
     pub position: [f32; 3],
@@ -171,7 +172,7 @@ impl SceneDesc {
         for (i, o) in self.objects.iter().enumerate() {
             let what = || format!("scene object {} ({})", i + 1, o.mesh);
             let path = self.mesh_path(&o.mesh, res).with_context(what)?;
-            let data = crate::gl::mesh::MeshData::load_obj(&path).with_context(what)?;
+            let data = crate::gl::mesh::MeshData::load_model(&path).with_context(what)?;
             let m = crate::scene::game_object::model_matrix(
                 o.position.into(),
                 o.rotation.into(),

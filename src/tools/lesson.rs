@@ -90,6 +90,12 @@ pub fn start(dir: &Path, lang: Lang) -> Result<Vec<PathBuf>> {
     crate::io::create_dir_all(&dir.join("scenes"))?;
     let mut written = Vec::new();
     let mut copy = |from: PathBuf, to: PathBuf| -> Result<()> {
+        // A symbolic link is never written through (it may lead out of the folder, or nowhere).
+        if let Ok(target) = std::fs::read_link(&to) {
+            let (path, target) = (to.display(), target.display());
+            eprintln!("{}", t!("lesson.kept_link", path = path, target = target));
+            return Ok(());
+        }
         if to.exists() {
             eprintln!("{}", t!("lesson.kept_existing", path = to.display()));
             return Ok(());

@@ -210,7 +210,10 @@ fn a_class_is_graded_into_csv_html_and_junit() {
         "{html}"
     );
     assert!(!html.contains("\"<b>\""), "{html}");
-    assert!(html.contains("not submitted: no sao.frag in"), "{html}");
+    assert!(
+        html.contains("<b>not submitted</b><div class=\"why\">no sao.frag in"),
+        "{html}"
+    );
     assert!(html.contains("timed out after 6 s"), "{html}");
 
     // Only bob's failing SAO step has a heat map (dan's was killed before it drew one): a

@@ -328,7 +328,7 @@ fn render_and_reference_speak_japanese() {
     );
     let o = run(&[JA], &["render", "--obj", "nowhere.obj"]);
     assert!(
-        err(&o).contains("nowhere.obj: OBJ ファイルが見つかりません"),
+        err(&o).contains("nowhere.obj: モデルファイル（OBJ、glTF）が見つかりません"),
         "{}",
         err(&o)
     );

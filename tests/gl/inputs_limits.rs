@@ -15,7 +15,7 @@ fn endless_and_empty_files_and_folders_are_named_for_what_they_are() {
     let start = Instant::now();
     for (flag, cap) in [
         ("--scene", "larger than 1 MiB"),
-        ("--obj", "larger than 512 MiB"),
+        ("--obj", "is not a regular file"),
     ] {
         fails_with(
             &["render", flag, "/dev/zero", "--out", s(&out)],
@@ -35,7 +35,7 @@ fn endless_and_empty_files_and_folders_are_named_for_what_they_are() {
     );
     fails_with(
         &["render", "--obj", "/dev/null"],
-        &["/dev/null", "is empty (0 bytes)"],
+        &["/dev/null", "is not a regular file"],
     );
     let folder = dir.join("model.obj");
     std::fs::create_dir_all(&folder).unwrap();

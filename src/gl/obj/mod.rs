@@ -9,7 +9,7 @@ mod mtl;
 mod parse;
 pub mod polygon;
 
-use super::mesh::{MeshBuffer, MeshData, StaticMesh, Vertex};
+use super::mesh::{MeshData, Vertex};
 use anyhow::{bail, Context as _, Result};
 use glam::{DVec3, Vec3};
 use parse::{ObjFile, Skipped};
@@ -185,34 +185,4 @@ fn triangles(obj: &ObjFile) -> (MeshData, Skipped) {
         out.compute_normals(0);
     }
     (out, flat)
-}
-
-/// Warnings already printed (a file is often loaded twice: for its bounds, then to draw it).
-static PRINTED: std::sync::Mutex<Option<HashSet<String>>> = std::sync::Mutex::new(None);
-
-impl MeshData {
-    /// Loads an OBJ file (all objects merged, triangulated); what was skipped is printed on stderr
-    /// once per process. Errors name the file and line.
-    pub fn load_obj(path: &Path) -> Result<MeshData> {
-        let ObjMesh { mesh, warnings } = read_obj(path)?;
-        let mut printed = PRINTED.lock().unwrap_or_else(|e| e.into_inner());
-        let printed = printed.get_or_insert_with(HashSet::new);
-        for w in warnings {
-            if printed.insert(w.clone()) {
-                eprintln!("{}", t!("render.warning", message = w));
-            }
-        }
-        Ok(mesh)
-    }
-}
-
-impl MeshBuffer {
-    /// Loads an OBJ file into the shared buffers under `name` (once: a second call returns it).
-    pub fn load_obj(&mut self, name: &str, path: &Path) -> Result<StaticMesh> {
-        if let Some(m) = self.get(name) {
-            return Ok(m);
-        }
-        let data = MeshData::load_obj(path)?;
-        self.add(name, data)
-    }
 }

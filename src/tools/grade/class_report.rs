@@ -165,10 +165,17 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
                 Some(Some(stem)) => heat_map(&s.step, stem),
                 _ => String::new(),
             };
+            // The cell's heading already says "not submitted": the line below gives only why.
+            let said = t!("grade.not_submitted", reason = "");
+            let why = s.shown_message();
+            let why = match class {
+                "missing" => why.strip_prefix(said.as_ref()).unwrap_or(why),
+                _ => why,
+            };
             h.push_str(&format!(
                 "<td class=\"{class}\"><b>{}</b><div class=\"why\">{}</div>{picture}</td>",
                 html(&shown),
-                html(s.shown_message())
+                html(why)
             ));
         }
         h.push_str(&format!(
