@@ -117,3 +117,10 @@ pub const SIMPLE_ABS: f64 = 1e-3;
 /// everywhere (1.0) and reads nothing, the compiler having dropped every input; a shader that only
 /// misses one uniform writes finite values (0.0).
 pub const NONFINITE_OVER_UNREAD: f64 = 0.5;
+/// Mutation testing: a mutant is equivalent to the shader it was made from when every value of
+/// every probe render differs from that shader's by at most this, relative to the value (or to 1,
+/// the scale of occlusion, for values below 1). f32 carries 24 bits (ε = 1.2e-7): 1e-6 is 8 units
+/// in the last place, the rounding a few reordered operations leave; a changed statement moves
+/// values by far more (the smallest fault seen on the probes, a 2×2 smoothing weight, moves
+/// occlusion by about 1e-2). Equivalent mutants of the project's shaders give exactly 0.
+pub const EQUIVALENT_REL: f64 = 1e-6;
