@@ -138,11 +138,21 @@ fn points_appear_in_json_csv_and_junit() {
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("--res")
         .arg(&student)
-        .args(["grade", "--step", "restore,blur", "--points", "blur=7", "--json"])
+        .args([
+            "grade",
+            "--step",
+            "restore,blur",
+            "--points",
+            "blur=7",
+            "--json",
+        ])
         .output()
         .unwrap();
     let v: serde_json::Value = serde_json::from_slice(&o.stdout).expect("JSON");
-    assert_eq!((v["points"].as_u64(), v["max_points"].as_u64()), (Some(20), Some(27)));
+    assert_eq!(
+        (v["points"].as_u64(), v["max_points"].as_u64()),
+        (Some(20), Some(27))
+    );
     let steps = v["steps"].as_array().unwrap();
     assert_eq!(steps[0]["points"].as_u64(), Some(20));
     assert_eq!(steps[1]["points"].as_u64(), Some(0));
@@ -156,12 +166,23 @@ fn points_appear_in_json_csv_and_junit() {
     let out = temp_dir("points-report");
     let o = crate::grade_class::grade_class(
         &class,
-        &["--step", "restore", "--points", "--jobs", "1", "--out", out.to_str().unwrap()],
+        &[
+            "--step",
+            "restore",
+            "--points",
+            "--jobs",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ],
     );
     assert_eq!(o.status.code(), Some(1), "{}", crate::common::stderr(&o));
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows[0], "student,restore,restore points,passed,points,max points");
+    assert_eq!(
+        rows[0],
+        "student,restore,restore points,passed,points,max points"
+    );
     assert!(rows.contains(&"ada,PASS,20,1,20,20"), "{csv}");
     assert!(rows.contains(&"bob,FAIL,0,0,0,20"), "{csv}");
     let xml = std::fs::read_to_string(out.join("junit.xml")).unwrap();
@@ -176,7 +197,11 @@ fn points_appear_in_json_csv_and_junit() {
                     e.attributes()
                         .flatten()
                         .find(|a| a.key.as_ref() == k)
-                        .map(|a| a.unescape_value().unwrap().into_owned())
+                        .map(|a| {
+                            a.normalized_value(quick_xml::XmlVersion::Explicit1_0)
+                                .unwrap()
+                                .into_owned()
+                        })
                 };
                 match e.name().as_ref() {
                     b"testsuite" => suite = attr(b"name").unwrap(),

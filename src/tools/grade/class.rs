@@ -6,9 +6,9 @@
 //! student whose shaders crash or hang, or whose archive is refused, fails with the reason; the
 //! class goes on.
 
-use super::points::Points;
 use super::args::{GradeArgs, Step};
 use super::class_report::{self, StudentResult};
+use super::points::Points;
 use super::report::StepReport;
 use super::student::{self, Grading};
 use super::unzip;
@@ -329,7 +329,11 @@ pub fn run(
     let title = dir
         .file_name()
         .map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into());
-    write(&out, "results.csv", &class_report::to_csv(steps, &results, points))?;
+    write(
+        &out,
+        "results.csv",
+        &class_report::to_csv(steps, &results, points),
+    )?;
     write(
         &out,
         "report.html",

@@ -24,9 +24,10 @@
 //!
 //! `listing` compares every output value of those renders and of more inputs chosen so that each
 //! statement of the lesson's shaders changes some value (`more_probes`): the room seen from the
-//! front as well as obliquely; odd sizes, where the clamps to the last texel act; the SAO step on
-//! the non-square oblique target and with another radius, sample count and spiral; the blur on
-//! white noise, where every tap's weight shows, borders included.
+//! front as well as obliquely, on odd sizes and other aspect ratios; the SAO step on the non-square
+//! oblique target, with a disc wide enough to reach the last mip level, and with another radius,
+//! sample count and spiral; the blur on white noise, where every tap's weight shows, borders
+//! included.
 
 use super::args::Step;
 use super::measure::{as_r8, block_means};
@@ -142,11 +143,18 @@ fn more_probes(step: Step, subject: &Subject, project_res: &Path) -> Result<Opti
         spiral_turns: 2,
         ..d
     };
+    // A disc wide enough near the camera (over 64 texels) that the far taps read the last level.
+    let wide = AoSettings { radius: 4.0, ..d };
     // (size of texSAODepth, frontal, settings): odd sizes and other aspect ratios than the
     // step's, so that texel snapping, borders and the aspect corrections meet new cases.
     let inputs: &[((u32, u32), bool, AoSettings)] = match step {
         Step::Simple => &[],
-        Step::Sao => &[(PROBE_SIZE, false, d), ((105, 61), false, other), ((71, 71), true, d)],
+        Step::Sao => &[
+            (PROBE_SIZE, false, d),
+            (PROBE_SIZE, false, wide),
+            ((105, 61), false, other),
+            ((71, 71), true, d),
+        ],
         _ => &[((105, 61), true, d), ((71, 39), false, d)],
     };
     let mut worst_e = 0.0f64;
@@ -195,8 +203,8 @@ pub fn listing_difference(s: &[f32], r: &[f32]) -> f64 {
             if s.to_bits() == r.to_bits() || (s.is_nan() && r.is_nan()) {
                 return 0.0;
             }
-            let e = (*s as f64 - *r as f64).abs()
-                / (tol::EQUIVALENT_REL * (*r as f64).abs().max(1.0));
+            let e =
+                (*s as f64 - *r as f64).abs() / (tol::EQUIVALENT_REL * (*r as f64).abs().max(1.0));
             if e.is_finite() {
                 e.min(HUGE)
             } else {

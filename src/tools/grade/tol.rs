@@ -83,6 +83,11 @@ pub const BLUR_IMPULSE_REL: f32 = 0.01;
 /// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48; measured with the far side 10 m away, the
 /// panel's far side is now 0.5 m behind, which the lesson's weight cuts just as fully).
 pub const BLUR_EDGE_ABS: f64 = 0.05;
+/// Blur: the weight taps across a depth step of 0.05 m and 0.10 m may have, off the lesson's
+/// max(0, 1 − δ / 0.15) (2/3 and 1/3). The listings and the rewrite give it to float precision;
+/// `edgeDistance` doubled or halved is off by 0.17 or more, `edgeSharpness = 2 / edgeDistance` by
+/// 0.33.
+pub const BLUR_EDGE_WEIGHT_ABS: f64 = 0.05;
 /// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
 /// (input 0.290; reference 0.038, listing 0.036).
 pub const BLUR_SMOOTHING: f64 = 0.6;
