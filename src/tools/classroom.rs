@@ -94,6 +94,16 @@ jobs:
           sudo apt-get install -y -qq --no-install-recommends libegl1 libegl-mesa0 libgl1 libgl1-mesa-dri libglx-mesa0 libgbm1
       - name: Rust
         uses: dtolnay/rust-toolchain@stable
+      # The grader kept between runs: from OPENGL3D_GIT, `cargo install` skips a commit it has built.
+      - name: Keep the grader between runs
+        uses: actions/cache@v4
+        with:
+          path: |
+            ~/.cargo/bin/opengl3d
+            ~/.cargo/.crates.toml
+            ~/.cargo/.crates2.json
+            ~/.cargo/git
+          key: opengl3d-${{{{ runner.os }}}}-${{{{ env.OPENGL3D_GIT }}}}-${{{{ env.OPENGL3D_PATH }}}}
       - name: The grader
         run: |
           if [ -n \"$OPENGL3D_PATH\" ]; then

@@ -95,7 +95,7 @@ pub struct GradeArgs {
         long,
         value_name = "STEP=N,...",
         num_args = 0..=1,
-        default_missing_value = super::points::DEFAULT_SPEC,
+        default_missing_value = "default",
         conflicts_with = "mutation_score"
     )]
     pub points: Option<String>,

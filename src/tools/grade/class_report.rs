@@ -93,7 +93,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
         for s in &r.reports {
             row.push(verdict(s).to_string());
             if let Some(p) = points {
-                row.push(p.earned(s).to_string());
+                row.push(p.earned(&s.step, s.passed).to_string());
             }
         }
         row.push(r.passed().to_string());
@@ -109,7 +109,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
 /// What a student earned and could have earned.
 fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
-        (e + points.earned(s), m + points.of_report(s))
+        (e + points.earned(&s.step, s.passed), m + points.of_name(&s.step))
     })
 }
 
@@ -273,7 +273,7 @@ pub fn to_junit(
                 xml(&s.file)
             ));
             if let Some(p) = points {
-                x.push_str(&properties(p.earned(s), p.of_report(s)));
+                x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
             }
             let message = xml(&s.message);
             if s.passed {

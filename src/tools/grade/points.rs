@@ -3,12 +3,11 @@
 //! earns its points when it passes and none otherwise.
 
 use super::args::Step;
-use super::report::StepReport;
 use anyhow::{bail, Result};
 use rust_i18n::t;
 use std::collections::BTreeMap;
 
-/// The value `--points` takes when given alone.
+/// The value `--points` takes when given alone (`args.rs` spells it too).
 pub const DEFAULT_SPEC: &str = "default";
 
 /// Points per step.
@@ -59,18 +58,18 @@ impl Points {
         self.0.get(&step).copied().unwrap_or(0)
     }
 
-    /// What the step of `report` is worth (0 for a name no step has).
-    pub fn of_report(&self, report: &StepReport) -> u32 {
+    /// What the step called `name` is worth (0 for a name no step has).
+    pub fn of_name(&self, name: &str) -> u32 {
         Step::ALL
             .into_iter()
-            .find(|s| s.name() == report.step)
+            .find(|s| s.name() == name)
             .map_or(0, |s| self.of(s))
     }
 
-    /// What `report` earned: its step's points when it passed.
-    pub fn earned(&self, report: &StepReport) -> u32 {
-        if report.passed {
-            self.of_report(report)
+    /// What the step called `name` earned: its points when it passed.
+    pub fn earned(&self, name: &str, passed: bool) -> u32 {
+        if passed {
+            self.of_name(name)
         } else {
             0
         }

@@ -104,8 +104,8 @@ pub fn to_json(reports: &[StepReport], points: Option<&Points>) -> serde_json::R
     };
     serde_json::to_string(&PublicReport {
         passed: reports.iter().all(|r| r.passed),
-        points: sum(&|p, r| p.earned(r)),
-        max_points: sum(&|p, r| p.of_report(r)),
+        points: sum(&|p, r| p.earned(&r.step, r.passed)),
+        max_points: sum(&|p, r| p.of_name(&r.step)),
         steps: reports
             .iter()
             .map(|r| PublicStep {
@@ -115,8 +115,8 @@ pub fn to_json(reports: &[StepReport], points: Option<&Points>) -> serde_json::R
                 submitted: r.submitted,
                 message: &r.message,
                 message_localised: r.message_localised.as_deref(),
-                points: points.map(|p| p.earned(r)),
-                max_points: points.map(|p| p.of_report(r)),
+                points: points.map(|p| p.earned(&r.step, r.passed)),
+                max_points: points.map(|p| p.of_name(&r.step)),
             })
             .collect(),
     })

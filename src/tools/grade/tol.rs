@@ -71,6 +71,10 @@ pub const SAO_UNEVEN_QUADS: f64 = 0.05;
 /// spread by this fraction of its mean (project 0.072, listing 0.077, rewrite 0.067; the disc left
 /// stretched, without `aspectFix`, 0.21; `ndcToView.yx` 1.08).
 pub const SAO_ANISOTROPY: f64 = 0.15;
+/// SAO: with the intensity raised a hundredfold, the median output where the project's is 1 must
+/// reach this (the course clamps with min(1.0, …), so fully occluded is 1): the listings give 1.00;
+/// an output clamped to 0.5 gives 0.50.
+pub const SAO_SATURATED_MEDIAN: f64 = 0.9;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
@@ -125,7 +129,7 @@ pub const NONFINITE_OVER_UNREAD: f64 = 0.5;
 /// Mutation testing: a mutant is equivalent to the shader it was made from when every value of
 /// every probe render differs from that shader's by at most this, relative to the value (or to 1,
 /// the scale of occlusion, for values below 1). f32 carries 24 bits (ε = 1.2e-7): 1e-6 is 8 units
-/// in the last place, the rounding a few reordered operations leave; a changed statement moves
-/// values by far more (the smallest fault seen on the probes, a 2×2 smoothing weight, moves
-/// occlusion by about 1e-2). Equivalent mutants of the project's shaders give exactly 0.
+/// in the last place, the rounding a few reordered operations leave. On the project's shaders the
+/// equivalent mutants differ by at most 0.54e-6 (the blur's symmetric taps summed in mirrored
+/// order), every other one by at least 7e-4 (a sign in the restore's depth constants).
 pub const EQUIVALENT_REL: f64 = 1e-6;

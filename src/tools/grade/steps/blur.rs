@@ -403,8 +403,11 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     );
     metrics.insert("border_difference".into(), border.0);
     let edge_weights = edge_weights(&raw_f, w, h);
+    // Metrics go out as JSON numbers: a weight that cannot be measured is left out.
     for (step, e) in EDGE_STEPS[1..].iter().zip(&edge_weights) {
-        metrics.insert(format!("edge_weight_{step:.2}"), *e);
+        if e.is_finite() {
+            metrics.insert(format!("edge_weight_{step:.2}"), *e);
+        }
     }
     let panels = vec![
         Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
