@@ -109,7 +109,10 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
 /// What a student earned and could have earned.
 fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
-        (e + points.earned(&s.step, s.passed), m + points.of_name(&s.step))
+        (
+            e + points.earned(&s.step, s.passed),
+            m + points.of_name(&s.step),
+        )
     })
 }
 
