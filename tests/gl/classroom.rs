@@ -38,9 +38,11 @@ fn str_at<'a>(v: &'a Value, key: &str) -> &'a str {
         .unwrap_or_else(|| panic!("no string {key} in {v:?}"))
 }
 
-/// (step id, test name, command, timeout, max-score) of each command-grader step, and the
-/// reporter's step.
-fn autograding_steps(workflow: &Value) -> (Vec<(String, String, String, u64, u64)>, Value) {
+/// One command-grader step: (step id, test name, command, timeout, max-score).
+type GraderStep = (String, String, String, u64, u64);
+
+/// The command-grader steps of the workflow, and the reporter's step.
+fn autograding_steps(workflow: &Value) -> (Vec<GraderStep>, Value) {
     let job = &workflow["jobs"]["run-autograding-tests"];
     assert_eq!(str_at(job, "runs-on"), "ubuntu-latest");
     let steps = job["steps"].as_sequence().expect("steps");

@@ -478,7 +478,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     for (step, e) in EDGE_STEPS[1..].iter().zip(&edge_weights) {
         let expected = (1.0 - *step as f64 / EDGE_DISTANCE).max(0.0);
         // Also when not finite (an output of exactly 0 or 1 beside the step).
-        if !((e - expected).abs() <= tol::BLUR_EDGE_WEIGHT_ABS) {
+        if !e.is_finite() || (e - expected).abs() > tol::BLUR_EDGE_WEIGHT_ABS {
             let (got, expected, step) = (f2(*e), f2(expected), f2(*step as f64));
             return verdict(
                 false,
