@@ -79,6 +79,10 @@ pub struct LessonArgs {
     pub step: Option<String>,
     /// With `start`: the folder to create (then use it with --res).
     pub dir: Option<PathBuf>,
+    /// With `start`: write a GitHub Classroom student repository into DIR instead: the stub
+    /// shaders and .github/workflows/classroom.yml (one autograding test per graded shader).
+    #[arg(long, value_name = "DIR", conflicts_with = "dir")]
+    pub classroom: Option<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Render the step's view to --out instead of opening a window.

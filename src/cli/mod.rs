@@ -238,15 +238,25 @@ fn lesson_overview() -> String {
 
 fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()> {
     let Some(step) = args.step.as_deref() else {
+        if args.classroom.is_some() {
+            bail!("{}", t!("classroom.only_with_start", step = ""));
+        }
         crate::outln!("{}", lesson_overview());
         return Ok(());
     };
+    if args.classroom.is_some() && step != "start" {
+        bail!("{}", t!("classroom.only_with_start", step = step));
+    }
     if step == "start" {
         let dir = args
             .dir
             .as_ref()
+            .or(args.classroom.as_ref())
             .with_context(|| t!("lesson.start_usage"))?;
-        let files = crate::tools::lesson::start(dir, crate::i18n::current())?;
+        let files = match args.classroom {
+            Some(_) => crate::tools::classroom::start(dir)?,
+            None => crate::tools::lesson::start(dir, crate::i18n::current())?,
+        };
         let shown = dir.display();
         crate::outln!(
             "{}",
@@ -268,6 +278,17 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
             ),
         }
         crate::outln!("  opengl3d lesson 2 --res {}", dir.display());
+        if args.classroom.is_some() {
+            let workflow = dir.join(crate::tools::classroom::WORKFLOW);
+            crate::outln!(
+                "{}",
+                t!(
+                    "classroom.wrote",
+                    workflow = workflow.display(),
+                    git = crate::tools::classroom::GRADER_GIT_PLACEHOLDER
+                )
+            );
+        }
         return Ok(());
     }
     let n: u32 = step.parse().map_err(|_| {

@@ -1,7 +1,8 @@
-//! The tools built on the engine: the ray-traced reference, the bench, the grader and the student's
-//! lesson loop.
+//! The tools built on the engine: the ray-traced reference, the bench, the grader, the student's
+//! lesson loop and the teacher's GitHub Classroom repository.
 
 pub mod bench;
+pub mod classroom;
 pub mod error_map;
 pub mod grade;
 pub mod lesson;

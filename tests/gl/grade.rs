@@ -194,6 +194,8 @@ fails! {
     sao_never_divided_by_the_sample_count_is_too_strong: "sao-no-divide" => ["too strong", "about the sample count (11)", "not divided by samplingCount"],
     sao_writing_inf_is_told_so: "sao-writes-inf" => ["writes Inf or NaN", "Inf at 100.0%"],
     sao_including_itself_is_an_include_cycle: "sao-include-self" => ["sao-include-self/sao.frag:3: #include \"sao.frag\"", "#include cycle"],
+    blur_with_an_edge_distance_twice_too_large_fails: "blur-edge-distance-x2" => ["depth step of 0.05 m weigh 0.83", "gives 0.67"],
+    sao_clamped_at_half_fails: "sao-clamped-at-half" => ["fully occluded pixels stay at 0.5", "min(1.0,"],
 }
 
 #[test]

@@ -75,7 +75,8 @@ pub struct GradeArgs {
     #[arg(long, value_name = "N", allow_negative_numbers = true)]
     pub jobs: Option<usize>,
     /// Measure the grader: grade every mutant of the project's lesson shaders (of --step, or all
-    /// four) and print per step the fraction of the observable mutants it fails (target 95%).
+    /// five) and print per step the fraction of the faults (mutants whose output differs from the
+    /// shader's) it fails; exit 1 when it passes a fault beyond the step's tolerance.
     #[arg(long, conflicts_with_all = ["class", "lesson", "out"])]
     pub mutation_score: bool,
     /// With --mutation-score, only N mutants per step, evenly spread (a quick sample).
@@ -86,6 +87,18 @@ pub struct GradeArgs {
         allow_negative_numbers = true
     )]
     pub mutation_sample: Option<usize>,
+    /// Give each step points (earned when it passes), shown in --json and in --class's results.csv
+    /// and junit.xml: `STEP=N` pairs (`sao=40,blur=20`; steps not named keep their default), or
+    /// alone the default, 10 per lesson step that writes the file: restore 20, down-sampling 10,
+    /// simple 10, sao 50, blur 10.
+    #[arg(
+        long,
+        value_name = "STEP=N,...",
+        num_args = 0..=1,
+        default_missing_value = "default",
+        conflicts_with = "mutation_score"
+    )]
+    pub points: Option<String>,
     /// Seconds each step may take before it counts as hung (an endless loop in a shader).
     #[arg(
         long,

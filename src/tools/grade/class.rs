@@ -8,6 +8,7 @@
 
 use super::args::{GradeArgs, Step};
 use super::class_report::{self, StudentResult};
+use super::points::Points;
 use super::report::StepReport;
 use super::student::{self, Grading};
 use super::unzip;
@@ -276,6 +277,7 @@ pub fn run(
     steps: &[Step],
     args: &GradeArgs,
     timeout: Duration,
+    points: Option<&Points>,
 ) -> Result<i32> {
     let jobs = match args.jobs {
         Some(0) => bail!("{}", t!("class.jobs_zero")),
@@ -327,7 +329,11 @@ pub fn run(
     let title = dir
         .file_name()
         .map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into());
-    write(&out, "results.csv", &class_report::to_csv(steps, &results))?;
+    write(
+        &out,
+        "results.csv",
+        &class_report::to_csv(steps, &results, points),
+    )?;
     write(
         &out,
         "report.html",
@@ -336,7 +342,7 @@ pub fn run(
     write(
         &out,
         "junit.xml",
-        &class_report::to_junit(&title, &results, seconds),
+        &class_report::to_junit(&title, &results, seconds, points),
     )?;
     for r in &results {
         let verdict = if r.all_passed() {

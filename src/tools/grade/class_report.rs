@@ -4,6 +4,7 @@
 //! messages echoing their shaders) is quoted or escaped for the format it lands in.
 
 use super::args::Step;
+use super::points::Points;
 use super::report::StepReport;
 use rust_i18n::t;
 
@@ -71,19 +72,48 @@ fn csv_name(name: &str) -> String {
     }
 }
 
-/// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many).
-pub fn to_csv(steps: &[Step], results: &[StudentResult]) -> String {
+/// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many);
+/// with `points`, after each step's column the points it earned (`sao points`), and at the end
+/// `points` and `max points`.
+pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>) -> String {
     let mut header = vec!["student".to_string()];
-    header.extend(steps.iter().map(|s| s.name().to_string()));
+    for s in steps {
+        header.push(s.name().to_string());
+        if points.is_some() {
+            header.push(format!("{} points", s.name()));
+        }
+    }
     header.push("passed".into());
+    if points.is_some() {
+        header.extend(["points".into(), "max points".into()]);
+    }
     let mut csv = csv_row(&header);
     for r in results {
         let mut row = vec![csv_name(&r.name)];
-        row.extend(r.reports.iter().map(|s| verdict(s).to_string()));
+        for s in &r.reports {
+            row.push(verdict(s).to_string());
+            if let Some(p) = points {
+                row.push(p.earned(&s.step, s.passed).to_string());
+            }
+        }
         row.push(r.passed().to_string());
+        if let Some(p) = points {
+            let (earned, max) = student_points(p, r);
+            row.extend([earned.to_string(), max.to_string()]);
+        }
         csv.push_str(&csv_row(&row));
     }
     csv
+}
+
+/// What a student earned and could have earned.
+fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
+    r.reports.iter().fold((0, 0), |(e, m), s| {
+        (
+            e + points.earned(&s.step, s.passed),
+            m + points.of_name(&s.step),
+        )
+    })
 }
 
 /// `text` escaped for HTML text and quoted attribute values.
@@ -211,8 +241,20 @@ fn xml(text: &str) -> String {
 }
 
 /// junit.xml: a `<testsuite>` per student, a `<testcase>` per step, a `<failure>` with the reason
-/// for each step that did not pass ("not submitted" included).
-pub fn to_junit(title: &str, results: &[StudentResult], seconds: f64) -> String {
+/// for each step that did not pass ("not submitted" included); with `points`, `points` and
+/// `max_points` properties on each test case and each suite.
+pub fn to_junit(
+    title: &str,
+    results: &[StudentResult],
+    seconds: f64,
+    points: Option<&Points>,
+) -> String {
+    let properties = |earned: u32, max: u32| {
+        format!(
+            "<properties><property name=\"points\" value=\"{earned}\"/>\
+             <property name=\"max_points\" value=\"{max}\"/></properties>"
+        )
+    };
     let tests: usize = results.iter().map(|r| r.reports.len()).sum();
     let failures: usize = results.iter().map(|r| r.reports.len() - r.passed()).sum();
     let mut x = String::from("<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n");
@@ -230,12 +272,19 @@ pub fn to_junit(title: &str, results: &[StudentResult], seconds: f64) -> String 
             r.reports.len() - r.passed(),
             r.seconds
         ));
+        if let Some(p) = points {
+            let (earned, max) = student_points(p, r);
+            x.push_str(&format!("    {}\n", properties(earned, max)));
+        }
         for s in &r.reports {
             x.push_str(&format!(
                 "    <testcase classname=\"{name}\" name=\"{} ({})\">",
                 xml(&s.step),
                 xml(&s.file)
             ));
+            if let Some(p) = points {
+                x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
+            }
             let message = xml(&s.message);
             if s.passed {
                 x.push_str(&format!("<system-out>{message}</system-out>"));

@@ -68,6 +68,7 @@ mod mutation_probe;
 mod mutation_score;
 mod passes;
 pub mod picture;
+pub mod points;
 mod report;
 mod rig;
 mod run;

@@ -1,14 +1,17 @@
-//! The probe render of mutation testing (`grade-step STEP --probe`, run by `grade --mutation-score`):
-//! how far a shader's output is from the project's on an input the grader's steps never use, in
-//! units of the step's tolerance. Above 1 the difference is observable (the grader ought to fail
-//! the shader); at most 1 the shader is equivalent to the project's for what the step checks.
+//! The probe renders of mutation testing (`grade-step STEP --probe`, run by `grade
+//! --mutation-score`). Two numbers per shader, both against the project's shader the mutant was
+//! made from:
+//! - `tolerance`: the difference on an input the grader's steps never use, in units of the step's
+//!   tolerance (above 1 the grader ought to fail the shader);
+//! - `listing`: the largest difference of any value of any probe render, in units of float noise
+//!   (`tol::EQUIVALENT_REL`); at most 1 the mutant is equivalent (same output).
 //!
 //! The input is a box scene (a room corner with stairs, a pillar, a ramp and sky) seen obliquely on
 //! a non-square 208×120 target (416×240 for the depth buffer), so that slopes, depth edges, creases
 //! and the aspect ratio all show; every size divides by 8, so that no level of the mip chain reads
 //! past its edge.
 //!
-//! What is compared, per step, with the tolerance the step itself uses:
+//! What is compared for `tolerance`, per step, with the tolerance the step itself uses:
 //! - `restore`: every restored distance, in units of its float-precision bound (`tol::RESTORE_ULPS`);
 //! - `down-sampling`: every texel of levels 1–3, relative (`tol::DOWN_REL`);
 //! - `sao`: on a square target (144×144), the RMSE of 8×8 block means over the pixels the SAO step
@@ -18,6 +21,13 @@
 //! - `blur`: the RMSE over non-sky pixels at least 9 texels from the border (the blur's reach: the
 //!   step checks the border on its own) (`tol::BLUR_RMSE`), and any change in the sky
 //!   (`tol::BLUR_SKY_ABS`).
+//!
+//! `listing` compares every output value of those renders and of more inputs chosen so that each
+//! statement of the lesson's shaders changes some value (`more_probes`): the room seen from the
+//! front as well as obliquely, on odd sizes and other aspect ratios; the SAO step on the non-square
+//! oblique target, with a disc wide enough to reach the last mip level, and with another radius,
+//! sample count and spiral; the blur on white noise, where every tap's weight shows, borders
+//! included.
 
 use super::args::Step;
 use super::measure::{as_r8, block_means};
@@ -45,8 +55,9 @@ pub const HUGE: f64 = 1e30;
 
 /// What the probe found.
 pub enum Probe {
-    /// The largest difference from the project's output, in units of the step's tolerance.
-    Difference(f64),
+    /// The largest difference from the project's output in units of the step's tolerance, and in
+    /// units of float noise.
+    Difference { tolerance: f64, listing: f64 },
     /// The shader does not compile or link.
     DoesNotBuild,
 }
@@ -102,18 +113,105 @@ pub fn probe(step: Step, subject: &Subject, project_res: &Path) -> Result<Probe>
         Err(v) if v.message.en.starts_with("grader error") => anyhow::bail!("{}", v.message.en),
         Err(_) => return Ok(Probe::DoesNotBuild),
     };
-    let d = match step {
+    let (d, e) = match step {
         Step::Restore => restore(&rig, &scene)?,
         Step::DownSampling => down_sampling(&rig, &scene)?,
         Step::Sao => sao(&rig, &scene, &params)?,
-        Step::Blur => blur(&rig, &scene, &params)?,
+        Step::Blur => blur(&rig, &scene, &occlusion_of(&rig, &scene, &params)?)?,
         Step::Simple => super::steps::simple_probe(&rig)?,
     };
-    Ok(Probe::Difference(if d.is_finite() {
-        d.min(HUGE)
-    } else {
-        HUGE
-    }))
+    drop(rig);
+    let e = match more_probes(step, subject, project_res)? {
+        Some(more) => e.max(more),
+        None => return Ok(Probe::DoesNotBuild),
+    };
+    let finite = |d: f64| if d.is_finite() { d.min(HUGE) } else { HUGE };
+    Ok(Probe::Difference {
+        tolerance: finite(d),
+        listing: finite(e),
+    })
+}
+
+/// The `listing` difference of `step` on the inputs only the equivalence test uses; `None` when
+/// the shader does not build on one of their rigs.
+fn more_probes(step: Step, subject: &Subject, project_res: &Path) -> Result<Option<f64>> {
+    let d = AoSettings::default();
+    // Another radius, sample count and spiral than the step's: each constant of the loop shows.
+    let other = AoSettings {
+        radius: 0.6 * d.radius,
+        samples: 7,
+        spiral_turns: 2,
+        ..d
+    };
+    // A disc wide enough near the camera (over 64 texels) that the far taps read the last level.
+    let wide = AoSettings { radius: 4.0, ..d };
+    // (size of texSAODepth, frontal, settings): odd sizes and other aspect ratios than the
+    // step's, so that texel snapping, borders and the aspect corrections meet new cases.
+    let inputs: &[((u32, u32), bool, AoSettings)] = match step {
+        Step::Simple => &[],
+        Step::Sao => &[
+            (PROBE_SIZE, false, d),
+            (PROBE_SIZE, false, wide),
+            ((105, 61), false, other),
+            ((71, 71), true, d),
+        ],
+        _ => &[((105, 61), true, d), ((71, 39), false, d)],
+    };
+    let mut worst_e = 0.0f64;
+    for &((w, h), frontal, params) in inputs {
+        let scene = probe_scene(w, h, frontal);
+        let rig = match build_rig(subject, project_res, (2 * w, 2 * h), &scene.camera, &params) {
+            Ok(r) => r,
+            Err(v) if v.message.en.starts_with("grader error") => anyhow::bail!("{}", v.message.en),
+            Err(_) => return Ok(None),
+        };
+        let e = match step {
+            Step::Restore => restore(&rig, &scene)?.1,
+            Step::DownSampling => down_sampling(&rig, &scene)?.1,
+            Step::Sao => sao(&rig, &scene, &params)?.1,
+            Step::Blur => {
+                let occ = occlusion_of(&rig, &scene, &params)?;
+                let noise: Vec<f32> = (0..occ.len()).map(white_noise).collect();
+                let a = blur(&rig, &scene, &occ)?.1;
+                a.max(blur(&rig, &scene, &noise)?.1)
+            }
+            Step::Simple => 0.0,
+        };
+        worst_e = worst_e.max(e);
+    }
+    Ok(Some(worst_e))
+}
+
+/// A value in [0, 1) that looks random for index `i` (a fixed integer hash).
+fn white_noise(i: usize) -> f32 {
+    let mut x = (i as u32).wrapping_mul(0x9E37_79B9) ^ 0x85EB_CA6B;
+    x ^= x >> 15;
+    x = x.wrapping_mul(0x2C1B_3C6D);
+    x ^= x >> 12;
+    (x >> 8) as f32 / (1u32 << 24) as f32
+}
+
+/// Largest difference between `s` and `r` in units of float noise (`tol::EQUIVALENT_REL` of the
+/// value, or of 1 below 1); values with the same bits (NaN, Inf included) agree.
+pub fn listing_difference(s: &[f32], r: &[f32]) -> f64 {
+    if s.len() != r.len() {
+        return HUGE;
+    }
+    s.iter()
+        .zip(r)
+        .map(|(s, r)| {
+            if s.to_bits() == r.to_bits() || (s.is_nan() && r.is_nan()) {
+                return 0.0;
+            }
+            let e =
+                (*s as f64 - *r as f64).abs() / (tol::EQUIVALENT_REL * (*r as f64).abs().max(1.0));
+            if e.is_finite() {
+                e.min(HUGE)
+            } else {
+                HUGE
+            }
+        })
+        .fold(0.0, f64::max)
 }
 
 /// Largest `|a − b| / scale(b)`, NaN and Inf counting as `HUGE`.
@@ -132,7 +230,7 @@ fn worst(a: &[f32], b: &[f32], scale: impl Fn(usize, f64) -> f64) -> f64 {
         .fold(0.0, f64::max)
 }
 
-fn restore(rig: &Rig, scene: &SynthScene) -> Result<f64> {
+fn restore(rig: &Rig, scene: &SynthScene) -> Result<(f64, f64)> {
     let (w, h) = (2 * scene.width as usize, 2 * scene.height as usize);
     let big = SynthScene {
         width: w as u32,
@@ -164,7 +262,8 @@ fn restore(rig: &Rig, scene: &SynthScene) -> Result<f64> {
     // The float-precision bound of the restore step, at the nearest depth of each 2×2 block.
     let b = (f + n) / (f - n);
     let bw = w / 2;
-    Ok(worst(&s, &r, |i, r| {
+    let exact = listing_difference(&s, &r);
+    let d = worst(&s, &r, |i, r| {
         let (x, y) = (2 * (i % bw), 2 * (i / bw));
         let dv = [(0, 0), (1, 0), (0, 1), (1, 1)]
             .iter()
@@ -173,12 +272,13 @@ fn restore(rig: &Rig, scene: &SynthScene) -> Result<f64> {
         let bound =
             tol::RESTORE_ULPS * f32::EPSILON as f64 * (1.0 + b / ((2.0 * dv - 1.0) - b).abs());
         r.abs() * bound
-    }))
+    });
+    Ok((d, exact))
 }
 
-fn down_sampling(rig: &Rig, scene: &SynthScene) -> Result<f64> {
+fn down_sampling(rig: &Rig, scene: &SynthScene) -> Result<(f64, f64)> {
     let depth = scene.depth();
-    let mut diff = 0.0f64;
+    let (mut diff, mut exact) = (0.0f64, 0.0f64);
     let mut levels = Vec::new();
     for lesson in [&rig.reference, &rig.student] {
         lesson.targets.tex_depth.upload_f32(0, 1, &depth)?;
@@ -192,8 +292,9 @@ fn down_sampling(rig: &Rig, scene: &SynthScene) -> Result<f64> {
     }
     for (r, s) in levels[0].iter().zip(&levels[1]) {
         diff = diff.max(worst(s, r, |_, r| tol::DOWN_REL * r.abs()));
+        exact = exact.max(listing_difference(s, r));
     }
-    Ok(diff)
+    Ok((diff, exact))
 }
 
 /// The pixels the SAO step compares (as its own masks do): not sky, no depth edge in the 5×5
@@ -227,7 +328,7 @@ fn compared(depth: &[f32], w: usize, h: usize, far: f32) -> Vec<bool> {
         .collect()
 }
 
-fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
+fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<(f64, f64)> {
     let (w, h) = (scene.width as usize, scene.height as usize);
     let depth = scene.depth();
     let far = scene.camera.far;
@@ -246,6 +347,7 @@ fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
         .filter(|(v, d)| **d < far && !v.is_finite())
         .count();
     let nan_part = nan as f64 / (w * h - sky).max(1) as f64 / tol::SAO_BAD_PIXEL_FRACTION;
+    let exact = listing_difference(&raw, &r);
     let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
     let r: Vec<f32> = r.iter().map(|v| as_r8(*v)).collect();
     let mask = compared(&depth, w, h, far);
@@ -261,26 +363,32 @@ fn sao(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
         }
     }
     let rmse = (sq / n.max(1) as f64).sqrt();
-    Ok((rmse / tol::SAO_BLOCK_RMSE).max(nan_part))
+    Ok(((rmse / tol::SAO_BLOCK_RMSE).max(nan_part), exact))
 }
 
-fn blur(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
-    let (w, h) = (scene.width as usize, scene.height as usize);
-    let depth = scene.depth();
-    let far = scene.camera.far;
+/// The project's occlusion of `scene`, as the blur step reads it (stored in R8).
+fn occlusion_of(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<Vec<f32>> {
     let occ = run_sao(
         &rig.reference,
         &rig.meshes,
         &scene.camera,
-        &depth,
+        &scene.depth(),
         params,
         Mips::Filled,
     )?;
-    let occ: Vec<f32> = occ.iter().map(|v| as_r8(*v)).collect();
-    let r = run_blur(&rig.reference, &rig.meshes, &depth, &occ)?;
-    let raw = run_blur(&rig.student, &rig.meshes, &depth, &occ)?;
+    Ok(occ.iter().map(|v| as_r8(*v)).collect())
+}
+
+/// The blur of `occ` on `scene`'s depth.
+fn blur(rig: &Rig, scene: &SynthScene, occ: &[f32]) -> Result<(f64, f64)> {
+    let (w, h) = (scene.width as usize, scene.height as usize);
+    let depth = scene.depth();
+    let far = scene.camera.far;
+    let r = run_blur(&rig.reference, &rig.meshes, &depth, occ)?;
+    let raw = run_blur(&rig.student, &rig.meshes, &depth, occ)?;
+    let exact = listing_difference(&raw, &r);
     if raw.iter().any(|v| !v.is_finite()) {
-        return Ok(HUGE);
+        return Ok((HUGE, exact));
     }
     let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
     const REACH: usize = 9;
@@ -298,5 +406,5 @@ fn blur(rig: &Rig, scene: &SynthScene, params: &AoSettings) -> Result<f64> {
         }
     }
     let rmse = (sq / n.max(1) as f64).sqrt();
-    Ok((rmse / tol::BLUR_RMSE).max(sky / tol::BLUR_SKY_ABS))
+    Ok(((rmse / tol::BLUR_RMSE).max(sky / tol::BLUR_SKY_ABS), exact))
 }

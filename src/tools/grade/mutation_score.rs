@@ -1,9 +1,11 @@
 //! `opengl3d grade --mutation-score`: how sensitive the grader is. Every mutant of the project's
 //! lesson shaders (`mutate`) is graded exactly as a student's file is (`grade-step` in a child with
-//! its limits), and the same child renders the probe (`mutation_probe`): a mutant whose probe
-//! output differs from the project's beyond the step's tolerance is observable, and the grader
-//! ought to fail it. The score of a step is the fraction of its observable mutants the grader
-//! fails; mutants with no observable difference, and those that do not compile, are counted apart.
+//! its limits), and the same child renders the probes (`mutation_probe`). A mutant is equivalent
+//! only when every value of every probe render matches the shader it was made from to float noise;
+//! the others are faults. A step's score is the fraction of its faults the grader fails:
+//! killed / (mutants − equivalent − not compiling). Of the faults that pass, those beyond the
+//! step's tolerance on the probe are the grader's defects (exit 1); the rest, the "between" count,
+//! are faults the step's tolerance accepts.
 
 use super::args::{GradeArgs, Step};
 use super::child::Child;
@@ -18,28 +20,33 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
 
-/// The score each step must reach.
-pub const TARGET: f64 = 0.95;
-
-/// Metric names the child adds with `--probe`.
+/// Metric names the child adds with `--probe`: the difference in units of the step's tolerance,
+/// the difference in units of float noise, and 0 when the shader does not build.
 pub const PROBE_METRIC: &str = "mutation_probe";
+pub const PROBE_LISTING_METRIC: &str = "mutation_probe_listing";
 pub const PROBE_BUILDS_METRIC: &str = "mutation_probe_builds";
 
 /// What became of one mutant.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum Outcome {
-    /// Observable, and the grader fails it.
+    /// Differs from the listing, and the grader fails it.
     Killed,
-    /// Observable, and the grader passes it.
+    /// Differs beyond the step's tolerance on the probe, and the grader passes it: a defect.
     Survived,
+    /// Differs from the listing but within the step's tolerance on the probe, and the grader
+    /// passes it: a fault the tolerance accepts.
+    Between,
     /// Ran past the time limit (a loop a mutation made endless): failed by the grader's timeout.
     TimedOut,
-    /// No observable difference on the probe render.
+    /// Matches the listing to float noise on every probe, and the grader passes it.
     Equivalent,
+    /// Matches the listing to float noise on every probe, and the grader fails it: either the
+    /// grader's own inputs see what no probe does, or it is a false FAIL. Scored as killed.
+    KilledUnseen,
     /// Does not compile or link.
     DoesNotBuild,
-    /// The grader itself failed (no verdict, no probe): neither observable nor equivalent.
+    /// The grader itself failed (no verdict, no probe).
     GraderError,
 }
 
@@ -48,9 +55,13 @@ pub struct MutantResult {
     pub id: String,
     pub description: String,
     pub outcome: Outcome,
-    /// Probe difference in units of the step's tolerance (observable above 1).
+    /// Probe difference in units of the step's tolerance (beyond it above 1).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub probe: Option<f64>,
+    /// Largest difference from the listing over every probe render, in units of float noise
+    /// (equivalent at most 1).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub probe_listing: Option<f64>,
     /// The grader's message.
     pub message: String,
 }
@@ -60,53 +71,67 @@ pub struct StepScore {
     pub step: String,
     pub file: String,
     pub mutants: usize,
-    pub observable: usize,
+    /// Mutants that compile and differ from the listing: the score's denominator.
+    pub faults: usize,
+    /// Faults the grader fails (timeouts and `killed-unseen` included).
     pub killed: usize,
+    /// Faults beyond the tolerance that the grader passes.
+    pub survived: usize,
+    /// Faults within the tolerance that the grader passes.
+    pub between: usize,
     pub equivalent: usize,
     pub does_not_build: usize,
     pub timed_out: usize,
+    pub killed_unseen: usize,
     pub grader_errors: usize,
-    /// killed (timeouts included) / observable; 1 when nothing is observable.
+    /// killed / faults; 1 when there is no fault.
     pub score: f64,
     pub results: Vec<MutantResult>,
 }
 
 /// Classifies what the child reported for one mutant.
-fn outcome(r: &StepReport) -> (Outcome, Option<f64>) {
+fn outcome(r: &StepReport) -> (Outcome, Option<f64>, Option<f64>) {
     if r.metrics.get(PROBE_BUILDS_METRIC) == Some(&0.0) {
-        return (Outcome::DoesNotBuild, None);
+        return (Outcome::DoesNotBuild, None, None);
     }
-    match r.metrics.get(PROBE_METRIC) {
-        Some(&d) if d > 1.0 && r.passed => (Outcome::Survived, Some(d)),
-        Some(&d) if d > 1.0 => (Outcome::Killed, Some(d)),
-        Some(&d) => (Outcome::Equivalent, Some(d)),
-        None if r.message.starts_with("timed out") => (Outcome::TimedOut, None),
-        None => (Outcome::GraderError, None),
-    }
+    let (d, e) = (
+        r.metrics.get(PROBE_METRIC).copied(),
+        r.metrics.get(PROBE_LISTING_METRIC).copied(),
+    );
+    let o = match (d, e) {
+        (Some(_), Some(e)) if e <= 1.0 && r.passed => Outcome::Equivalent,
+        (Some(_), Some(e)) if e <= 1.0 => Outcome::KilledUnseen,
+        (Some(_), Some(_)) if !r.passed => Outcome::Killed,
+        (Some(d), Some(_)) if d > 1.0 => Outcome::Survived,
+        (Some(_), Some(_)) => Outcome::Between,
+        _ if r.message.starts_with("timed out") => Outcome::TimedOut,
+        _ => Outcome::GraderError,
+    };
+    (o, d, e)
 }
 
 fn score(step: Step, results: Vec<MutantResult>) -> StepScore {
     let count = |o: Outcome| results.iter().filter(|r| r.outcome == o).count();
-    let (killed, survived, timed_out) = (
-        count(Outcome::Killed),
-        count(Outcome::Survived),
-        count(Outcome::TimedOut),
-    );
-    let observable = killed + survived + timed_out;
+    let killed = count(Outcome::Killed) + count(Outcome::TimedOut) + count(Outcome::KilledUnseen);
+    let (equivalent, does_not_build) = (count(Outcome::Equivalent), count(Outcome::DoesNotBuild));
+    let faults = results.len() - equivalent - does_not_build;
     StepScore {
         step: step.name().into(),
         file: step.file().into(),
         mutants: results.len(),
-        observable,
-        killed: killed + timed_out,
-        equivalent: count(Outcome::Equivalent),
-        does_not_build: count(Outcome::DoesNotBuild),
-        timed_out,
+        faults,
+        killed,
+        survived: count(Outcome::Survived),
+        between: count(Outcome::Between),
+        equivalent,
+        does_not_build,
+        timed_out: count(Outcome::TimedOut),
+        killed_unseen: count(Outcome::KilledUnseen),
         grader_errors: count(Outcome::GraderError),
-        score: if observable == 0 {
+        score: if faults == 0 {
             1.0
         } else {
-            (killed + timed_out) as f64 / observable as f64
+            killed as f64 / faults as f64
         },
         results,
     }
@@ -180,7 +205,7 @@ fn run_one(
     let child =
         Child::spawn(cmd, step).with_context(|| format!("cannot start {}", exe.display()))?;
     let report = child.finish(timeout);
-    let (outcome, probe) = outcome(&report);
+    let (outcome, probe, probe_listing) = outcome(&report);
     // The mutant's folder is not needed any more; the scratch folder goes at the end anyway.
     let _ = std::fs::remove_dir_all(&dir);
     Ok(MutantResult {
@@ -188,6 +213,7 @@ fn run_one(
         description: m.description.clone(),
         outcome,
         probe,
+        probe_listing,
         message: report.message,
     })
 }
@@ -203,7 +229,8 @@ fn progress_bar(total: usize) -> ProgressBar {
     bar
 }
 
-/// Scores `steps`; returns the exit code (0: every step reaches `TARGET`).
+/// Scores `steps`; returns the exit code (0: the grader fails every fault beyond the tolerance and
+/// never errs).
 pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> Result<i32> {
     let jobs = match args.jobs {
         Some(0) => bail!("--jobs 0: give at least 1"),
@@ -264,11 +291,10 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
     let scores: Vec<StepScore> = per_step.into_iter().map(|(s, r)| score(s, r)).collect();
     let passed = scores
         .iter()
-        .all(|s| s.score >= TARGET && s.grader_errors == 0);
+        .all(|s| s.survived == 0 && s.grader_errors == 0);
     if args.json {
         let v = serde_json::json!({
             "passed": passed,
-            "target": TARGET,
             "seconds": start.elapsed().as_secs_f64(),
             "steps": scores,
         });
@@ -281,42 +307,47 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
 
 fn print_text(scores: &[StepScore], seconds: f64) {
     crate::outln!(
-        "{:<14} {:>7} {:>10} {:>6} {:>10} {:>11} {:>8}",
+        "{:<14} {:>7} {:>10} {:>11} {:>6} {:>6} {:>8} {:>8} {:>7}",
         "step",
         "mutants",
-        "observable",
-        "killed",
         "equivalent",
         "not-compile",
+        "faults",
+        "killed",
+        "between",
+        "survived",
         "score"
     );
     for s in scores {
         crate::outln!(
-            "{:<14} {:>7} {:>10} {:>6} {:>10} {:>11} {:>7.1}%{}",
+            "{:<14} {:>7} {:>10} {:>11} {:>6} {:>6} {:>8} {:>8} {:>6.1}%",
             s.step,
             s.mutants,
-            s.observable,
-            s.killed,
             s.equivalent,
             s.does_not_build,
+            s.faults,
+            s.killed,
+            s.between,
+            s.survived,
             100.0 * s.score,
-            if s.score >= TARGET {
-                ""
-            } else {
-                "  (below 95%)"
-            }
         );
     }
     for s in scores {
         for r in s.results.iter().filter(|r| {
             matches!(
                 r.outcome,
-                Outcome::Survived | Outcome::GraderError | Outcome::TimedOut
+                Outcome::Survived
+                    | Outcome::Between
+                    | Outcome::GraderError
+                    | Outcome::TimedOut
+                    | Outcome::KilledUnseen
             )
         }) {
             let what = match r.outcome {
                 Outcome::Survived => "survived",
+                Outcome::Between => "between",
                 Outcome::TimedOut => "timed out",
+                Outcome::KilledUnseen => "killed, no probe sees it",
                 _ => "grader error",
             };
             let probe = r
@@ -340,24 +371,25 @@ mod tests {
     }
 
     #[test]
-    fn outcomes_follow_the_probe_and_the_verdict() {
+    fn outcomes_follow_the_probes_and_the_verdict() {
+        let o = |passed, d: f64, e: f64| {
+            outcome(&report(
+                passed,
+                "x",
+                &[(PROBE_METRIC, d), (PROBE_LISTING_METRIC, e)],
+            ))
+            .0
+        };
+        // Equivalent only when the output matches the listing to float noise.
+        assert_eq!(o(true, 0.0, 0.0), Outcome::Equivalent);
+        assert_eq!(o(true, 0.0, 1.0), Outcome::Equivalent);
+        assert_eq!(o(false, 0.0, 1.0), Outcome::KilledUnseen);
+        // Within the tolerance but not equal: a fault, never an equivalent.
+        assert_eq!(o(true, 0.99, 1.5), Outcome::Between);
+        assert_eq!(o(false, 0.99, 1.5), Outcome::Killed);
+        assert_eq!(o(true, 3.0, 1e9), Outcome::Survived);
+        assert_eq!(o(false, 3.0, 1e9), Outcome::Killed);
         let o = |r: &StepReport| outcome(r).0;
-        assert_eq!(
-            o(&report(false, "x", &[(PROBE_METRIC, 3.0)])),
-            Outcome::Killed
-        );
-        assert_eq!(
-            o(&report(true, "x", &[(PROBE_METRIC, 3.0)])),
-            Outcome::Survived
-        );
-        assert_eq!(
-            o(&report(true, "x", &[(PROBE_METRIC, 0.5)])),
-            Outcome::Equivalent
-        );
-        assert_eq!(
-            o(&report(false, "x", &[(PROBE_METRIC, 1.0)])),
-            Outcome::Equivalent
-        );
         assert_eq!(
             o(&report(
                 false,
@@ -377,28 +409,31 @@ mod tests {
     }
 
     #[test]
-    fn the_score_counts_only_observable_mutants() {
+    fn the_score_is_killed_over_the_faults() {
         let r = |o| MutantResult {
             id: String::new(),
             description: String::new(),
             outcome: o,
             probe: None,
+            probe_listing: None,
             message: String::new(),
         };
         let s = score(
             Step::Blur,
             vec![
                 r(Outcome::Killed),
-                r(Outcome::Killed),
+                r(Outcome::KilledUnseen),
                 r(Outcome::TimedOut),
                 r(Outcome::Survived),
+                r(Outcome::Between),
                 r(Outcome::Equivalent),
                 r(Outcome::DoesNotBuild),
             ],
         );
-        assert_eq!((s.mutants, s.observable, s.killed), (6, 4, 3));
+        assert_eq!((s.mutants, s.faults, s.killed), (7, 5, 3));
+        assert_eq!((s.survived, s.between), (1, 1));
         assert_eq!((s.equivalent, s.does_not_build), (1, 1));
-        assert!((s.score - 0.75).abs() < 1e-12);
+        assert!((s.score - 0.6).abs() < 1e-12);
     }
 
     #[test]

@@ -2,6 +2,7 @@
 //! it (text or JSON).
 
 use super::args::Step;
+use super::points::Points;
 use crate::i18n::Text;
 use rust_i18n::t;
 use serde::{Deserialize, Serialize};
@@ -76,20 +77,35 @@ struct PublicStep<'a> {
     message: &'a str,
     #[serde(skip_serializing_if = "Option::is_none")]
     message_localised: Option<&'a str>,
+    /// With `--points`: what the step earned and what it is worth.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    points: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_points: Option<u32>,
 }
 
 #[derive(Serialize)]
 struct PublicReport<'a> {
     passed: bool,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    points: Option<u32>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    max_points: Option<u32>,
     steps: Vec<PublicStep<'a>>,
 }
 
 /// The JSON the grader prints with `--json`: {"passed", "steps": [{"step", "file", "passed",
 /// "submitted", "message"}]}, plus "message_localised" on a step whose message was also written in
-/// a language other than English.
-pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
+/// a language other than English, and with `points` "points" and "max_points" in the whole and in
+/// each step.
+pub fn to_json(reports: &[StepReport], points: Option<&Points>) -> serde_json::Result<String> {
+    let sum = |f: &dyn Fn(&Points, &StepReport) -> u32| {
+        points.map(|p| reports.iter().map(|r| f(p, r)).sum::<u32>())
+    };
     serde_json::to_string(&PublicReport {
         passed: reports.iter().all(|r| r.passed),
+        points: sum(&|p, r| p.earned(&r.step, r.passed)),
+        max_points: sum(&|p, r| p.of_name(&r.step)),
         steps: reports
             .iter()
             .map(|r| PublicStep {
@@ -99,6 +115,8 @@ pub fn to_json(reports: &[StepReport]) -> serde_json::Result<String> {
                 submitted: r.submitted,
                 message: &r.message,
                 message_localised: r.message_localised.as_deref(),
+                points: points.map(|p| p.earned(&r.step, r.passed)),
+                max_points: points.map(|p| p.of_name(&r.step)),
             })
             .collect(),
     })

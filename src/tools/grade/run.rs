@@ -4,6 +4,7 @@
 use super::args::{selected_steps, GradeArgs};
 use super::class;
 use super::mutation_score;
+use super::points::Points;
 use super::report;
 use super::student::{self, Grading};
 use crate::res::{project_res_dir, ResDirs};
@@ -16,6 +17,7 @@ use std::time::Duration;
 /// code (0: every step passed).
 pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i32> {
     let steps = selected_steps(args)?;
+    let points = args.points.as_deref().map(Points::parse).transpose()?;
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
         bail!("{}", t!("grade.bad_timeout", value = args.timeout));
     }
@@ -34,7 +36,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         // `--lesson 1`: that step is maths only, and the restore pass is still the stub it starts
         // from, so there is nothing to grade yet (and nothing has failed).
         if args.json {
-            println!("{}", report::to_json(&[])?);
+            println!("{}", report::to_json(&[], points.as_ref())?);
         } else {
             let (lesson, first) = (
                 args.lesson.unwrap_or(1),
@@ -58,7 +60,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
                 )
             );
         }
-        return class::run(&exe, dir, &steps, args, timeout);
+        return class::run(&exe, dir, &steps, args, timeout, points.as_ref());
     }
     if let Some(dir) = student {
         match std::fs::metadata(dir) {
@@ -102,7 +104,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         report::print_metrics(&reports);
     }
     if args.json {
-        crate::outln!("{}", report::to_json(&reports)?);
+        crate::outln!("{}", report::to_json(&reports, points.as_ref())?);
     } else {
         report::print_text(&reports, args.out.as_deref());
     }

@@ -117,10 +117,11 @@ fn set_message(report: &mut StepReport, message: Text) {
 /// grader cannot run is said with the verdict (and leaves no metric, so the mutant is not counted).
 fn add_probe(step: Step, subject: &Subject, project: &Path, report: &mut StepReport) {
     use super::mutation_probe::{probe, Probe};
-    use super::mutation_score::{PROBE_BUILDS_METRIC, PROBE_METRIC};
+    use super::mutation_score::{PROBE_BUILDS_METRIC, PROBE_LISTING_METRIC, PROBE_METRIC};
     match probe(step, subject, project) {
-        Ok(Probe::Difference(d)) => {
-            report.metrics.insert(PROBE_METRIC.into(), d);
+        Ok(Probe::Difference { tolerance, listing }) => {
+            report.metrics.insert(PROBE_METRIC.into(), tolerance);
+            report.metrics.insert(PROBE_LISTING_METRIC.into(), listing);
         }
         Ok(Probe::DoesNotBuild) => {
             report.metrics.insert(PROBE_BUILDS_METRIC.into(), 0.0);

@@ -71,6 +71,10 @@ pub const SAO_UNEVEN_QUADS: f64 = 0.05;
 /// spread by this fraction of its mean (project 0.072, listing 0.077, rewrite 0.067; the disc left
 /// stretched, without `aspectFix`, 0.21; `ndcToView.yx` 1.08).
 pub const SAO_ANISOTROPY: f64 = 0.15;
+/// SAO: with the intensity raised a hundredfold, the median output where the project's is 1 must
+/// reach this (the course clamps with min(1.0, …), so fully occluded is 1): the listings give 1.00;
+/// an output clamped to 0.5 gives 0.50.
+pub const SAO_SATURATED_MEDIAN: f64 = 0.9;
 /// Blur: the mean of a blurred flat noisy surface may move this much (listing 0.0000, no
 /// division by totalWeight 0.49 → 5.70).
 pub const BLUR_MEAN_ABS: f64 = 0.03;
@@ -83,6 +87,11 @@ pub const BLUR_IMPULSE_REL: f32 = 0.01;
 /// (listing 1.00 | 0.00; no edge weight 0.52 | 0.48; measured with the far side 10 m away, the
 /// panel's far side is now 0.5 m behind, which the lesson's weight cuts just as fully).
 pub const BLUR_EDGE_ABS: f64 = 0.05;
+/// Blur: the weight taps across a depth step of 0.05 m and 0.10 m may have, off the lesson's
+/// max(0, 1 − δ / 0.15) (2/3 and 1/3). The listings and the rewrite give it to float precision;
+/// `edgeDistance` doubled or halved is off by 0.17 or more, `edgeSharpness = 2 / edgeDistance` by
+/// 0.33.
+pub const BLUR_EDGE_WEIGHT_ABS: f64 = 0.05;
 /// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
 /// (input 0.290; reference 0.038, listing 0.036).
 pub const BLUR_SMOOTHING: f64 = 0.6;
@@ -117,3 +126,10 @@ pub const SIMPLE_ABS: f64 = 1e-3;
 /// everywhere (1.0) and reads nothing, the compiler having dropped every input; a shader that only
 /// misses one uniform writes finite values (0.0).
 pub const NONFINITE_OVER_UNREAD: f64 = 0.5;
+/// Mutation testing: a mutant is equivalent to the shader it was made from when every value of
+/// every probe render differs from that shader's by at most this, relative to the value (or to 1,
+/// the scale of occlusion, for values below 1). f32 carries 24 bits (ε = 1.2e-7): 1e-6 is 8 units
+/// in the last place, the rounding a few reordered operations leave. On the project's shaders the
+/// equivalent mutants differ by at most 0.54e-6 (the blur's symmetric taps summed in mirrored
+/// order), every other one by at least 7e-4 (a sign in the restore's depth constants).
+pub const EQUIVALENT_REL: f64 = 1e-6;

@@ -4,7 +4,9 @@
 //! texel must have the taps of the lesson (every blurScale texels, blurRadius each side) and be
 //! mirror-symmetric, taps past the border must read the border texel (clamped, as the lesson asks:
 //! within its reach of the border, the output must equal the shader's own beside an equally
-//! occluded band inside the texture), and the RMSE against the project's `sao_blur.frag` is bounded
+//! occluded band inside the texture), taps across a small depth step must weigh what the lesson's
+//! edge weight gives (measured from the shader's own output, whatever its Gaussian weights), and
+//! the RMSE against the project's `sao_blur.frag` is bounded
 //! (loosely: the lesson's listing has wider weights). The buffers are wider than high, so x and y
 //! cannot be swapped unseen.
 
@@ -88,6 +90,47 @@ fn border_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
         })
         .collect();
     (vec![5.0; w * h], occ)
+}
+
+/// The lesson's `edgeDistance` (m): a tap whose depth differs by δ weighs max(0, 1 − δ / it).
+const EDGE_DISTANCE: f64 = 0.15;
+/// Depth steps of `edge_weight_panel` (m), one band of rows each from the bottom: none, then two
+/// that the lesson's edge weight only partly cuts (to 2/3 and 1/3).
+const EDGE_STEPS: [f32; 3] = [0.0, 0.05, 0.10];
+
+/// A surface at 5 m, fully occluded left of the middle column and open from it on, whose open side
+/// lies `EDGE_STEPS[k]` behind in band k (a third of the rows each).
+fn edge_weight_panel(w: usize, h: usize) -> (Vec<f32>, Vec<f32>) {
+    let band = |y: usize| (y * EDGE_STEPS.len() / h).min(EDGE_STEPS.len() - 1);
+    let open = |i: usize| i % w >= w / 2;
+    let depth = (0..w * h)
+        .map(|i| {
+            5.0 + if open(i) {
+                EDGE_STEPS[band(i / w)]
+            } else {
+                0.0
+            }
+        })
+        .collect();
+    let occ = (0..w * h).map(|i| f32::from(u8::from(!open(i)))).collect();
+    (depth, occ)
+}
+
+/// The weight the shader gives taps across each nonzero step of `edge_weight_panel`, from its own
+/// output `s` at the first open column (mean over each band's rows beyond the blur's reach of the
+/// others). With a the Gaussian weight of the taps on the occluded side and b of those on the open
+/// side, the output is a·e / (b + a·e) across a step weighted e, and a / (a + b) with no step: so
+/// e = odds(output) / odds(output with no step), whatever the Gaussian weights are.
+fn edge_weights(s: &[f32], w: usize, h: usize) -> Vec<f64> {
+    let n = EDGE_STEPS.len();
+    let odds = |k: usize| {
+        let rows = k * h / n + 9..(k + 1) * h / n - 9;
+        let count = rows.len().max(1) as f64;
+        let o = rows.map(|y| s[y * w + w / 2] as f64).sum::<f64>() / count;
+        o / (1.0 - o)
+    };
+    let flat = odds(0);
+    (1..n).map(|k| odds(k) / flat).collect()
 }
 
 /// Where `band_panel` has its bands: the columns `BAND_X - 8 ..= BAND_X` and the rows
@@ -223,9 +266,10 @@ struct Runs {
     /// The impulse panel, the reference's and the student's.
     reference_c: Vec<f32>,
     raw_c: Vec<f32>,
-    /// The student's blur of the border panel and of the band panel.
+    /// The student's blur of the border panel, of the band panel and of the edge-weight panel.
     raw_d: Vec<f32>,
     raw_e: Vec<f32>,
+    raw_f: Vec<f32>,
 }
 
 fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
@@ -252,6 +296,8 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let raw_d = run_blur(&rig.student, &rig.meshes, &depth_d, &occ_d)?;
     let (depth_e, occ_e) = band_panel(w, h);
     let raw_e = run_blur(&rig.student, &rig.meshes, &depth_e, &occ_e)?;
+    let (depth_f, occ_f) = edge_weight_panel(w, h);
+    let raw_f = run_blur(&rig.student, &rig.meshes, &depth_f, &occ_f)?;
     Ok(Runs {
         depth_a,
         reference_a,
@@ -263,6 +309,7 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
         raw_c,
         raw_d,
         raw_e,
+        raw_f,
     })
 }
 
@@ -281,6 +328,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         raw_c,
         raw_d,
         raw_e,
+        raw_f,
     } = match render(rig, params, far) {
         Ok(runs) => runs,
         Err(e) => return Verdict::grader_error(&e),
@@ -292,6 +340,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         .chain(&raw_c)
         .chain(&raw_d)
         .chain(&raw_e)
+        .chain(&raw_f)
         .filter(|v| !v.is_finite())
         .count();
     let s_a: Vec<f32> = raw_a.iter().map(|v| as_r8(*v)).collect();
@@ -350,9 +399,16 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("nan".into(), nan as f64);
     metrics.insert(
         crate::tools::grade::rig::NONFINITE_METRIC.into(),
-        nan as f64 / (5 * w * h) as f64,
+        nan as f64 / (6 * w * h) as f64,
     );
     metrics.insert("border_difference".into(), border.0);
+    let edge_weights = edge_weights(&raw_f, w, h);
+    // Metrics go out as JSON numbers: a weight that cannot be measured is left out.
+    for (step, e) in EDGE_STEPS[1..].iter().zip(&edge_weights) {
+        if e.is_finite() {
+            metrics.insert(format!("edge_weight_{step:.2}"), *e);
+        }
+    }
     let panels = vec![
         Panel::absolute(w, h, r_a, s_a, Shade::Occlusion, 0.25),
         Panel::absolute(w, h, r_b, s_b, Shade::Occlusion, 0.25),
@@ -418,6 +474,22 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     }
     if let Some(fault) = impulse_fault(&raw_c, &r_c, w) {
         return verdict(false, fault);
+    }
+    for (step, e) in EDGE_STEPS[1..].iter().zip(&edge_weights) {
+        let expected = (1.0 - *step as f64 / EDGE_DISTANCE).max(0.0);
+        // Also when not finite (an output of exactly 0 or 1 beside the step).
+        if !e.is_finite() || (e - expected).abs() > tol::BLUR_EDGE_WEIGHT_ABS {
+            let (got, expected, step) = (f2(*e), f2(expected), f2(*step as f64));
+            return verdict(
+                false,
+                say!(
+                    "grade.verdict.blur_edge_weight",
+                    step = step,
+                    got = got,
+                    expected = expected
+                ),
+            );
+        }
     }
     if border.0.abs() > tol::BLUR_BORDER_ABS {
         let (x, y) = (border.1, border.2);

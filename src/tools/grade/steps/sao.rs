@@ -12,9 +12,10 @@
 //! the camera end up equal), from the lesson that teaches it on; the direction check again, for a
 //! spread not along an axis; and that far samples come from mip levels 1–3 and near ones from
 //! level 0 (the output must move when levels 1–3 are emptied, about as much as the project's does:
-//! not much less, not far more).
+//! not much less, not far more); and that fully occluded pixels reach 1 (the intensity raised a
+//! hundredfold: where the project's output is 1, the student's must be too).
 
-use super::sao_measure::{measure, mip_change, Measured, ProbeResult};
+use super::sao_measure::{measure, mip_change, saturation, Measured, ProbeResult};
 use crate::ao::AoSettings;
 use crate::i18n::Text;
 use crate::tools::grade::rig::{Rig, Verdict};
@@ -374,7 +375,12 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         Err(e) => return Verdict::grader_error(&e),
     };
     let mip_use = mip_s / mip_r.max(1e-9);
+    let (saturated, saturated_n) = match saturation(rig, params, &scenes) {
+        Ok(s) => s,
+        Err(e) => return Verdict::grader_error(&e),
+    };
     let mut metrics = metrics.clone();
+    metrics.insert("saturated_median".into(), saturated);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
@@ -395,6 +401,10 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
                 reference = reference
             ),
         );
+    }
+    if saturated_n > 0 && saturated < tol::SAO_SATURATED_MEDIAN {
+        let got = format!("{saturated:.2}");
+        return verdict(false, say!("grade.verdict.sao_not_saturated", got = got));
     }
     if aniso_s > tol::SAO_ANISOTROPY {
         return verdict(

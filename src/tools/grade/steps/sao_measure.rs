@@ -292,3 +292,38 @@ pub(super) fn mip_change(
     }
     Ok((mip_s, mip_r))
 }
+
+/// How far the output reaches where the occlusion saturates: with the intensity raised a hundred
+/// times, the median of the student's output (clamped to [0, 1], as stored) over the pixels of
+/// `scenes` where the reference's is 1 (the course clamps the occlusion with min(1.0, …): a fully
+/// occluded pixel is 1), and how many such pixels there are.
+pub(super) fn saturation(
+    rig: &Rig,
+    params: &AoSettings,
+    scenes: &[SynthScene],
+) -> Result<(f64, usize)> {
+    let strong = AoSettings {
+        intensity: 100.0 * params.intensity,
+        ..*params
+    };
+    let mut got = Vec::new();
+    for scene in scenes {
+        let depth = scene.depth();
+        let (r, s) = run_sao_pair(
+            &rig.reference,
+            &rig.student,
+            &rig.meshes,
+            &scene.camera,
+            &depth,
+            &strong,
+        )?;
+        got.extend(
+            r.iter()
+                .zip(&s)
+                .filter(|(r, _)| as_r8(**r) >= 0.999)
+                .map(|(_, s)| as_r8(*s) as f64),
+        );
+    }
+    got.sort_by(f64::total_cmp);
+    Ok((got.get(got.len() / 2).copied().unwrap_or(1.0), got.len()))
+}

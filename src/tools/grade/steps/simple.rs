@@ -329,10 +329,11 @@ pub fn simple(rig: &Rig) -> Verdict {
 
 /// The mutation probe of this step: the copy and the composite of an input the step never uses
 /// (another size and other noise), the largest difference from the project's in units of
-/// `tol::SIMPLE_ABS`.
-pub fn probe_difference(rig: &Rig) -> Result<f64> {
+/// `tol::SIMPLE_ABS` and of float noise (`tol::EQUIVALENT_REL`: the values lie in [0, 1]).
+pub fn probe_difference(rig: &Rig) -> Result<(f64, f64)> {
     let runs = render_input(rig, (36, 28), 10)?;
     let copy = worst(&runs.copy, &runs.copy_reference).0;
     let composite = worst(&runs.composite, &runs.composite_reference).0;
-    Ok(copy.max(composite) / tol::SIMPLE_ABS)
+    let d = copy.max(composite);
+    Ok((d / tol::SIMPLE_ABS, d / tol::EQUIVALENT_REL))
 }
