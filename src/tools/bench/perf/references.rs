@@ -108,7 +108,7 @@ pub fn load_model(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(Scene
     let found = path
         .canonicalize()
         .with_context(|| rust_i18n::t!("render.obj_not_found", path = path.display()))?;
-    let data = crate::gl::mesh::MeshData::load_obj(&found)?;
+    let data = crate::gl::mesh::MeshData::load_model(&found)?;
     let mut desc = SceneDesc::single_obj(&found);
     desc.output.width = cfg.width;
     desc.output.height = cfg.height;
