@@ -61,6 +61,12 @@ pub mod loc {
     /// ao/restore_back_depth.frag, ao/restore_normal.frag: main texels per AO texel along each
     /// axis (1 or 2).
     pub const BACK_DEPTH_BLOCK: i32 = 231;
+    /// ao/rtao.frag: view → world matrix; (rays, first sample, frames in the history, sequence);
+    /// the texel centre's offset from the depth's texel per metre; nodes in the BVH.
+    pub const RTAO_VIEW_TO_WORLD: i32 = 240;
+    pub const RTAO_FRAME: i32 = 241;
+    pub const RTAO_CENTRE_ERROR: i32 = 242;
+    pub const RTAO_NODE_COUNT: i32 = 243;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -80,6 +86,15 @@ pub mod binding {
     pub const SHADOW_MAP: u32 = 2;
     /// standard.frag: occlusion for AO on the ambient term only.
     pub const AO_AMBIENT: u32 = 3;
+    /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
+    pub const RTAO_HISTORY: u32 = 3;
+}
+
+/// Shader storage buffer bindings (`layout(std430, binding=N)`).
+pub mod storage {
+    /// ao/rtao.frag: `BvhNodes` and `BvhTriangles` (layout in `scene::bvh`).
+    pub const BVH_NODES: u32 = 0;
+    pub const BVH_TRIANGLES: u32 = 1;
 }
 
 /// One uniform a program declares.
@@ -307,6 +322,23 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             s("texDepth", INPUT),
             s("texBackDepth", SECOND_INPUT),
             s("texNormal", SURFACE_NORMALS),
+        ],
+    ),
+    fullscreen(
+        "ao/rtao.frag",
+        &[
+            u("aoInfo", AO_INFO),
+            u("ndcToView", NDC_TO_VIEW),
+            u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+            u("viewToWorld", RTAO_VIEW_TO_WORLD),
+            u("rtaoFrame", RTAO_FRAME),
+            u("rtaoCentreError", RTAO_CENTRE_ERROR),
+            u("rtaoNodeCount", RTAO_NODE_COUNT),
+        ],
+        &[
+            s("texDepth", INPUT),
+            s("texNormal", SURFACE_NORMALS),
+            s("texHistory", RTAO_HISTORY),
         ],
     ),
     fullscreen(

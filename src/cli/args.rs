@@ -65,6 +65,10 @@ pub struct ReferenceArgs {
     /// Folder of cached results (keyed by scene, camera, size and parameters).
     #[arg(long, default_value = "out/reference-cache")]
     pub cache: PathBuf,
+    /// Trace on the GPU through `rtao`'s shader (the same visibility, up to 1024 rays per pixel),
+    /// cached beside the CPU's results.
+    #[arg(long, conflicts_with_all = ["screen_space", "obscurance"])]
+    pub gpu: bool,
 }
 
 #[derive(Args, Debug)]
@@ -147,6 +151,13 @@ pub struct SceneArgs {
     /// or `backface`: each pixel's own, from a depth pass of the back faces.
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
+    /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
+    #[arg(long, allow_negative_numbers = true)]
+    pub rays_per_pixel: Option<u32>,
+    /// `rtao`: frames averaged while the camera and the scene stand still (1 = none; `render` draws
+    /// that many frames and writes the last).
+    #[arg(long, allow_negative_numbers = true)]
+    pub accumulate: Option<u32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
     #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
     pub composite: Option<CompositeMode>,

@@ -11,6 +11,7 @@ pub mod preprocess;
 pub mod program;
 pub mod readback;
 pub mod shader_error;
+pub mod storage_buffer;
 pub mod texture;
 
 pub use framebuffer::FramebufferObject;
@@ -19,6 +20,7 @@ pub use pass_state::PassState;
 pub use preprocess::ShaderSource;
 pub use program::ProgramObject;
 pub use shader_error::ProgramError;
+pub use storage_buffer::StorageBuffer;
 pub use texture::{Texture, TextureDesc};
 
 use std::rc::Rc;

@@ -521,6 +521,7 @@ impl Engine {
             settings: &self.ao_settings,
             back_depth: surface.back_depth.as_deref(),
             normals: surface.normals.as_deref(),
+            objects: &self.objects,
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),

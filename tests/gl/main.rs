@@ -32,6 +32,7 @@ mod reference_analytic;
 mod reference_backface;
 mod reference_screen;
 mod reference_slabs;
+mod rtao;
 mod sao_pipeline;
 mod shader_interface;
 mod surface_normals;

@@ -9,6 +9,7 @@
 mod cache;
 mod camera;
 mod depth_buffer;
+mod gpu;
 mod hash;
 mod heightfield;
 mod image;
@@ -21,6 +22,7 @@ mod trace;
 pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write_cached};
 pub use camera::{pixel_dir, view_direction};
 pub use depth_buffer::{Capture, DepthBuffer};
+pub use gpu::{load_or_render_gpu_cached, render_reference_gpu, MAX_GPU_RAYS};
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};
