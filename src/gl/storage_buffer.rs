@@ -32,7 +32,10 @@ impl StorageBuffer {
             gl.object_label(glow::BUFFER, id.0.get(), Some(label));
             gl.named_buffer_data_u8_slice(id, &data, glow::STATIC_DRAW);
             if let Some(err) = super::take_error(gl) {
-                bail!("storage buffer '{label}': {err} while uploading {} bytes", data.len());
+                bail!(
+                    "storage buffer '{label}': {err} while uploading {} bytes",
+                    data.len()
+                );
             }
             Ok(buffer)
         }

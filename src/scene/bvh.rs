@@ -267,8 +267,14 @@ impl FlatBvh {
 /// 1/d with zero components replaced by a tiny value of their sign: the slab test then never
 /// computes 0 × inf (the shader does the same).
 pub fn safe_recip(d: Vec3) -> Vec3 {
-    d.map(|c| if c.abs() < 1e-20 { 1e-20f32.copysign(c) } else { c })
-        .recip()
+    d.map(|c| {
+        if c.abs() < 1e-20 {
+            1e-20f32.copysign(c)
+        } else {
+            c
+        }
+    })
+    .recip()
 }
 
 fn box_hit(n: &FlatNode, o: Vec3, inv: Vec3, t_max: f32) -> bool {
@@ -323,7 +329,11 @@ mod tests {
         let bvh = FlatBvh::build(&tris).unwrap();
         assert_eq!(bvh.skipped, 2);
         assert_eq!(bvh.triangles.len(), 12 * 12 * 2);
-        assert!(bvh.depth > 3 && bvh.depth < MAX_STACK, "depth {}", bvh.depth);
+        assert!(
+            bvh.depth > 3 && bvh.depth < MAX_STACK,
+            "depth {}",
+            bvh.depth
+        );
         for n in &bvh.nodes {
             let inside = |p: Vec3| {
                 p.cmpge(Vec3::from(n.lo) - 1e-6).all() && p.cmple(Vec3::from(n.hi) + 1e-6).all()
@@ -381,6 +391,8 @@ mod tests {
             hits += brute as u32;
         }
         assert!(hits > 200 && hits < 1800, "{hits} hits");
-        assert!(!FlatBvh::build(&[]).unwrap().occluded(Vec3::ZERO, Vec3::X, 1.0));
+        assert!(!FlatBvh::build(&[])
+            .unwrap()
+            .occluded(Vec3::ZERO, Vec3::X, 1.0));
     }
 }

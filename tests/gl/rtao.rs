@@ -80,11 +80,7 @@ fn reference(eng: &Engine, rays: u32) -> RefImage {
 }
 
 fn rmse(a: &[f32], b: &[f32]) -> f64 {
-    let sum: f64 = a
-        .iter()
-        .zip(b)
-        .map(|(x, y)| ((x - y) as f64).powi(2))
-        .sum();
+    let sum: f64 = a.iter().zip(b).map(|(x, y)| ((x - y) as f64).powi(2)).sum();
     (sum / a.len() as f64).sqrt()
 }
 
@@ -95,16 +91,19 @@ fn rtao_bvh_layout_reads_back_through_the_glsl_declaration() {
     let mut tris = Vec::new();
     for i in 0..7 {
         let a = Vec3::new(i as f32 * 1.5, (i % 3) as f32, -(i as f32));
-        tris.push([a, a + Vec3::new(1.0, 0.2, 0.0), a + Vec3::new(0.1, 1.0, 0.5)]);
+        tris.push([
+            a,
+            a + Vec3::new(1.0, 0.2, 0.0),
+            a + Vec3::new(0.1, 1.0, 0.5),
+        ]);
     }
     let bvh = FlatBvh::build(&tris).unwrap();
     let (nodes, triangles) = (bvh.node_words(), bvh.triangle_words());
     let (n, t) = (bvh.nodes.len(), bvh.triangles.len());
     assert!(n >= 3 && t == 7);
-    let declaration = std::fs::read_to_string(
-        Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/ao/bvh.glsl"),
-    )
-    .unwrap();
+    let declaration =
+        std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("Res/ao/bvh.glsl"))
+            .unwrap();
     // Every field copied out word by word: a layout that differs from the documented one (a vec3
     // padded differently, members swapped) puts other words in other places.
     let source = format!(
@@ -128,8 +127,12 @@ fn rtao_bvh_layout_reads_back_through_the_glsl_declaration() {
            }}\n\
          }}\n"
     );
-    let out = StorageBuffer::new(gl, "layout out", &vec![0xdead_beef; nodes.len() + triangles.len()])
-        .unwrap();
+    let out = StorageBuffer::new(
+        gl,
+        "layout out",
+        &vec![0xdead_beef; nodes.len() + triangles.len()],
+    )
+    .unwrap();
     let node_buffer = StorageBuffer::new(gl, "nodes", &nodes).unwrap();
     let triangle_buffer = StorageBuffer::new(gl, "triangles", &triangles).unwrap();
     // SAFETY: a compute program built, run and deleted here.
@@ -145,7 +148,11 @@ fn rtao_bvh_layout_reads_back_through_the_glsl_declaration() {
         let program = gl.create_program().unwrap();
         gl.attach_shader(program, shader);
         gl.link_program(program);
-        assert!(gl.get_program_link_status(program), "{}", gl.get_program_info_log(program));
+        assert!(
+            gl.get_program_link_status(program),
+            "{}",
+            gl.get_program_info_log(program)
+        );
         gl.use_program(Some(program));
         node_buffer.bind(0);
         triangle_buffer.bind(1);
@@ -158,7 +165,11 @@ fn rtao_bvh_layout_reads_back_through_the_glsl_declaration() {
     }
     let got = out.read_words();
     assert_eq!(&got[..nodes.len()], &nodes[..], "nodes as GLSL reads them");
-    assert_eq!(&got[nodes.len()..], &triangles[..], "triangles as GLSL reads them");
+    assert_eq!(
+        &got[nodes.len()..],
+        &triangles[..],
+        "triangles as GLSL reads them"
+    );
 }
 
 #[test]
@@ -168,10 +179,16 @@ fn rtao_sees_an_occluder_outside_the_view() {
     let (eye, target) = (Vec3::new(0.0, 1.0, 0.0), Vec3::new(0.0, 0.0, -3.0));
     // Below and beside the camera: the view's lowest ray leaves 48° below the horizon, this box's
     // nearest face at most 53° down, so no pixel sees it; the floor at the bottom of the view is
-    // 0.6 m from that face.
-    let block = ("block", Vec3::new(-1.5, 0.0, -0.3), Vec3::new(1.5, 0.6, 0.5));
-    let open = scene(&dir, eye, target, &[]);
-    let blocked = scene(&dir, eye, target, &[block]);
+    // 0.6 m from that face, well within a 2 m radius.
+    let block = (
+        "block",
+        Vec3::new(-1.5, 0.0, -0.3),
+        Vec3::new(1.5, 0.6, 0.5),
+    );
+    let mut open = scene(&dir, eye, target, &[]);
+    let mut blocked = scene(&dir, eye, target, &[block]);
+    open.ao.radius = 2.0;
+    blocked.ao.radius = 2.0;
     let (eng_open, vis_open) = rtao(&ctx, &open, 16);
     let (mut eng_blocked, vis_blocked) = rtao(&ctx, &blocked, 16);
     let depth_blocked = eng_blocked.render_values(View::LinearDepth).unwrap();
@@ -186,18 +203,32 @@ fn rtao_sees_an_occluder_outside_the_view() {
         px.iter().sum::<f32>() / px.len() as f32
     };
     let bottom = H - 6..H;
-    let (open_bottom, blocked_bottom) = (rows(&vis_open, bottom.clone()), rows(&vis_blocked, bottom.clone()));
+    let (open_bottom, blocked_bottom) = (
+        rows(&vis_open, bottom.clone()),
+        rows(&vis_blocked, bottom.clone()),
+    );
     eprintln!("bottom rows: open {open_bottom}, with the box out of view {blocked_bottom}");
     assert!(open_bottom > 0.97, "open floor {open_bottom}");
-    assert!(blocked_bottom < open_bottom - 0.1, "{blocked_bottom} vs {open_bottom}");
+    assert!(
+        blocked_bottom < open_bottom - 0.1,
+        "{blocked_bottom} vs {open_bottom}"
+    );
     // The CPU reference agrees on how much.
     let truth = reference(&eng_blocked, 256);
     let truth_bottom = rows(&truth.ao, bottom);
-    assert!((truth_bottom - blocked_bottom).abs() < 0.04, "reference {truth_bottom}, rtao {blocked_bottom}");
+    assert!(
+        (truth_bottom - blocked_bottom).abs() < 0.04,
+        "reference {truth_bottom}, rtao {blocked_bottom}"
+    );
     // Sky pixels (none in the reference) stay exactly open.
-    let sky: Vec<usize> = (0..truth.ao.len()).filter(|&i| !truth.linear_depth[i].is_finite()).collect();
+    let sky: Vec<usize> = (0..truth.ao.len())
+        .filter(|&i| !truth.linear_depth[i].is_finite())
+        .collect();
     assert!(!sky.is_empty(), "the view should show some sky");
-    assert!(sky.iter().all(|&i| vis_blocked[i] == 1.0), "sky must stay 1");
+    assert!(
+        sky.iter().all(|&i| vis_blocked[i] == 1.0),
+        "sky must stay 1"
+    );
 }
 
 #[test]
@@ -208,7 +239,11 @@ fn rtao_sees_an_occluder_hidden_behind_another_surface() {
     // yet the floor beside the table lies within the radius of the block's sides.
     let (eye, target) = (Vec3::new(0.0, 6.0, 0.01), Vec3::ZERO);
     let top = ("top", Vec3::new(-1.0, 1.0, -1.0), Vec3::new(1.0, 1.05, 1.0));
-    let block = ("under", Vec3::new(-0.9, 0.0, -0.9), Vec3::new(0.9, 0.9, 0.9));
+    let block = (
+        "under",
+        Vec3::new(-0.9, 0.0, -0.9),
+        Vec3::new(0.9, 0.9, 0.9),
+    );
     let without = scene(&dir, eye, target, &[top]);
     let with = scene(&dir, eye, target, &[top, block]);
     let (mut eng_without, vis_without) = rtao(&ctx, &without, 16);
@@ -225,7 +260,11 @@ fn rtao_sees_an_occluder_hidden_behind_another_surface() {
             d > 5.9 && truth_without.ao[i] - truth_with.ao[i] > 0.15
         })
         .collect();
-    assert!(ring.len() > 20, "{} floor pixels near the table", ring.len());
+    assert!(
+        ring.len() > 20,
+        "{} floor pixels near the table",
+        ring.len()
+    );
     let mean = |v: &[f32]| ring.iter().map(|&i| v[i] as f64).sum::<f64>() / ring.len() as f64;
     let (with_rtao, without_rtao) = (mean(&vis_with), mean(&vis_without));
     let with_truth = common::mean_over(&truth_with, &ring);
@@ -250,7 +289,9 @@ fn rtao_error_against_the_reference_falls_as_monte_carlo_predicts() {
     );
     let (eng, _) = rtao(&ctx, &s, 1);
     let truth = reference(&eng, 2048);
-    let surface: Vec<usize> = (0..truth.ao.len()).filter(|&i| truth.linear_depth[i].is_finite()).collect();
+    let surface: Vec<usize> = (0..truth.ao.len())
+        .filter(|&i| truth.linear_depth[i].is_finite())
+        .collect();
     // One independent ray per pixel has variance v (1 - v) about the true visibility v.
     let predicted_one = (surface
         .iter()
@@ -263,7 +304,10 @@ fn rtao_error_against_the_reference_falls_as_monte_carlo_predicts() {
         .map(|&n| rmse(&rtao(&ctx, &s, n).1, &truth.ao))
         .collect();
     eprintln!("rmse at 1, 4, 64 rays: {errors:?}; predicted at 1 ray {predicted_one}");
-    assert!(predicted_one > 0.05, "the scene should have partly occluded pixels");
+    assert!(
+        predicted_one > 0.05,
+        "the scene should have partly occluded pixels"
+    );
     assert!(
         errors[0] > 0.6 * predicted_one && errors[0] < 1.4 * predicted_one,
         "1 ray: {} vs {predicted_one}",
@@ -303,7 +347,10 @@ fn rtao_gpu_reference_agrees_with_the_cpu_reference_at_1024_rays() {
     let psnr = 10.0 * (1.0 / mse).log10();
     let occluded = cpu.ao.iter().filter(|v| **v < 0.9).count();
     eprintln!("GPU vs CPU reference at 1024 rays: {psnr:.1} dB ({occluded} pixels below 0.9)");
-    assert!(occluded > 100, "the scene should have occlusion to agree on");
+    assert!(
+        occluded > 100,
+        "the scene should have occlusion to agree on"
+    );
     assert!(psnr >= 45.0, "{psnr:.1} dB");
     // Depths agree too (the GPU's come from the depth buffer).
     for (g, c) in gpu.linear_depth.iter().zip(&cpu.linear_depth) {

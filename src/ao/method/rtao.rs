@@ -5,10 +5,10 @@
 //! off screen or behind other surfaces count. The noise is smoothed by the packed edge-aware blur and,
 //! while the camera and the scene stand still, by a running mean over `accumulate` frames.
 
+use crate::ao::blur::SeparableBlur;
 use crate::ao::method_pass::{method_defines, set_common_uniforms, AoInputs, AoMethodPass};
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoResolution, AoSettings};
-use crate::ao::blur::SeparableBlur;
 use crate::gl::{Gl, PassState, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
@@ -297,7 +297,10 @@ mod tests {
         };
         let e = centre_error(&half, (100, 50), [2.0, 1.0]);
         // A texel is 2 / 100 NDC wide: a quarter is 0.005, times 2 m per NDC unit.
-        assert!((e[0] - 0.01).abs() < 1e-7 && (e[1] - 0.01).abs() < 1e-7, "{e:?}");
+        assert!(
+            (e[0] - 0.01).abs() < 1e-7 && (e[1] - 0.01).abs() < 1e-7,
+            "{e:?}"
+        );
         let full = AoSettings {
             resolution: AoResolution::Full,
             ..half

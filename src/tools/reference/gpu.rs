@@ -21,7 +21,11 @@ use std::path::Path;
 pub const MAX_GPU_RAYS: u32 = crate::ao::settings::RAYS_RANGE.1;
 
 /// Renders the reference of `scene`'s camera at its output size on the GPU.
-pub fn render_reference_gpu(res: &ResDirs, scene: &SceneDesc, params: &RefParams) -> Result<RefImage> {
+pub fn render_reference_gpu(
+    res: &ResDirs,
+    scene: &SceneDesc,
+    params: &RefParams,
+) -> Result<RefImage> {
     if params.variant != AoVariant::Visibility {
         bail!("{}", t!("reference.gpu_visibility_only"));
     }

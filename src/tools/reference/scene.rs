@@ -118,12 +118,7 @@ impl Scene {
             let v0 = t[0].as_dvec3();
             let e1 = t[1].as_dvec3() - v0;
             let e2 = t[2].as_dvec3() - v0;
-            tris.push(Tri {
-                v0,
-                e1,
-                e2,
-                normal,
-            });
+            tris.push(Tri { v0, e1, e2, normal });
             original_index.push(i);
             bvh_tris.push(Triangle {
                 v0: t[0].to_array().into(),
