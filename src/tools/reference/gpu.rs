@@ -59,7 +59,7 @@ pub fn render_reference_gpu(
         linear_depth: Vec::with_capacity(ao.len()),
     };
     for (&v, &z) in ao.iter().zip(&depth) {
-        let sky = !(z < far);
+        let sky = z.is_nan() || z >= far;
         let v = if sky { 1.0 } else { v.clamp(0.0, 1.0) };
         img.ao.push(v);
         img.std_error.push((v * (1.0 - v) / n).max(0.0).sqrt());
