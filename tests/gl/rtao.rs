@@ -352,6 +352,16 @@ fn rtao_gpu_reference_agrees_with_the_cpu_reference_at_1024_rays() {
         "the scene should have occlusion to agree on"
     );
     assert!(psnr >= 45.0, "{psnr:.1} dB");
+    // Through the cache: written once, then read back as it was rendered.
+    let cache = dir.join("cache");
+    let hash = cpu_scene.content_hash();
+    let cached = |p: &RefParams| {
+        opengl3d::tools::reference::load_or_render_gpu_cached(&cache, &res, &s, hash, p).unwrap()
+    };
+    let few = RefParams { rays: 16, ..params };
+    let first = cached(&few);
+    assert_eq!(std::fs::read_dir(&cache).unwrap().count(), 1);
+    assert_eq!(cached(&few), first);
     // Depths agree too (the GPU's come from the depth buffer).
     for (g, c) in gpu.linear_depth.iter().zip(&cpu.linear_depth) {
         assert!(g == c || (g - c).abs() < 1e-3 * c, "depth {g} vs {c}");

@@ -6,6 +6,7 @@
 //! pixel centre, so the two agree within their Monte-Carlo noise.
 
 use super::cache::{cache_key, read_cached, store_or_warn};
+use super::hash::Fnv64;
 use super::image::RefImage;
 use super::params::{AoVariant, RefParams};
 use crate::ao::{AoMethod, AoResolution, GuardBand};
@@ -68,8 +69,8 @@ pub fn render_reference_gpu(
     Ok(img)
 }
 
-/// [`render_reference_gpu`] through the reference's cache folder, under the CPU key with `-gpu`
-/// appended (same file format; the two estimators never share an entry).
+/// [`render_reference_gpu`] through the reference's cache folder: the same file format, under a key
+/// of its own (the CPU key hashed again with a GPU marker), so the two estimators never share an entry.
 pub fn load_or_render_gpu_cached(
     cache_dir: &Path,
     res: &ResDirs,
@@ -79,7 +80,10 @@ pub fn load_or_render_gpu_cached(
 ) -> Result<RefImage> {
     let cam = scene.camera.camera();
     let (w, h) = (scene.output.width, scene.output.height);
-    let key = format!("{}-gpu", cache_key(triangles_hash, &cam, w, h, params));
+    let mut hash = Fnv64::new();
+    hash.bytes(b"gpu");
+    hash.bytes(cache_key(triangles_hash, &cam, w, h, params).as_bytes());
+    let key = format!("{:016x}", hash.0);
     if let Some(img) = read_cached(cache_dir, &key) {
         if (img.width, img.height) == (w, h) {
             return Ok(img);
