@@ -367,3 +367,45 @@ fn rtao_gpu_reference_agrees_with_the_cpu_reference_at_1024_rays() {
         assert!(g == c || (g - c).abs() < 1e-3 * c, "depth {g} vs {c}");
     }
 }
+
+#[test]
+fn rtao_flags_out_of_range_are_clear_errors() {
+    common::fails_with(
+        &["render", "--method", "rtao", "--rays-per-pixel", "0"],
+        &["--rays-per-pixel 0", "1024"],
+    );
+    common::fails_with(&["render", "--accumulate", "0"], &["--accumulate 0"]);
+    common::fails_with(
+        &["reference", "--gpu", "--rays", "2000"],
+        &["--gpu", "1024"],
+    );
+    common::fails_with(&["reference", "--gpu", "--obscurance"], &["--obscurance"]);
+}
+
+#[test]
+fn rtao_stats_show_the_bvh_and_the_accumulated_frames() {
+    let out = common::temp_dir("rtao-stats").join("frame.png");
+    let o = common::run(&[
+        "render",
+        "--method",
+        "rtao",
+        "--width",
+        "32",
+        "--height",
+        "24",
+        "--accumulate",
+        "3",
+        "--stats",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", common::stderr(&o));
+    let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+    let bvh = &json["bvh"];
+    assert!(bvh["triangles"].as_u64().unwrap() > 1000, "{json}");
+    assert!(bvh["nodes"].as_u64().unwrap() > 100 && bvh["bytes"].as_u64().unwrap() > 10_000);
+    assert!(bvh["build_ms"].as_f64().unwrap() > 0.0);
+    // Built once for every frame of the still view.
+    assert_eq!(bvh["builds"].as_u64(), Some(1));
+    assert_eq!(json["accumulated_frames"].as_u64(), Some(3), "{json}");
+}
