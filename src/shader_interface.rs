@@ -65,6 +65,12 @@ pub mod loc {
     pub const BACK_DEPTH_BLOCK: i32 = 231;
     /// ao/second_layer.frag: how far (m) behind the first layer the second begins.
     pub const LAYER_SEPARATION: i32 = 232;
+    /// ao/rtao.frag: view → world matrix; (rays, first sample, frames in the history, sequence);
+    /// the texel centre's offset from the depth's texel per metre; nodes in the BVH.
+    pub const RTAO_VIEW_TO_WORLD: i32 = 240;
+    pub const RTAO_FRAME: i32 = 241;
+    pub const RTAO_CENTRE_ERROR: i32 = 242;
+    pub const RTAO_NODE_COUNT: i32 = 243;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -86,6 +92,15 @@ pub mod binding {
     pub const AO_AMBIENT: u32 = 3;
     /// ao/vbao.frag: `texSecondDepth`, the second depth layer at the AO size.
     pub const SECOND_LAYER: u32 = 3;
+    /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
+    pub const RTAO_HISTORY: u32 = 3;
+}
+
+/// Shader storage buffer bindings (`layout(std430, binding=N)`).
+pub mod storage {
+    /// ao/rtao.frag: `BvhNodes` and `BvhTriangles` (layout in `scene::bvh`).
+    pub const BVH_NODES: u32 = 0;
+    pub const BVH_TRIANGLES: u32 = 1;
 }
 
 /// One uniform a program declares.
@@ -315,6 +330,23 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             s("texBackDepth", SECOND_INPUT),
             s("texNormal", SURFACE_NORMALS),
             s("texSecondDepth", SECOND_LAYER),
+        ],
+    ),
+    fullscreen(
+        "ao/rtao.frag",
+        &[
+            u("aoInfo", AO_INFO),
+            u("ndcToView", NDC_TO_VIEW),
+            u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+            u("viewToWorld", RTAO_VIEW_TO_WORLD),
+            u("rtaoFrame", RTAO_FRAME),
+            u("rtaoCentreError", RTAO_CENTRE_ERROR),
+            u("rtaoNodeCount", RTAO_NODE_COUNT),
+        ],
+        &[
+            s("texDepth", INPUT),
+            s("texNormal", SURFACE_NORMALS),
+            s("texHistory", RTAO_HISTORY),
         ],
     ),
     fullscreen(

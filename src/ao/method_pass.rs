@@ -10,6 +10,8 @@ use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject, Texture}
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
+use crate::scene::bvh::BvhStats;
+use crate::scene::game_object::GameObject;
 use crate::shader_interface::{binding, loc};
 use anyhow::Result;
 use glow::HasContext;
@@ -28,6 +30,8 @@ pub struct AoInputs<'a> {
     pub normals: Option<&'a Texture>,
     /// Linear depth of the second depth layer at the AO size, when the settings ask for it.
     pub second_depth: Option<&'a Texture>,
+    /// The scene's objects (`rtao` traces their triangles).
+    pub objects: &'a [GameObject],
 }
 
 impl AoInputs<'_> {
@@ -66,6 +70,14 @@ pub trait AoMethodPass {
     }
     /// Drops size-dependent textures (re-created on next use).
     fn release_targets(&mut self) {}
+    /// The scene structure it traces, once built (`rtao`'s BVH).
+    fn bvh_stats(&self) -> Option<BvhStats> {
+        None
+    }
+    /// Frames averaged into its last output (`rtao` with `--accumulate`); 1 without accumulation.
+    fn accumulated_frames(&self) -> u32 {
+        1
+    }
 }
 
 /// The whole number of units (steps, directions' steps, pairs) whose `taps_per_unit` depth taps come

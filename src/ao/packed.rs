@@ -107,6 +107,11 @@ impl PackedOutput {
         Ok(())
     }
 
+    /// The (occlusion, linear depth) pair the method's pass wrote last.
+    pub fn packed_texture(&self) -> Option<Rc<Texture>> {
+        self.targets.borrow().as_ref().map(|p| p.packed.clone())
+    }
+
     pub fn textures(&self) -> Vec<Rc<Texture>> {
         self.targets
             .borrow()

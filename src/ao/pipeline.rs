@@ -4,7 +4,7 @@
 
 use super::blur::SeparableBlur;
 use super::depth_chain::DepthChain;
-use super::method::{angle_based, crytek, gtao, hbao, hemisphere, sao, sao_lesson, vbao};
+use super::method::{angle_based, crytek, gtao, hbao, hemisphere, rtao, sao, sao_lesson, vbao};
 use super::method_pass::{method_defines, AoInputs, AoMethodPass};
 use super::settings::AoResolution;
 use super::settings::{AoMethod, AoSettings};
@@ -50,6 +50,7 @@ fn build_method(
         AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
         AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
         AoMethod::Vbao => Box::new(vbao::build(gl, res, camera)?),
+        AoMethod::Rtao => Box::new(rtao::RtaoMethod::build(gl, res, camera)?),
     })
 }
 
@@ -213,6 +214,18 @@ impl AoPipeline {
     /// Runs the method's occlusion pass.
     pub fn compute(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
         self.method(method)?.compute(inputs)
+    }
+
+    /// The BVH `method` traces, once built (`rtao`), with its build time and size.
+    pub fn bvh_stats(&self, method: AoMethod) -> Option<crate::scene::bvh::BvhStats> {
+        self.methods.get(&method).and_then(|m| m.bvh_stats())
+    }
+
+    /// Frames averaged into `method`'s last output (1 without accumulation).
+    pub fn accumulated_frames(&self, method: AoMethod) -> u32 {
+        self.methods
+            .get(&method)
+            .map_or(1, |m| m.accumulated_frames())
     }
 
     /// Runs the method's blur.

@@ -24,10 +24,12 @@ pub enum AoMethod {
     Gtao,
     /// Visibility bitmask: occluders of finite thickness, sectors of equal cosine weight.
     Vbao,
+    /// Ray-traced AO: the scene's triangles in a BVH, a few cosine-weighted rays per pixel.
+    Rtao,
 }
 
 impl AoMethod {
-    pub const ALL: [AoMethod; 8] = [
+    pub const ALL: [AoMethod; 9] = [
         AoMethod::SaoLesson,
         AoMethod::Sao,
         AoMethod::Crytek,
@@ -36,6 +38,7 @@ impl AoMethod {
         AoMethod::AngleBased,
         AoMethod::Gtao,
         AoMethod::Vbao,
+        AoMethod::Rtao,
     ];
 
     pub fn name(self) -> &'static str {
@@ -48,6 +51,7 @@ impl AoMethod {
             AoMethod::AngleBased => "angle-based",
             AoMethod::Gtao => "gtao",
             AoMethod::Vbao => "vbao",
+            AoMethod::Rtao => "rtao",
         }
     }
 
@@ -306,6 +310,14 @@ pub struct AoSettings {
     /// Depth layers `vbao` marches (1 or 2): the visible surface, and the nearest one hidden at least
     /// `LAYER_SEPARATION_OF_RADIUS` × R behind it.
     pub layers: u32,
+    /// `rtao`'s rays per pixel and frame (`--rays-per-pixel`).
+    pub rays: u32,
+    /// `rtao`'s frames averaged while the camera and the scene stand still (`--accumulate`; 1 = none).
+    pub accumulate: u32,
+    /// `rtao`: each pixel's rays as one stratified lattice, the CPU reference's sampling (`reference
+    /// --gpu`), instead of a sequence that continues from frame to frame. Not a scene-file key.
+    #[serde(skip)]
+    pub stratified: bool,
 }
 
 /// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
@@ -395,6 +407,9 @@ impl Default for AoSettings {
             normals: NormalSource::Depth,
             guard_band: GuardBand::Off,
             layers: 1,
+            rays: 2,
+            accumulate: 1,
+            stratified: false,
         }
     }
 }
@@ -410,6 +425,9 @@ pub const SAMPLES_RANGE: (u32, u32) = (1, 256);
 pub const SPIRAL_TURNS_RANGE: (u32, u32) = (1, 64);
 /// Depth layers: the visible one, and one hidden behind it.
 pub const LAYERS_RANGE: (u32, u32) = (1, 2);
+/// `rtao`: rays per pixel and frame (the shader's loop bound), frames accumulated.
+pub const RAYS_RANGE: (u32, u32) = (1, 1024);
+pub const ACCUMULATE_RANGE: (u32, u32) = (1, 4096);
 /// Thickness: 0.1 mm (a sheet) to 1 km (a heightfield, as GTAO assumes).
 pub const THICKNESS_RANGE: (f32, f32) = (1e-4, 1000.0);
 
@@ -447,10 +465,12 @@ impl AoSettings {
     }
 
     /// Whether a frame needs the surface-normal pass: an engine method that reads a normal, with
-    /// `normals = "geometric"` (the lesson's SAO and Crytek's sphere read none).
+    /// `normals = "geometric"` (the lesson's SAO and Crytek's sphere read none); always for `rtao`,
+    /// whose rays leave the triangle's own plane.
     pub fn uses_surface_normals(&self) -> bool {
-        self.normals == NormalSource::Geometric
-            && !matches!(self.method, AoMethod::SaoLesson | AoMethod::Crytek)
+        self.method == AoMethod::Rtao
+            || self.normals == NormalSource::Geometric
+                && !matches!(self.method, AoMethod::SaoLesson | AoMethod::Crytek)
     }
 
     /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
@@ -501,6 +521,8 @@ impl AoSettings {
         fix_count("samples", &mut self.samples, SAMPLES_RANGE);
         fix_count("spiral_turns", &mut self.spiral_turns, SPIRAL_TURNS_RANGE);
         fix_count("layers", &mut self.layers, LAYERS_RANGE);
+        fix_count("rays", &mut self.rays, RAYS_RANGE);
+        fix_count("accumulate", &mut self.accumulate, ACCUMULATE_RANGE);
         (self, notes)
     }
 }

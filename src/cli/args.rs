@@ -71,6 +71,10 @@ pub struct ReferenceArgs {
     /// `~/.cache/opengl3d/reference`.
     #[arg(long)]
     pub cache: Option<PathBuf>,
+    /// Trace on the GPU through `rtao`'s shader (the same visibility, up to 1024 rays per pixel),
+    /// cached beside the CPU's results.
+    #[arg(long, conflicts_with_all = ["screen_space", "obscurance"])]
+    pub gpu: bool,
 }
 
 #[derive(Args, Debug)]
@@ -162,6 +166,13 @@ pub struct SceneArgs {
     /// least a tenth of the radius behind it, from one more depth pass).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
     pub layers: Option<u32>,
+    /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
+    #[arg(long, allow_negative_numbers = true)]
+    pub rays_per_pixel: Option<u32>,
+    /// `rtao`: frames averaged while the camera and the scene stand still (1 = none; `render` draws
+    /// that many frames and writes the last).
+    #[arg(long, allow_negative_numbers = true)]
+    pub accumulate: Option<u32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.
     #[arg(long, value_parser = choice(&CompositeMode::ALL, CompositeMode::name))]
     pub composite: Option<CompositeMode>,

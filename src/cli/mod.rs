@@ -178,6 +178,13 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         // first draw) and allocates the targets, which is not what a pass costs.
         write_view(&mut engine, view, &args.out)?;
     }
+    // `rtao --accumulate N`: the first N - 1 frames build up the running mean the written one ends.
+    let earlier = scene.ao.accumulate.saturating_sub(1 + args.stats as u32);
+    if scene.ao.method == crate::ao::AoMethod::Rtao {
+        for _ in 0..earlier {
+            engine.render_to_ao()?;
+        }
+    }
     engine.collect_stats = args.stats;
     write_view(&mut engine, view, &args.out)?;
     let msg = t!(
@@ -192,7 +199,15 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         eprintln!("{msg}");
         // Each pass names its clock too: a pass timed inside another falls back to the wall clock.
         let clock = crate::gl::PassClock::of_context(&ctx.gl);
-        let json = serde_json::json!({ "renderer": ctx.renderer, "clock": clock.name(), "timing": clock.description(), "passes": engine.last_stats() });
+        let method = engine.ao_settings.method;
+        let json = serde_json::json!({
+            "renderer": ctx.renderer,
+            "clock": clock.name(),
+            "timing": clock.description(),
+            "passes": engine.last_stats(),
+            "bvh": engine.ao.bvh_stats(method),
+            "accumulated_frames": engine.ao.accumulated_frames(method),
+        });
         crate::outln!("{json}");
     } else {
         crate::outln!("{msg}");
@@ -394,6 +409,14 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         } else {
             crate::tools::reference::load_or_render_screen_cached(&cache, &depth, &params)?
         }
+    } else if args.gpu {
+        crate::tools::reference::load_or_render_gpu_cached(
+            &cache,
+            res,
+            &scene,
+            bvh.content_hash(),
+            &params,
+        )?
     } else {
         load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
     };
@@ -417,6 +440,8 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             "{}, {slabs}, {normals}, {guard}",
             t!("reference.kind_screen")
         )
+    } else if args.gpu {
+        t!("reference.kind_gpu").into_owned()
     } else {
         t!("reference.kind_rays").into_owned()
     };

@@ -185,6 +185,20 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     if let Some(q) = args.quality {
         desc.ao.quality = Some(q);
     }
+    if let Some(n) = args.rays_per_pixel {
+        let (lo, hi) = crate::ao::settings::RAYS_RANGE;
+        if !(lo..=hi).contains(&n) {
+            bail!("{}", t!("render.bad_rays", n = n, max = hi));
+        }
+        desc.ao.rays = n;
+    }
+    if let Some(n) = args.accumulate {
+        let (lo, hi) = crate::ao::settings::ACCUMULATE_RANGE;
+        if !(lo..=hi).contains(&n) {
+            bail!("{}", t!("render.bad_accumulate", n = n, max = hi));
+        }
+        desc.ao.accumulate = n;
+    }
     if let Some(c) = args.composite {
         desc.ao.composite = c;
     }

@@ -14,6 +14,7 @@ pub mod program;
 pub mod readback;
 pub mod shader_error;
 pub mod shader_storage;
+pub mod storage_buffer;
 pub mod texture;
 pub mod timer;
 
@@ -23,6 +24,7 @@ pub use pass_state::PassState;
 pub use preprocess::ShaderSource;
 pub use program::ProgramObject;
 pub use shader_error::ProgramError;
+pub use storage_buffer::StorageBuffer;
 pub use texture::{Texture, TextureDesc};
 pub use timer::{PassClock, TimerQuery};
 

@@ -521,6 +521,7 @@ impl Engine {
             back_depth: surface.back_depth.as_deref(),
             normals: surface.normals.as_deref(),
             second_depth: surface.second_depth.as_deref(),
+            objects: &self.objects,
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),

@@ -1,5 +1,6 @@
 //! Scene descriptions: small TOML files in `Res/scenes/`, their checks, and the demo meshes' generator.
 
+pub mod bvh;
 mod check;
 mod desc;
 mod file;

@@ -328,6 +328,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
             back_depth: None,
             normals: None,
             second_depth: None,
+            objects: &[],
         };
         sao.compute(&inputs).unwrap();
         let occ = targets.sao_texture().read_f32(0, 1);

@@ -37,6 +37,7 @@ mod reference_analytic;
 mod reference_backface;
 mod reference_screen;
 mod reference_slabs;
+mod rtao;
 mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;

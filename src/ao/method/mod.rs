@@ -5,6 +5,7 @@ pub mod crytek;
 pub mod gtao;
 pub mod hbao;
 pub mod hemisphere;
+pub mod rtao;
 pub mod sao;
 pub mod sao_lesson;
 pub mod vbao;

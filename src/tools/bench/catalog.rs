@@ -65,7 +65,8 @@ pub fn method_by_name(name: &str) -> Result<AoMethod> {
 /// and radii (1 m when none is given). Defaults: the lesson's SAO runs the full grid LESSON_SAMPLES × LESSON_RADII; the
 /// other methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost
 /// grows with samples the same way, and the radius mostly moves their error); GTAO also runs its
-/// high and ultra presets at 1 m and 0.5 m, VBAO all four presets at both.
+/// high and ultra presets at 1 m and 0.5 m, VBAO all four presets at both; `rtao` 1/2/4 rays per
+/// pixel at 1 m and 2 rays at 0.5/2 m (its samples are rays).
 pub(crate) fn settings_for(
     method: AoMethod,
     samples: &[u32],
@@ -123,6 +124,14 @@ pub(crate) fn settings_for(
             }
             v
         }
+        // Rays per pixel and frame.
+        AoMethod::Rtao => vec![
+            Setting::new(1, 1.0),
+            Setting::new(2, 1.0),
+            Setting::new(4, 1.0),
+            Setting::new(2, 0.5),
+            Setting::new(2, 2.0),
+        ],
         _ => quick_settings(),
     }
 }

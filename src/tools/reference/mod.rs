@@ -10,6 +10,7 @@ mod cache;
 mod cache_dir;
 mod camera;
 mod depth_buffer;
+mod gpu;
 mod hash;
 mod heightfield;
 mod image;
@@ -24,6 +25,7 @@ pub use cache::{cache_key, cache_path, load_or_render_cached, read_cached, write
 pub use cache_dir::{reference_cache_dir, CACHE_ENV};
 pub use camera::{pixel_dir, view_direction};
 pub use depth_buffer::{Capture, DepthBuffer};
+pub use gpu::{load_or_render_gpu_cached, render_reference_gpu, MAX_GPU_RAYS};
 pub use image::RefImage;
 pub use params::{AoVariant, RefParams};
 pub use scene::{Hit, Scene};

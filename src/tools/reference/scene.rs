@@ -111,26 +111,14 @@ impl Scene {
         let mut original_index = Vec::with_capacity(triangles.len());
         let mut bvh_tris = Vec::with_capacity(triangles.len());
         for (i, t) in triangles.iter().enumerate() {
-            if !t.iter().all(|v| v.is_finite()) {
+            // The rule the GPU BVH shares (`scene::bvh`): no normal, no triangle.
+            let Some(normal) = crate::scene::bvh::usable_triangle(t) else {
                 continue;
-            }
+            };
             let v0 = t[0].as_dvec3();
             let e1 = t[1].as_dvec3() - v0;
             let e2 = t[2].as_dvec3() - v0;
-            let c = e1.cross(e2);
-            let len = c.length();
-            // Relative test: a sliver whose cross product is tiny compared to its edges has a
-            // normal dominated by rounding, so it is treated like a zero-area triangle.
-            let scale = e1.length_squared().max(e2.length_squared());
-            if !len.is_finite() || len <= 1e-12 * scale {
-                continue;
-            }
-            tris.push(Tri {
-                v0,
-                e1,
-                e2,
-                normal: c / len,
-            });
+            tris.push(Tri { v0, e1, e2, normal });
             original_index.push(i);
             bvh_tris.push(Triangle {
                 v0: t[0].to_array().into(),

@@ -34,6 +34,10 @@ pub fn run_setting(
 ) -> Result<Row> {
     engine.ao_settings.method = method;
     engine.ao_settings.samples = s.samples;
+    if method == AoMethod::Rtao {
+        // rtao's "samples" are its rays per pixel and frame.
+        engine.ao_settings.rays = s.samples;
+    }
     engine.ao_settings.quality = s.quality;
     engine.ao_settings.radius = s.radius;
     engine.ao_settings.enabled = true;
@@ -156,6 +160,12 @@ fn ao_views(
     for (ci, cam) in sd.cameras.iter().enumerate() {
         engine.camera = cam.camera(&sd.desc.camera);
         engine.sync_shader_constants()?;
+        // `rtao` with `[ao] accumulate = N`: the view ends N frames at this camera.
+        if engine.ao_settings.method == AoMethod::Rtao {
+            for _ in 1..engine.ao_settings.accumulate {
+                engine.render_to_ao()?;
+            }
+        }
         let v = engine.render_values(View::Ao)?;
         let (v, dw, dh) = metrics::downsample(&v, w, h, cfg.ref_scale as usize);
         let r = &sd.refs[&(ci, s.radius.to_bits())];

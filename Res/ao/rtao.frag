@@ -1,0 +1,184 @@
+#version 450
+
+// Ray-traced AO: from the surface each pixel sees (position from the linear depth, normal from the
+// surface-normal pass), a few cosine-weighted rays of length R are traced against the scene's real
+// triangles in a binary BVH (src/scene/bvh.rs documents the std430 layout). A ray blocked within R
+// counts as fully occluded, an open one as fully open: the visibility the CPU reference computes, so
+// occluders off screen and behind other surfaces count as they do there.
+//
+// Each frame takes the next rays of a low-discrepancy sequence (the R2 sequence, Roberts 2018, shifted
+// per pixel by a hash: Cranley-Patterson rotation); with accumulation the running mean of the frames so
+// far is kept in texHistory.
+
+#include "common.glsl"
+
+#include "bvh.glsl"
+
+layout(location=240) uniform mat4 viewToWorld;
+// (rays this frame, index of the frame's first sample, frames already in the history (0: none),
+// sequence: 0 = R2 over the frames, 1 = one stratified lattice of `rays` points (the GPU reference))
+layout(location=241) uniform ivec4 rtaoFrame;
+// How far (per metre of depth) the texel centre may lie across from the point the depth was taken at:
+// a quarter texel at half resolution (the depth restore keeps one texel of each 2x2 block), 0 at full.
+layout(location=242) uniform vec2 rtaoCentreError;
+// Nodes in the BVH (0: no triangles, every ray is open).
+layout(location=243) uniform int rtaoNodeCount;
+layout(binding=3) uniform sampler2D texHistory; // (mean occlusion, depth) of the frames so far
+
+// The shader's stack; src/scene/bvh.rs refuses deeper trees (MAX_STACK).
+#define BVH_STACK 64
+
+vec3 SafeRecip(vec3 d) {
+  // Zero components become a tiny value of their sign, so the slab test never meets 0 * inf.
+  vec3 tiny = mix(vec3(-1e-20), vec3(1e-20), greaterThanEqual(d, vec3(0.0)));
+  return 1.0 / mix(d, tiny, lessThan(abs(d), vec3(1e-20)));
+}
+
+bool BoxHit(uint i, vec3 o, vec3 invD, float tMax) {
+  vec3 t0 = (nodes[i].lo - o) * invD;
+  vec3 t1 = (nodes[i].hi - o) * invD;
+  vec3 tNear = min(t0, t1);
+  vec3 tFar = max(t0, t1);
+  float near = max(max(tNear.x, tNear.y), max(tNear.z, 0.0));
+  float far = min(min(tFar.x, tFar.y), min(tFar.z, tMax));
+  return near <= far;
+}
+
+// Moller-Trumbore with a small edge tolerance, so rays cannot slip between two triangles that share an
+// edge.
+bool TriangleHit(uint i, vec3 o, vec3 d, float tMax) {
+  vec3 v0 = triangles[i].v0.xyz;
+  vec3 e1 = triangles[i].e1.xyz;
+  vec3 e2 = triangles[i].e2.xyz;
+  vec3 p = cross(d, e2);
+  float det = dot(e1, p);
+  if (det == 0.0) {
+    return false;
+  }
+  float inv = 1.0 / det;
+  vec3 s = o - v0;
+  float u = dot(s, p) * inv;
+  vec3 q = cross(s, e1);
+  float v = dot(d, q) * inv;
+  float t = dot(e2, q) * inv;
+  const float EPS = 1e-6;
+  return u >= -EPS && v >= -EPS && u + v <= 1.0 + EPS && t >= 0.0 && t <= tMax;
+}
+
+// Any hit within tMax along unit d: AO needs only "blocked or not", so the first triangle hit ends
+// the walk. Both children are tested before descending; the far one waits on the stack.
+bool Occluded(vec3 o, vec3 d, float tMax) {
+  if (rtaoNodeCount <= 0) {
+    return false;
+  }
+  vec3 invD = SafeRecip(d);
+  if (!BoxHit(0u, o, invD, tMax)) {
+    return false;
+  }
+  uint stack[BVH_STACK];
+  int top = 0;
+  uint node = 0u;
+  for (;;) {
+    uint count = nodes[node].count;
+    uint first = nodes[node].first;
+    if (count == 0u) {
+      bool hitA = BoxHit(first, o, invD, tMax);
+      bool hitB = BoxHit(first + 1u, o, invD, tMax);
+      if (hitA && hitB) {
+        stack[top++] = first + 1u;
+        node = first;
+        continue;
+      }
+      if (hitA || hitB) {
+        node = hitA ? first : first + 1u;
+        continue;
+      }
+    } else {
+      for (uint t = first; t < first + count; ++t) {
+        if (TriangleHit(t, o, d, tMax)) {
+          return true;
+        }
+      }
+    }
+    if (top == 0) {
+      return false;
+    }
+    node = stack[--top];
+  }
+}
+
+// Orthonormal tangent frame of a unit normal (Duff et al. 2017), as the CPU reference builds it.
+void TangentFrame(vec3 n, out vec3 t, out vec3 b) {
+  float s = n.z >= 0.0 ? 1.0 : -1.0;
+  float a = -1.0 / (s + n.z);
+  float c = n.x * n.y * a;
+  t = vec3(1.0 + s * n.x * n.x * a, s * c, -s * n.x);
+  b = vec3(c, s + n.y * n.y * a, -n.y);
+}
+
+// A point of the unit square to a cosine-weighted direction (Malley's method), as the reference.
+vec3 CosineDirection(vec3 n, vec3 t, vec3 b, vec2 uv) {
+  float r = sqrt(uv.x);
+  float phi = 2.0 * PI * uv.y;
+  return t * (r * cos(phi)) + b * (r * sin(phi)) + n * sqrt(max(1.0 - uv.x, 0.0));
+}
+
+// A 32-bit integer hash (the PCG output permutation, Jarzynski and Olano 2020).
+uint Hash(uint v) {
+  uint state = v * 747796405u + 2891336453u;
+  uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
+  return (word >> 22u) ^ word;
+}
+
+const float TO_UNIT = 1.0 / 4294967296.0;
+
+// The i-th point: R2 (golden ratio of the plane) or the lattice of n points, shifted by `shift`
+// (fixed point, so the fraction stays exact however far the sequence runs).
+vec2 SamplePoint(uint i, uint n, uvec2 shift) {
+  if (rtaoFrame.w == 1) {
+    uint u = uint((float(i) + 0.5) / float(n) * 4294967296.0);
+    return vec2(u + shift.x, i * 2654435769u + shift.y) * TO_UNIT;
+  }
+  return vec2(i * 3242174889u + shift.x, i * 2447445414u + shift.y) * TO_UNIT;
+}
+
+void main()
+{
+  ivec2 pix = ivec2(gl_FragCoord.xy);
+  float z = TexelDepth(pix);
+  if (IsSky(z)) {
+    WriteOcclusion(0.0, z);
+    return;
+  }
+  vec3 P = TexelPos(pix);
+  vec3 n = SurfaceNormal(pix, P);
+  // The reference's offset, 1e-4 of the distance (at least 1e-4 m), plus how far the texel centre
+  // can sit below the triangle's plane at half resolution.
+  float eps = 1e-4 * max(1.0, length(P)) + z * dot(abs(n.xy), rtaoCentreError);
+  vec3 origin = (viewToWorld * vec4(P + n * eps, 1.0)).xyz;
+  vec3 nWorld = normalize(mat3(viewToWorld) * n);
+  vec3 t, b;
+  TangentFrame(nWorld, t, b);
+
+  uint rays = uint(max(rtaoFrame.x, 1));
+  uint first = uint(max(rtaoFrame.y, 0));
+  uint h = Hash(uint(pix.x) + Hash(uint(pix.y)));
+  uvec2 shift = uvec2(h, Hash(h));
+  int blocked = 0;
+  for (uint k = 0u; k < rays; ++k) {
+    vec2 uv = SamplePoint(first + k, rays, shift);
+    vec3 d = CosineDirection(nWorld, t, b, uv);
+    blocked += Occluded(origin, normalize(d), AO_RADIUS) ? 1 : 0;
+  }
+  float occlusion = float(blocked) / float(rays);
+  int history = rtaoFrame.z;
+  if (history > 0) {
+    // The history holds what went out, intensity applied: undone here (intensity 5 is the identity).
+    float previous = texelFetch(texHistory, pix, 0).x;
+    if (AO_INTENSITY > 0.0) {
+      previous = 1.0 - pow(clamp(1.0 - previous, 1e-6, 1.0), 5.0 / AO_INTENSITY);
+    }
+    occlusion = mix(previous, occlusion, 1.0 / float(history + 1));
+  }
+  WriteOcclusion(ApplyIntensity(occlusion), z);
+}
