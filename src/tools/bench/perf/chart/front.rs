@@ -69,7 +69,7 @@ pub fn pareto_front(points: &[(f64, f64)]) -> Vec<usize> {
 
 /// Colours of the methods the engine has (Tableau 10), fixed so that a method looks the same on
 /// every chart whatever else is on it.
-const METHOD_COLOURS: [(&str, RGBColor); 8] = [
+const METHOD_COLOURS: [(&str, RGBColor); 9] = [
     ("sao-lesson", RGBColor(31, 119, 180)),
     ("sao", RGBColor(255, 127, 14)),
     ("crytek", RGBColor(44, 160, 44)),
@@ -78,12 +78,13 @@ const METHOD_COLOURS: [(&str, RGBColor); 8] = [
     ("angle-based", RGBColor(140, 86, 75)),
     ("gtao", RGBColor(227, 119, 194)),
     ("vbao", RGBColor(23, 190, 207)),
+    ("rtao", RGBColor(188, 189, 34)),
 ];
 
 /// For a method the table does not name: picked by a hash of the name, so still the same on
 /// every chart.
 const OTHER_COLOURS: [RGBColor; 4] = [
-    RGBColor(188, 189, 34),
+    RGBColor(255, 187, 120),
     RGBColor(127, 127, 127),
     RGBColor(0, 0, 128),
     RGBColor(128, 0, 64),
