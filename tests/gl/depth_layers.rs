@@ -90,19 +90,7 @@ fn a_second_layer_finds_the_occluder_hidden_under_a_plate() {
         progress: false,
     };
     let truth = load_or_render_cached(&temp_dir("layers-cache"), &scene, &cam, W, H, &params);
-    // Floor pixels beside the hidden block's face, away from the view's borders (no off-screen
-    // occluders: the layers are the only difference).
-    let strip: Vec<usize> = surface_points(&truth, &cam)
-        .into_iter()
-        .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 0.05 && p.x < 0.4 && p.z.abs() < 0.5)
-        .map(|(i, _)| i)
-        .collect();
-    assert!(
-        strip.len() > 100,
-        "{} floor pixels in the strip",
-        strip.len()
-    );
-    let mean = |v: &[f32]| strip.iter().map(|&i| v[i] as f64).sum::<f64>() / strip.len() as f64;
+    let mean = strip_mean(surface_points(&truth, &cam));
     let (want, one, two) = (mean(&truth.ao), mean(&visibility[0]), mean(&visibility[1]));
     // The truth: a wall 0.9 m high beside the strip shades it well below open sky.
     assert!(want < 0.8, "ray-traced visibility {want}");
@@ -168,17 +156,7 @@ fn the_screen_space_ceiling_with_two_layers_sees_the_hidden_block_too() {
     };
     let ceiling_one = render_screen_space(&one, &params).unwrap();
     let ceiling_two = render_screen_space(&two, &params).unwrap();
-    let strip: Vec<usize> = surface_points_of(&one, &cam)
-        .into_iter()
-        .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 0.05 && p.x < 0.4 && p.z.abs() < 0.5)
-        .map(|(i, _)| i)
-        .collect();
-    assert!(
-        strip.len() > 100,
-        "{} floor pixels in the strip",
-        strip.len()
-    );
-    let mean = |v: &[f32]| strip.iter().map(|&i| v[i] as f64).sum::<f64>() / strip.len() as f64;
+    let mean = strip_mean(surface_points_of(&one, &cam));
     let (a, b) = (mean(&ceiling_one.ao), mean(&ceiling_two.ao));
     assert!(
         a > 0.95,
@@ -203,4 +181,20 @@ fn surface_points_of(buf: &DepthBuffer, cam: &opengl3d::math::Camera) -> Vec<(us
         }
     }
     out
+}
+
+/// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
+/// no off-screen occluder matters) of an image with these pixels' world points.
+fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
+    let strip: Vec<usize> = points
+        .into_iter()
+        .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 0.05 && p.x < 0.4 && p.z.abs() < 0.5)
+        .map(|(i, _)| i)
+        .collect();
+    assert!(
+        strip.len() > 100,
+        "{} floor pixels in the strip",
+        strip.len()
+    );
+    move |v: &[f32]| strip.iter().map(|&i| v[i] as f64).sum::<f64>() / strip.len() as f64
 }

@@ -2,10 +2,12 @@
 //! main-size input to the AO buffers' size, keeping for each AO texel the value behind the texel of its
 //! block whose front depth is nearest (the texel the depth restore keeps).
 
-use crate::gl::{FramebufferObject, ProgramObject, Texture};
+use crate::ao::blur::half_size_target;
+use crate::gl::{FramebufferObject, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
 use crate::shader_interface::{binding, loc};
 use anyhow::{anyhow, Result};
+use std::cell::RefCell;
 use std::rc::Rc;
 
 /// Runs `program` (`ao/restore_back_depth.frag` or `ao/restore_normal.frag`) from `input` and the
@@ -35,4 +37,106 @@ pub fn restore_at_ao_size(
         .color_texture()
         .cloned()
         .ok_or_else(|| anyhow!("the AO-size target has no colour texture"))
+}
+
+/// The targets of a depth pass over the geometry whose result is restored to the AO size (the back
+/// faces, the second depth layer): a main-size depth buffer and its linear depth at the AO size,
+/// made again when the sizes or the depth format change.
+struct LayerTargets {
+    depth: FramebufferObject,
+    linear: FramebufferObject,
+    key: ((u32, u32), (u32, u32), u32),
+}
+
+/// A depth pass's targets, created on first use.
+pub struct DepthLayer {
+    name: &'static str,
+    targets: RefCell<Option<LayerTargets>>,
+}
+
+impl DepthLayer {
+    /// `name` labels the GL objects ("back-face", "second layer").
+    pub fn new(name: &'static str) -> DepthLayer {
+        DepthLayer {
+            name,
+            targets: RefCell::new(None),
+        }
+    }
+
+    /// Binds the main-size depth target (made for this frame's sizes), cleared to the far value;
+    /// the caller then sets its state and draws.
+    pub fn begin(&self, f: &Frame, ao_size: (u32, u32)) -> Result<()> {
+        let format = f.depth_mode.internal_format();
+        let key = (f.size, ao_size, format);
+        let mut slot = self.targets.borrow_mut();
+        if slot.as_ref().map(|t| t.key) != Some(key) {
+            *slot = None;
+            let (w, h) = f.size;
+            let label = format!("FBO({} depth)", self.name);
+            let depth = Rc::new(Texture::new(
+                f.gl,
+                TextureDesc::target(&label, w, h, format).compare(false),
+            )?);
+            let label = format!("FBO({} linear depth)", self.name);
+            *slot = Some(LayerTargets {
+                depth: FramebufferObject::new(f.gl, None, Some(depth), 0, 0)?,
+                linear: half_size_target(f.gl, &label, ao_size, glow::R32F)?,
+                key,
+            });
+        }
+        let t = slot.as_ref().expect("created above");
+        t.depth.bind();
+        f.apply(f.scene_depth_state(true));
+        // SAFETY: clears of the bound framebuffer.
+        unsafe {
+            use glow::HasContext;
+            f.gl.clear_depth_f32(f.depth_mode.clear_value());
+            f.gl.clear(glow::DEPTH_BUFFER_BIT);
+        }
+        Ok(())
+    }
+
+    /// After the draw: the linear depth at the AO size, behind the texels the front restore keeps
+    /// (`front_depth`: the main depth buffer), through `restore` (`ao/restore_back_depth.frag`).
+    pub fn finish(
+        &self,
+        f: &Frame,
+        restore: &ProgramObject,
+        front_depth: &Texture,
+    ) -> Result<Rc<Texture>> {
+        f.apply(PassState::FULLSCREEN);
+        let slot = self.targets.borrow();
+        let t = slot
+            .as_ref()
+            .ok_or_else(|| anyhow!("{} pass finished before it began", self.name))?;
+        let depth = t
+            .depth
+            .depth_texture()
+            .ok_or_else(|| anyhow!("the {} FBO has no depth texture", self.name))?;
+        restore_at_ao_size(f, restore, &t.linear, depth, front_depth)
+    }
+
+    /// The linear depth at the AO size of the last frame that ran the pass.
+    pub fn linear_depth(&self) -> Option<Rc<Texture>> {
+        let slot = self.targets.borrow();
+        slot.as_ref()
+            .and_then(|t| t.linear.color_texture().cloned())
+    }
+
+    pub fn textures(&self) -> Vec<Rc<Texture>> {
+        let slot = self.targets.borrow();
+        let Some(t) = slot.as_ref() else {
+            return Vec::new();
+        };
+        t.depth
+            .depth_texture()
+            .into_iter()
+            .chain(t.linear.color_texture())
+            .cloned()
+            .collect()
+    }
+
+    pub fn release_targets(&self) {
+        *self.targets.borrow_mut() = None;
+    }
 }
