@@ -290,3 +290,53 @@ fn a_missing_or_empty_class_is_an_error_naming_it() {
         "{stderr}"
     );
 }
+
+#[test]
+fn an_interrupted_grader_leaves_no_private_folder_behind() {
+    let class = temp_dir("grade-class-interrupted");
+    student(&class, "dan", &["sao-endless-loop"]);
+    student(&class, "ada", &CORRECT);
+    // The grader's private folders go under TMPDIR: a folder of this test's own, watched until one
+    // appears, then the grader is told to stop.
+    let tmp = temp_dir("grade-class-interrupted-tmp");
+    let report = temp_dir("grade-class-interrupted-report");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args(["grade", "--class"])
+        .arg(&class)
+        .args(["--timeout", "60", "--out", report.to_str().unwrap()])
+        .env("TMPDIR", &tmp)
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .spawn()
+        .expect("run opengl3d");
+    let ours = |tmp: &Path| -> Vec<PathBuf> {
+        std::fs::read_dir(tmp)
+            .unwrap()
+            .map(|e| e.unwrap().path())
+            .filter(|p| {
+                p.file_name()
+                    .unwrap()
+                    .to_string_lossy()
+                    .starts_with("opengl3d-")
+            })
+            .collect()
+    };
+    let start = std::time::Instant::now();
+    while ours(&tmp).is_empty() {
+        assert!(
+            start.elapsed().as_secs() < 120,
+            "no private folder appeared in {}",
+            tmp.display()
+        );
+        assert!(
+            child.try_wait().unwrap().is_none(),
+            "the grader ended early"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    // SAFETY: a signal to the child this test started and has not reaped.
+    assert_eq!(unsafe { libc::kill(child.id() as i32, libc::SIGTERM) }, 0);
+    let status = child.wait().unwrap();
+    assert_eq!(status.code(), Some(130), "{status:?}");
+    assert_eq!(ours(&tmp), Vec::<PathBuf>::new(), "left behind");
+}

@@ -130,12 +130,14 @@ impl Unpacked {
             std::fs::remove_dir_all(&dir)?;
         }
         std::fs::create_dir_all(&dir)?;
+        super::interrupt::register(&dir);
         Ok(Unpacked(dir))
     }
 }
 
 impl Drop for Unpacked {
     fn drop(&mut self) {
+        super::interrupt::unregister(&self.0);
         // The verdicts stand whatever happens to the copy: a folder left behind is only reported.
         match std::fs::remove_dir_all(&self.0) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {

@@ -62,6 +62,7 @@ mod child;
 mod class;
 mod class_report;
 mod interface;
+mod interrupt;
 mod measure;
 mod mutate;
 mod mutation_probe;

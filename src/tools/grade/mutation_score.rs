@@ -142,6 +142,7 @@ struct Scratch(PathBuf);
 
 impl Drop for Scratch {
     fn drop(&mut self) {
+        super::interrupt::unregister(&self.0);
         if let Err(e) = std::fs::remove_dir_all(&self.0) {
             if e.kind() != std::io::ErrorKind::NotFound {
                 eprintln!("warning: cannot remove {}: {e}", self.0.display());
@@ -158,6 +159,7 @@ fn scratch() -> Result<Scratch> {
     let dir = std::env::temp_dir().join(format!("opengl3d-mutants-{}-{nanos}", std::process::id()));
     std::fs::create_dir_all(&dir)
         .with_context(|| format!("cannot create folder {}", dir.display()))?;
+    super::interrupt::register(&dir);
     Ok(Scratch(dir))
 }
 

@@ -18,6 +18,7 @@ struct WorkDir(PathBuf);
 
 impl Drop for WorkDir {
     fn drop(&mut self) {
+        super::interrupt::unregister(&self.0);
         // The verdicts stand whatever happens to the copies: a folder left behind is only reported.
         match std::fs::remove_dir_all(&self.0) {
             Err(e) if e.kind() != std::io::ErrorKind::NotFound => {
@@ -42,6 +43,7 @@ fn work_dir() -> Result<WorkDir> {
         std::env::temp_dir().join(format!("opengl3d-grade-{}-{n}-{nanos}", std::process::id()));
     std::fs::create_dir_all(&work)
         .with_context(|| format!("cannot create folder {}", work.display()))?;
+    super::interrupt::register(&work);
     Ok(WorkDir(work))
 }
 
