@@ -296,8 +296,8 @@ fn an_interrupted_grader_leaves_no_private_folder_behind() {
     let class = temp_dir("grade-class-interrupted");
     student(&class, "dan", &["sao-endless-loop"]);
     student(&class, "ada", &CORRECT);
-    // The grader's private folders go under TMPDIR: a folder of this test's own, watched until one
-    // appears, then the grader is told to stop.
+    // The grader's private folders go under TMPDIR: a folder of this test's own, watched until the
+    // steps are at work in one, then the grader is told to stop.
     let tmp = temp_dir("grade-class-interrupted-tmp");
     let report = temp_dir("grade-class-interrupted-report");
     let mut child = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
@@ -321,8 +321,14 @@ fn an_interrupted_grader_leaves_no_private_folder_behind() {
             })
             .collect()
     };
+    // Mid-grading: a private folder holding the steps' copies, the steps running.
+    let busy = |tmp: &Path| {
+        ours(tmp)
+            .iter()
+            .any(|d| std::fs::read_dir(d).is_ok_and(|mut e| e.next().is_some()))
+    };
     let start = std::time::Instant::now();
-    while ours(&tmp).is_empty() {
+    while !busy(&tmp) {
         assert!(
             start.elapsed().as_secs() < 120,
             "no private folder appeared in {}",

@@ -23,6 +23,13 @@ pub struct Child {
     stderr: Option<Drain>,
 }
 
+impl Drop for Child {
+    fn drop(&mut self) {
+        // Reaped (or about to be dropped unreaped, as after an error): no longer one to kill.
+        super::interrupt::unregister_group(self.child.id());
+    }
+}
+
 fn drain<R: Read + Send + 'static>(r: Option<R>) -> Option<Drain> {
     r.map(|mut r| {
         std::thread::spawn(move || {
@@ -121,6 +128,7 @@ impl Child {
             cmd.pre_exec(move || confine_step(grader));
         }
         let mut child = cmd.spawn()?;
+        super::interrupt::register_group(child.id());
         let stdout = drain(child.stdout.take());
         let stderr = drain(child.stderr.take());
         Ok(Child {

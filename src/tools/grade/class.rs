@@ -129,8 +129,8 @@ impl Unpacked {
         if dir.exists() {
             std::fs::remove_dir_all(&dir)?;
         }
-        std::fs::create_dir_all(&dir)?;
         super::interrupt::register(&dir);
+        std::fs::create_dir_all(&dir)?;
         Ok(Unpacked(dir))
     }
 }

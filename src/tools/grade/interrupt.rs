@@ -1,41 +1,62 @@
 //! The grader's private folders outlive neither a normal exit (their owners remove them on drop) nor
 //! an interruption: a signal (SIGINT, SIGTERM, SIGHUP, through the `ctrlc` crate's handler thread)
-//! removes every folder still registered and ends the grader with status 130. Its step processes die
-//! with it (they ask the kernel for that, `child.rs`).
+//! kills the step processes still running (they would write into the folders again), removes every
+//! folder registered, and ends the grader with status 130.
 
 use std::path::{Path, PathBuf};
-use std::sync::{Mutex, Once};
+use std::sync::{Mutex, MutexGuard, Once};
 
-/// Folders to remove if the grader is interrupted.
+/// Folders to remove if the grader is interrupted. Registered before they are created, so that
+/// none exists unregistered; the handler keeps the lock until the process ends, so that no thread
+/// registers (and then creates) another one meanwhile.
 static FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// Process groups of the running step processes (each step leads its own group).
+static GROUPS: Mutex<Vec<i32>> = Mutex::new(Vec::new());
 
 /// The status an interrupted grader exits with (128 + SIGINT, as shells report Ctrl-C).
 pub const INTERRUPTED_STATUS: i32 = 130;
 
-/// Registers `dir` for removal on interruption, installing the handler on first use.
-pub fn register(dir: &Path) {
+fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
+    m.lock().unwrap_or_else(|e| e.into_inner())
+}
+
+fn install() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
         // Another handler already set (an embedding program's) keeps its own behaviour: then the
-        // folders are only removed on drop, as before.
+        // folders are only removed on drop.
         let _ = ctrlc::set_handler(|| {
-            let folders = std::mem::take(&mut *FOLDERS.lock().unwrap_or_else(|e| e.into_inner()));
-            for dir in folders {
-                let _ = std::fs::remove_dir_all(&dir);
+            let folders = lock(&FOLDERS);
+            for &group in lock(&GROUPS).iter() {
+                // SAFETY: a plain system call; the group's leader is a step not yet reaped.
+                unsafe { libc::kill(-group, libc::SIGKILL) };
+            }
+            for dir in folders.iter() {
+                let _ = std::fs::remove_dir_all(dir);
             }
             std::process::exit(INTERRUPTED_STATUS);
         });
     });
-    FOLDERS
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .push(dir.to_path_buf());
+}
+
+/// Registers `dir` for removal on interruption (call it before creating the folder).
+pub fn register(dir: &Path) {
+    install();
+    lock(&FOLDERS).push(dir.to_path_buf());
 }
 
 /// Forgets `dir` (its owner removed it).
 pub fn unregister(dir: &Path) {
-    FOLDERS
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .retain(|d| d != dir);
+    lock(&FOLDERS).retain(|d| d != dir);
+}
+
+/// Registers the process group a step leads, to be killed on interruption.
+pub fn register_group(leader: u32) {
+    install();
+    lock(&GROUPS).push(leader as i32);
+}
+
+/// Forgets a step's group (the step was reaped).
+pub fn unregister_group(leader: u32) {
+    lock(&GROUPS).retain(|g| *g != leader as i32);
 }

@@ -41,9 +41,9 @@ fn work_dir() -> Result<WorkDir> {
         .unwrap_or(0);
     let work =
         std::env::temp_dir().join(format!("opengl3d-grade-{}-{n}-{nanos}", std::process::id()));
+    super::interrupt::register(&work);
     std::fs::create_dir_all(&work)
         .with_context(|| format!("cannot create folder {}", work.display()))?;
-    super::interrupt::register(&work);
     Ok(WorkDir(work))
 }
 
