@@ -202,12 +202,13 @@ pub fn load_or_render_screen_cached(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::super::heightfield::EdgeFamily;
     use super::*;
     use glam::DVec3;
 
-    fn buffer(w: u32, h: u32, f: impl Fn(u32, u32) -> f32) -> DepthBuffer {
+    /// A heightfield buffer of `w` × `h` with depth `f(x, y)`, 60° field of view.
+    pub(crate) fn buffer(w: u32, h: u32, f: impl Fn(u32, u32) -> f32) -> DepthBuffer {
         DepthBuffer {
             width: w,
             height: h,

@@ -145,24 +145,12 @@ pub fn load_or_render_screen_box_cached(
 mod tests {
     use super::*;
     use crate::tools::reference::render_screen_space;
+    use crate::tools::reference::screen::tests::buffer;
 
     /// A step: depth 3 m left of column `edge`, 5 m right of it (a wall's edge in front of a
     /// farther one), infinitely thick.
     fn step(w: u32, h: u32, edge: u32) -> DepthBuffer {
-        DepthBuffer {
-            width: w,
-            height: h,
-            linear_depth: (0..h)
-                .flat_map(|_| (0..w).map(move |x| if x < edge { 3.0 } else { 5.0 }))
-                .collect(),
-            fov_y_deg: 60.0,
-            near: 0.1,
-            thickness: f32::INFINITY,
-            back_depth: None,
-            normals: None,
-            second_layer: None,
-            guard_band: 0,
-        }
+        buffer(w, h, |x, _| if x < edge { 3.0 } else { 5.0 })
     }
 
     fn params(rays: u32) -> RefParams {
