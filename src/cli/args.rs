@@ -37,6 +37,13 @@ pub struct LangArgs {
     pub lang: Option<Lang>,
 }
 
+/// `--surface` of the screen-space reference.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SurfaceArg {
+    Triangles,
+    Patches,
+}
+
 #[derive(Args, Debug)]
 pub struct ReferenceArgs {
     /// Scene flags; `--radius` is the ray length (m): a ray that hits nothing within it counts as
@@ -63,6 +70,11 @@ pub struct ReferenceArgs {
     /// scene's size.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub supersample: u32,
+    /// With --screen-space: how the surface is rebuilt between pixel centres: `triangles` (the
+    /// surface `vbao`'s taps rebuild: the ceiling of that method) or `patches` (each pixel's
+    /// plane over its footprint, slabs to the exact back face: what the depth buffer knows).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Triangles)]
+    pub surface: SurfaceArg,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]
     pub out: PathBuf,

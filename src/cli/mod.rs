@@ -10,6 +10,7 @@ mod usage_errors;
 
 pub use args::{
     parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, RenderView, SceneArgs,
+    SurfaceArg,
     WindowArgs,
 };
 pub use output::{write_view, OutFormat, PNG_OR_PFM};
@@ -386,6 +387,9 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         crate::ao::GuardBand::Pixels(p) => p,
         band => crate::ao::guard_band::guard_band_pixels(band, &cam, (w, h), radius),
     };
+    if args.surface != SurfaceArg::Triangles && !args.screen_space {
+        bail!("--surface applies to the screen-space reference: add --screen-space")
+    }
     if args.supersample > 1 && !args.screen_space {
         bail!("--supersample applies to the screen-space reference: add --screen-space")
     }
@@ -402,8 +406,12 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             normals: scene.ao.normals == crate::ao::NormalSource::Geometric,
             second_layer: (scene.ao.layers >= 2).then(|| scene.ao.layer_separation_metres()),
         };
-        let depth =
+        let mut depth =
             DepthBuffer::capture(&mut engine, guard_px * n, what)?.with_thickness(thickness);
+        depth.surface = match args.surface {
+            SurfaceArg::Triangles => crate::tools::reference::Surface::Triangles,
+            SurfaceArg::Patches => crate::tools::reference::Surface::Patches,
+        };
         if n > 1 {
             crate::tools::reference::load_or_render_screen_box_cached(&cache, &depth, n, &params)?
         } else {

@@ -56,6 +56,22 @@ pub struct DepthBuffer {
     /// Pixels on each side that lie outside the visible image: they can occlude, but the
     /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
     pub guard_band: u32,
+    /// How the surface is rebuilt between pixel centres (see the `heightfield` module).
+    pub surface: Surface,
+}
+
+/// How the screen-space reference rebuilds the surface from the pixels.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Surface {
+    /// Two triangles per 2×2 cell of pixel centres, a triangle solid only where its three pixels'
+    /// slabs overlap, back faces never closer than the set thickness: the surface `vbao` and its
+    /// taps rebuild, so the reference is the ceiling of that method.
+    #[default]
+    Triangles,
+    /// Each pixel's footprint holds the plane through its centre with its normal, solid from
+    /// there to its back face exactly (the set thickness where it has none): what the buffer
+    /// knows, rebuilt with no connectivity rule and no minimum thickness.
+    Patches,
 }
 
 impl DepthBuffer {
@@ -163,6 +179,7 @@ impl DepthBuffer {
             normals: None,
             second_layer: None,
             guard_band: 0,
+            surface: Surface::Triangles,
         }
     }
 
@@ -203,6 +220,7 @@ impl DepthBuffer {
             normals: None,
             second_layer: None,
             guard_band: 0,
+            surface: Surface::Triangles,
         };
         buf.validate()?;
         Ok(buf)
@@ -358,6 +376,9 @@ impl DepthBuffer {
             for d in second {
                 h.f32(*d);
             }
+        }
+        if self.surface == Surface::Patches {
+            h.bytes(b"planar patches");
         }
         if let Some(normals) = &self.normals {
             h.bytes(b"surface normals");

@@ -28,7 +28,8 @@
 
 use glam::DVec3;
 
-use super::depth_buffer::DepthBuffer;
+use super::depth_buffer::{DepthBuffer, Surface};
+use super::patches::Patches;
 
 /// Inverse depths of the buffer and its projection, in f64.
 pub(crate) struct Heightfield {
@@ -49,6 +50,12 @@ pub(crate) struct Heightfield {
     normals: Option<Vec<DVec3>>,
     /// Distance from the eye beyond which no solid point lies (for unbounded rays).
     max_dist: f64,
+    /// Each pixel's plane, for [`Surface::Patches`]; `None`: the triangulated surface.
+    patches: Option<Patches>,
+    /// Grid coordinates covered by the surface: pixel centres for the triangles, whole pixels for
+    /// the patches.
+    lo: f64,
+    hi: (f64, f64),
 }
 
 impl Heightfield {
@@ -74,10 +81,11 @@ impl Heightfield {
             .filter(|d| d.is_finite() && **d > 0.0)
             .fold(0.0f64, |m, d| m.max(*d as f64));
         let thickness = buf.thickness as f64;
+        let patched = buf.surface == Surface::Patches;
         let back = buf
             .back_depth
             .as_ref()
-            .map(|b| BackSurface::new(&buf.linear_depth, b, thickness));
+            .map(|b| BackSurface::new(&buf.linear_depth, b, thickness, patched));
         // With back faces, the deepest solid point is the deepest back (a fallback slab's included).
         let max_depth = match &back {
             Some(b) => max_depth.max(b.max_depth),
@@ -85,7 +93,10 @@ impl Heightfield {
         };
         // An on-screen point at distance ℓ from the eye has a depth of at least ℓ / k.
         let k = (1.0 + sx * sx + sy * sy).sqrt();
-        Heightfield {
+        // A patch's corners reach twice its centre's depth (patches.rs).
+        let k = if patched { 2.0 * k } else { k };
+        let lo = if patched { -0.5 } else { 0.0 };
+        let mut field = Heightfield {
             w,
             h,
             inv,
@@ -104,7 +115,22 @@ impl Heightfield {
                     .map(|n| DVec3::new(n[0] as f64, n[1] as f64, n[2] as f64))
                     .collect()
             }),
+            patches: None,
+            lo,
+            hi: ((w as f64 - 1.0) - lo, (h as f64 - 1.0) - lo),
+        };
+        if patched {
+            let f = &field;
+            let patches = Patches::new(
+                (w, h),
+                (sx, sy),
+                &f.inv,
+                |i, j| f.point(i, j),
+                |i, j, p| f.normal(i, j, p),
+            );
+            field.patches = Some(patches);
         }
+        field
     }
 
     #[inline]
@@ -232,7 +258,9 @@ impl Heightfield {
         let Some(seg) = self.clip(o, d, t_max) else {
             return false;
         };
-        if self.thickness.is_finite() || self.back.is_some() {
+        if let Some(patches) = &self.patches {
+            self.blocked_by_patches(&seg, patches)
+        } else if self.thickness.is_finite() || self.back.is_some() {
             self.blocked_by_slabs(&seg)
         } else {
             self.blocked_by_heightfield(&seg)
@@ -242,7 +270,7 @@ impl Heightfield {
     /// The segment in grid coordinates, clipped to the near plane and the grid; `None` when
     /// nothing of it is left.
     fn clip(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<GridSegment> {
-        if self.w < 2 || self.h < 2 {
+        if self.patches.is_none() && (self.w < 2 || self.h < 2) {
             return None; // no cell between pixel centres: no surface to pass behind
         }
         // Beyond max_dist + |o| from o, every point is deeper than any solid point, so the first
@@ -258,16 +286,17 @@ impl Heightfield {
         let (ax, ay, aw) = self.project(o);
         let (bx, by, bw) = self.project(o + d * t1);
         let (dx, dy, dw) = (bx - ax, by - ay, bw - aw);
-        // Clip s in [0, 1] to the grid [0, w−1] × [0, h−1].
+        // Clip s in [0, 1] to the grid [lo, hi.0] × [lo, hi.1].
         let (mut s0, mut s1) = (0.0f64, 1.0f64);
-        for (start, delta, hi) in [(ax, dx, (self.w - 1) as f64), (ay, dy, (self.h - 1) as f64)] {
+        let lo = self.lo;
+        for (start, delta, hi) in [(ax, dx, self.hi.0), (ay, dy, self.hi.1)] {
             if delta == 0.0 {
-                if start < 0.0 || start > hi {
+                if start < lo || start > hi {
                     return None;
                 }
                 continue;
             }
-            let (ta, tb) = ((0.0 - start) / delta, (hi - start) / delta);
+            let (ta, tb) = ((lo - start) / delta, (hi - start) / delta);
             s0 = s0.max(ta.min(tb));
             s1 = s1.min(ta.max(tb));
         }
@@ -290,21 +319,30 @@ impl Heightfield {
     #[inline]
     fn grid_at(&self, seg: &GridSegment, s: f64) -> (f64, f64) {
         (
-            (seg.ax + s * seg.dx).clamp(0.0, (self.w - 1) as f64),
-            (seg.ay + s * seg.dy).clamp(0.0, (self.h - 1) as f64),
+            (seg.ax + s * seg.dx).clamp(self.lo, self.hi.0),
+            (seg.ay + s * seg.dy).clamp(self.lo, self.hi.1),
         )
     }
 
     /// Calls `visit` with every s in (s0, s1) where the segment crosses a cell edge (x = integer,
     /// y = integer, x − y = integer), in increasing order, until it returns true; then returns
     /// whether it did.
-    fn any_edge_crossing(seg: &GridSegment, mut visit: impl FnMut(f64) -> bool) -> bool {
-        // Each family gives evenly spaced s; they are merged in increasing order.
-        let mut families = [
+    fn any_edge_crossing(seg: &GridSegment, visit: impl FnMut(f64) -> bool) -> bool {
+        let families = [
             EdgeFamily::new(seg.ax, seg.dx, seg.s0),
             EdgeFamily::new(seg.ay, seg.dy, seg.s0),
             EdgeFamily::new(seg.ax - seg.ay, seg.dx - seg.dy, seg.s0),
         ];
+        Self::any_crossing(seg, families, visit)
+    }
+
+    /// Like [`Self::any_edge_crossing`] for the crossings of `families` (each gives evenly spaced
+    /// s; they are merged in increasing order).
+    fn any_crossing<const N: usize>(
+        seg: &GridSegment,
+        mut families: [EdgeFamily; N],
+        mut visit: impl FnMut(f64) -> bool,
+    ) -> bool {
         loop {
             let (k, s) = families
                 .iter()
@@ -357,15 +395,63 @@ impl Heightfield {
         if !self.triangle_is_solid(corners) {
             return false;
         }
-        let (ra, rb) = (seg.aw + a.0 * seg.dw, seg.aw + b.0 * seg.dw);
-        if let Some(back) = &self.back {
-            if corners.iter().any(|&(i, j)| back.measured[j * self.w + i]) {
-                let (ga, gb) = (
-                    back.at_grid(self, self.grid_at(seg, a.0)),
-                    back.at_grid(self, self.grid_at(seg, b.0)),
-                );
-                return piece_between(a.1 - ra, b.1 - rb, ra - ga, rb - gb);
+        let back = self.back.as_ref().and_then(|back| {
+            corners
+                .iter()
+                .any(|&(i, j)| back.measured[j * self.w + i])
+                .then(|| {
+                    (
+                        back.at_grid(self, self.grid_at(seg, a.0)),
+                        back.at_grid(self, self.grid_at(seg, b.0)),
+                    )
+                })
+        });
+        self.piece_through(seg, a, b, back)
+    }
+
+    /// Planar patches: each piece between consecutive pixel-boundary crossings lies in one pixel's
+    /// footprint and is tested against that pixel's slab, from its plane to its back face (the
+    /// back plane: the front's depths scaled by the pixel's back-to-front ratio), or the thickness.
+    fn blocked_by_patches(&self, seg: &GridSegment, patches: &Patches) -> bool {
+        let families = [
+            EdgeFamily::new(seg.ax - 0.5, seg.dx, seg.s0),
+            EdgeFamily::new(seg.ay - 0.5, seg.dy, seg.s0),
+        ];
+        let mut prev = seg.s0;
+        let mut piece = |s: f64| -> bool {
+            let (a, b) = (prev, s);
+            prev = s;
+            let (mx, my) = self.grid_at(seg, 0.5 * (a + b));
+            let i = (mx.round().max(0.0) as usize).min(self.w - 1);
+            let j = (my.round().max(0.0) as usize).min(self.h - 1);
+            let k = j * self.w + i;
+            if self.inv[k] <= 0.0 {
+                return false; // sky
             }
+            let (ga, gb) = (self.grid_at(seg, a), self.grid_at(seg, b));
+            let (fa, fb) = (patches.inv_at(i, j, ga), patches.inv_at(i, j, gb));
+            let back = self.back.as_ref().filter(|back| back.measured[k]).map(|back| {
+                let ratio = back.inv[k] / self.inv[k];
+                (fa * ratio, fb * ratio)
+            });
+            self.piece_through(seg, (a, fa), (b, fb), back)
+        };
+        Self::any_crossing(seg, families, &mut piece) || piece(seg.s1)
+    }
+
+    /// Whether the piece from s = a.0 to b.0, whose surface's inverse depths at the ends are a.1
+    /// and b.1 (affine between), passes behind the surface and in front of its back: the back
+    /// surface's inverse depths at the ends, or the thickness where `back` is `None`.
+    fn piece_through(
+        &self,
+        seg: &GridSegment,
+        a: (f64, f64),
+        b: (f64, f64),
+        back: Option<(f64, f64)>,
+    ) -> bool {
+        let (ra, rb) = (seg.aw + a.0 * seg.dw, seg.aw + b.0 * seg.dw);
+        if let Some((ga, gb)) = back {
+            return piece_between(a.1 - ra, b.1 - rb, ra - ga, rb - gb);
         }
         let t = self.thickness;
         if t.is_infinite() {
@@ -460,7 +546,9 @@ struct BackSurface {
 }
 
 impl BackSurface {
-    fn new(front: &[f32], back: &[f32], thickness: f64) -> BackSurface {
+    /// `exact`: a back face is the slab's end however close (the planar patches); else never
+    /// closer than `thickness` (the triangles, as `vbao`).
+    fn new(front: &[f32], back: &[f32], thickness: f64, exact: bool) -> BackSurface {
         let mut max_depth = 0.0f64;
         let (inv, measured) = front
             .iter()
@@ -472,7 +560,9 @@ impl BackSurface {
                 // The same rule as vbao.frag: a back face deeper than the surface extends the slab to
                 // it, never below the set thickness; without one, the thickness.
                 let has_back = b.is_finite() && b > z;
-                let depth = if has_back {
+                let depth = if has_back && exact {
+                    b as f64
+                } else if has_back {
                     (b as f64).max(z as f64 + thickness)
                 } else {
                     z as f64 + thickness

@@ -203,6 +203,7 @@ pub fn load_or_render_screen_cached(
 
 #[cfg(test)]
 pub(crate) mod tests {
+    use super::super::depth_buffer::Surface;
     use super::super::heightfield::EdgeFamily;
     use super::*;
     use glam::DVec3;
@@ -223,6 +224,7 @@ pub(crate) mod tests {
             normals: None,
             second_layer: None,
             guard_band: 0,
+            surface: Surface::Triangles,
         }
     }
 
@@ -444,9 +446,17 @@ pub(crate) mod tests {
             };
             hit(wall_n, wall_c).min(hit(floor_n, floor_c)) as f32
         });
-        for thickness in [0.5, f32::INFINITY] {
+        for (thickness, surface) in [
+            (0.5, Surface::Triangles),
+            (f32::INFINITY, Surface::Triangles),
+            (0.5, Surface::Patches),
+            (f32::INFINITY, Surface::Patches),
+        ] {
             let img = render_screen_space(
-                &depth.clone().with_thickness(thickness),
+                &DepthBuffer {
+                    surface,
+                    ..depth.clone().with_thickness(thickness)
+                },
                 &RefParams {
                     radius: 1.0,
                     rays: 64,
@@ -458,8 +468,61 @@ pub(crate) mod tests {
             let zeros = img.ao.iter().filter(|a| **a == 0.0).count();
             assert!(
                 darkest > 0.3,
-                "T {thickness}: darkest pixel {darkest}, {zeros} pixels fully occluded"
+                "T {thickness} {surface:?}: darkest pixel {darkest}, {zeros} pixels fully occluded"
             );
         }
+    }
+
+    /// A 2 cm board tilted away from the camera (view-space plane z = −3 − 1.5·y): neighbouring
+    /// rows lie 0.1 to 5 m apart in depth, far more than the board is thick.
+    fn tilted_board(surface: Surface) -> (DepthBuffer, DVec3) {
+        let (w, h) = (20u32, 14u32);
+        let probe = Heightfield::new(&buffer(w, h, |_, _| 1.0));
+        let depth = |x: u32, y: u32| {
+            let ray = probe.point(x as usize, y as usize).unwrap();
+            (3.0 / (1.0 - 1.5 * ray.y)) as f32
+        };
+        let mut b = buffer(w, h, depth).with_thickness(0.01);
+        b.back_depth = Some(b.linear_depth.iter().map(|d| d + 0.02).collect());
+        b.surface = surface;
+        (b, DVec3::new(0.0, -1.5, 1.0).normalize())
+    }
+
+    /// The triangulated surface keeps a triangle only where its pixels' slabs overlap, so a thin
+    /// board seen at a grazing angle has no solid triangle and rays pass through it; the patches
+    /// keep each pixel's plane and block them. Rays beneath the board stay open in both.
+    #[test]
+    fn patches_keep_a_thin_board_seen_edge_on_that_triangles_drop() {
+        for (surface, blocks) in [(Surface::Triangles, false), (Surface::Patches, true)] {
+            let (b, n) = tilted_board(surface);
+            let field = Heightfield::new(&b);
+            for (i, j) in [(10, 7), (4, 3), (15, 10)] {
+                let p = field.point(i, j).unwrap();
+                // From 10 cm beneath the board (beyond its back) up through it.
+                let below = p - n * 0.1;
+                assert_eq!(field.blocked(below, n, 0.2), blocks, "{surface:?} {i},{j}");
+                assert!(!field.blocked(below, n, 0.05), "{surface:?} {i},{j}");
+                // Along the board, beneath it: nothing in the way.
+                let along = n.cross(DVec3::X).normalize();
+                assert!(!field.blocked(below, along, 0.3), "{surface:?} {i},{j}");
+            }
+        }
+    }
+
+    /// Every pixel of a plane, however grazing, is open: its own patch and its neighbours' rebuild
+    /// the plane exactly, with no staircase to start a ray inside.
+    #[test]
+    fn a_grazing_plane_is_open_everywhere_with_patches() {
+        let (b, _) = tilted_board(Surface::Patches);
+        let img = render_screen_space(
+            &b,
+            &RefParams {
+                radius: 1.0,
+                rays: 64,
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        assert!(img.ao.iter().all(|a| *a == 1.0), "{:?}", img.ao);
     }
 }

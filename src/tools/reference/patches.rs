@@ -1,0 +1,131 @@
+//! The planar-patch surface of the screen-space reference ([`super::Surface::Patches`]): each
+//! pixel's square footprint holds the plane through its centre with its normal.
+//!
+//! A plane's inverse depth is affine in screen space, so each patch is three numbers (inverse depth
+//! at the centre and its two slopes per pixel) and a ray piece inside one footprint compares two
+//! affine functions, exactly as inside one triangle. A surface that is planar across pixels is
+//! rebuilt exactly (no staircase for rays to start inside), silhouettes stay sharp (no triangle
+//! bridges the foreground to the background, none is dropped at the edge of a thin object), and a
+//! board seen edge-on stays solid however far apart its pixels' depths are.
+
+use glam::DVec3;
+
+/// Each pixel's plane as inverse depth: `[at the centre, per pixel along x, per pixel along y]`.
+pub(crate) struct Patches {
+    planes: Vec<[f64; 3]>,
+    w: usize,
+}
+
+/// The largest change of inverse depth from a pixel's centre to a corner, as a fraction of the
+/// centre's: a plane seen nearly edge-on would otherwise reach zero (a surface at infinity) or
+/// behind the eye inside its own pixel. Half keeps every corner between 1/2 and 3/2 of the
+/// centre's inverse depth (depths from 2/3 to 2 times the centre's).
+const MAX_CORNER_CHANGE: f64 = 0.5;
+
+impl Patches {
+    /// `inv`: inverse depth per pixel (0 for sky, rows top-down); `sx`, `sy`: view-space x/−z and
+    /// y/−z at the image edges; `point(i, j)`: the pixel centre in view space; `normal(i, j, p)`:
+    /// its unit normal facing the camera.
+    pub(crate) fn new(
+        (w, h): (usize, usize),
+        (sx, sy): (f64, f64),
+        inv: &[f64],
+        point: impl Fn(usize, usize) -> Option<DVec3>,
+        normal: impl Fn(usize, usize, DVec3) -> DVec3,
+    ) -> Patches {
+        let mut planes = vec![[0.0; 3]; w * h];
+        for j in 0..h {
+            for i in 0..w {
+                let k = j * w + i;
+                let Some(p) = point(i, j) else {
+                    continue; // sky: inverse depth 0, never solid
+                };
+                let centre = inv[k];
+                let n = normal(i, j, p);
+                // Points e(x)·d on the plane: n·(e d − p) = 0, so 1/d = n·e(x) / n·p, and e(x) moves
+                // by (2 sx / w, −2 sy / h, 0) per pixel.
+                let np = n.dot(p);
+                let (mut gx, mut gy) = if np < -1e-12 * p.length() {
+                    (
+                        n.x * sx * 2.0 / w as f64 / np,
+                        -n.y * sy * 2.0 / h as f64 / np,
+                    )
+                } else {
+                    (0.0, 0.0) // seen exactly edge-on (or a normal facing away): flat
+                };
+                let corner = 0.5 * (gx.abs() + gy.abs());
+                let limit = MAX_CORNER_CHANGE * centre;
+                if !(corner <= limit) {
+                    let scale = if corner.is_finite() { limit / corner } else { 0.0 };
+                    gx *= scale;
+                    gy *= scale;
+                }
+                planes[k] = [centre, gx, gy];
+            }
+        }
+        Patches { planes, w }
+    }
+
+    /// Inverse depth of pixel (i, j)'s plane at grid point (x, y) (pixel centres at integers).
+    #[inline]
+    pub(crate) fn inv_at(&self, i: usize, j: usize, (x, y): (f64, f64)) -> f64 {
+        let [c, gx, gy] = self.planes[j * self.w + i];
+        c + gx * (x - i as f64) + gy * (y - j as f64)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A tilted plane seen by a 8×6 buffer: each patch reproduces the plane's inverse depth at its
+    /// neighbours' centres (computed from the plane directly), so the patches join without steps.
+    #[test]
+    fn patches_of_a_plane_meet_at_their_neighbours_centres() {
+        let (w, h) = (8usize, 6usize);
+        let (sx, sy) = (0.8, 0.6);
+        let n = DVec3::new(0.3, 0.5, 0.8).normalize();
+        let on_plane = DVec3::new(0.0, 0.0, -4.0);
+        // Depth of the plane along the ray through grid point (x, y).
+        let depth = |x: f64, y: f64| {
+            let e = DVec3::new(
+                (2.0 * (x + 0.5) / w as f64 - 1.0) * sx,
+                (1.0 - 2.0 * (y + 0.5) / h as f64) * sy,
+                -1.0,
+            );
+            n.dot(on_plane) / n.dot(e)
+        };
+        let inv: Vec<f64> = (0..w * h)
+            .map(|k| 1.0 / depth((k % w) as f64, (k / w) as f64))
+            .collect();
+        let point = |i: usize, j: usize| {
+            let d = depth(i as f64, j as f64);
+            Some(DVec3::new(
+                (2.0 * (i as f64 + 0.5) / w as f64 - 1.0) * sx * d,
+                (1.0 - 2.0 * (j as f64 + 0.5) / h as f64) * sy * d,
+                -d,
+            ))
+        };
+        let patches = Patches::new((w, h), (sx, sy), &inv, point, |_, _, _| n);
+        for (i, j) in [(0, 0), (3, 2), (6, 4)] {
+            for (x, y) in [(i + 1, j), (i, j + 1), (i + 1, j + 1)] {
+                let want = 1.0 / depth(x as f64, y as f64);
+                let got = patches.inv_at(i, j, (x as f64, y as f64));
+                assert!((got - want).abs() < 1e-9 * want, "{got} vs {want}");
+            }
+        }
+    }
+
+    /// A plane seen edge-on keeps its corners within the documented range, and no patch is NaN.
+    #[test]
+    fn edge_on_planes_stay_finite_and_bounded() {
+        let inv = vec![0.25; 4];
+        let point = |i: usize, j: usize| Some(DVec3::new(i as f64 * 0.1, j as f64 * 0.1, -4.0));
+        let edge_on = |_: usize, _: usize, p: DVec3| p.cross(DVec3::Y).normalize();
+        let patches = Patches::new((2, 2), (1.0, 1.0), &inv, point, edge_on);
+        for corner in [(-0.5, -0.5), (0.5, 0.5), (-0.5, 0.5), (0.5, -0.5)] {
+            let v = patches.inv_at(0, 0, corner);
+            assert!(v.is_finite() && (0.125 - 1e-12..=0.375 + 1e-12).contains(&v), "{v}");
+        }
+    }
+}
