@@ -40,6 +40,7 @@ pub struct LangArgs {
 /// `--surface` of the screen-space reference.
 #[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
 pub enum SurfaceArg {
+    Auto,
     Triangles,
     Patches,
 }
@@ -70,10 +71,12 @@ pub struct ReferenceArgs {
     /// scene's size.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub supersample: u32,
-    /// With --screen-space: how the surface is rebuilt between pixel centres: `triangles` (the
-    /// surface `vbao`'s taps rebuild: the ceiling of that method) or `patches` (each pixel's
-    /// plane over its footprint, slabs to the exact back face: what the depth buffer knows).
-    #[arg(long, value_enum, default_value_t = SurfaceArg::Triangles)]
+    /// With --screen-space: how the surface is rebuilt from the pixels: `patches` (each pixel's
+    /// plane over its footprint, slabs to the exact back face: what the depth buffer knows),
+    /// `triangles` (two per cell of pixel centres, a triangle solid only where its pixels' slabs
+    /// overlap, back faces never closer than the thickness) or `auto` (default: patches with
+    /// `--normals geometric`, triangles with normals rebuilt from depth, which tilt the patches).
+    #[arg(long, value_enum, default_value_t = SurfaceArg::Auto)]
     pub surface: SurfaceArg,
     /// Output: .pfm (raw visibility) or .png.
     #[arg(long, default_value = "out/reference.pfm")]

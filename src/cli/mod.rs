@@ -10,8 +10,7 @@ mod usage_errors;
 
 pub use args::{
     parse_vec3, LangArgs, LessonArgs, OnOff, ReferenceArgs, RenderArgs, RenderView, SceneArgs,
-    SurfaceArg,
-    WindowArgs,
+    SurfaceArg, WindowArgs,
 };
 pub use output::{write_view, OutFormat, PNG_OR_PFM};
 pub use res_check::{check_res, ResUse};
@@ -387,12 +386,13 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         crate::ao::GuardBand::Pixels(p) => p,
         band => crate::ao::guard_band::guard_band_pixels(band, &cam, (w, h), radius),
     };
-    if args.surface != SurfaceArg::Triangles && !args.screen_space {
+    if args.surface != SurfaceArg::Auto && !args.screen_space {
         bail!("--surface applies to the screen-space reference: add --screen-space")
     }
     if args.supersample > 1 && !args.screen_space {
         bail!("--supersample applies to the screen-space reference: add --screen-space")
     }
+    let mut surface = None;
     let img = if args.screen_space {
         use crate::tools::reference::DepthBuffer;
         let n = args.supersample;
@@ -408,10 +408,13 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         };
         let mut depth =
             DepthBuffer::capture(&mut engine, guard_px * n, what)?.with_thickness(thickness);
+        use crate::tools::reference::Surface;
         depth.surface = match args.surface {
-            SurfaceArg::Triangles => crate::tools::reference::Surface::Triangles,
-            SurfaceArg::Patches => crate::tools::reference::Surface::Patches,
+            SurfaceArg::Auto => Surface::for_normals(what.normals),
+            SurfaceArg::Triangles => Surface::Triangles,
+            SurfaceArg::Patches => Surface::Patches,
         };
+        surface = Some(depth.surface);
         if n > 1 {
             crate::tools::reference::load_or_render_screen_box_cached(&cache, &depth, n, &params)?
         } else {
@@ -444,8 +447,13 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         };
         let guard = t!("reference.guard_band", px = guard_px);
         let normals = t!("reference.normals", source = scene.ao.normals.name());
+        let surface = match surface {
+            Some(crate::tools::reference::Surface::Patches) => t!("reference.surface_patches"),
+            _ => t!("reference.surface_triangles"),
+        };
+        let surface = t!("reference.surface", name = surface);
         format!(
-            "{}, {slabs}, {normals}, {guard}",
+            "{}, {surface}, {slabs}, {normals}, {guard}",
             t!("reference.kind_screen")
         )
     } else if args.gpu {

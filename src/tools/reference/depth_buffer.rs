@@ -74,6 +74,19 @@ pub enum Surface {
     Patches,
 }
 
+impl Surface {
+    /// The surface a ceiling rebuilds for a method reading these normals: the patches need each
+    /// pixel's own plane, which normals rebuilt from depth bend across every silhouette and crease
+    /// (a thin slat's patches tilt), so those keep the triangles.
+    pub fn for_normals(geometric: bool) -> Surface {
+        if geometric {
+            Surface::Patches
+        } else {
+            Surface::Triangles
+        }
+    }
+}
+
 impl DepthBuffer {
     /// Checks the buffer's size and projection (clear errors instead of NaN later).
     pub(crate) fn validate(&self) -> Result<()> {

@@ -430,10 +430,14 @@ impl Heightfield {
             }
             let (ga, gb) = (self.grid_at(seg, a), self.grid_at(seg, b));
             let (fa, fb) = (patches.inv_at(i, j, ga), patches.inv_at(i, j, gb));
-            let back = self.back.as_ref().filter(|back| back.measured[k]).map(|back| {
-                let ratio = back.inv[k] / self.inv[k];
-                (fa * ratio, fb * ratio)
-            });
+            let back = self
+                .back
+                .as_ref()
+                .filter(|back| back.measured[k])
+                .map(|back| {
+                    let ratio = back.inv[k] / self.inv[k];
+                    (fa * ratio, fb * ratio)
+                });
             self.piece_through(seg, (a, fa), (b, fb), back)
         };
         Self::any_crossing(seg, families, &mut piece) || piece(seg.s1)

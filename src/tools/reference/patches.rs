@@ -56,7 +56,11 @@ impl Patches {
                 let corner = 0.5 * (gx.abs() + gy.abs());
                 let limit = MAX_CORNER_CHANGE * centre;
                 if !(corner <= limit) {
-                    let scale = if corner.is_finite() { limit / corner } else { 0.0 };
+                    let scale = if corner.is_finite() {
+                        limit / corner
+                    } else {
+                        0.0
+                    };
                     gx *= scale;
                     gy *= scale;
                 }
@@ -125,7 +129,10 @@ mod tests {
         let patches = Patches::new((2, 2), (1.0, 1.0), &inv, point, edge_on);
         for corner in [(-0.5, -0.5), (0.5, 0.5), (-0.5, 0.5), (0.5, -0.5)] {
             let v = patches.inv_at(0, 0, corner);
-            assert!(v.is_finite() && (0.125 - 1e-12..=0.375 + 1e-12).contains(&v), "{v}");
+            assert!(
+                v.is_finite() && (0.125 - 1e-12..=0.375 + 1e-12).contains(&v),
+                "{v}"
+            );
         }
     }
 }

@@ -13,7 +13,7 @@ use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
     cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
-    AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene,
+    AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene, Surface,
 };
 use anyhow::{Context as _, Result};
 use indicatif::ProgressBar;
@@ -305,10 +305,11 @@ pub fn screen_references(
                     b
                 }
             };
-            let depth = match ceiling {
+            let mut depth = match ceiling {
                 Ceiling::Heightfield => buffer,
                 Ceiling::Slabs(t) | Ceiling::BackFaces { fallback: t } => buffer.with_thickness(t),
             };
+            depth.surface = Surface::for_normals(normals);
             let key = screen_cache_key(&depth, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
             if cfg.progress {
