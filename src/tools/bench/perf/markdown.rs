@@ -126,8 +126,8 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
          buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
          reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
-         scene replaced by the depth buffer (inverse depth interpolated between pixel centres, normals as the scene's engine methods read them: each triangle's own with `[ao] normals = \"geometric\"`, else (the default) rebuilt from the depth buffer; as wide as the scene's `[ao] guard_band`) and every ray \
-         marched exactly through every pixel cell it crosses, without mips; rays leaving the screen \
+         scene replaced by the depth buffer (normals as the scene's engine methods read them: each triangle's own with `[ao] normals = \"geometric\"`, and then each pixel's footprint holds the plane through its centre with that normal, solid to its exact back face; else (the default) rebuilt from the depth buffer, and then inverse depth is interpolated over triangles between pixel centres, a triangle solid only where its pixels' slabs overlap; as wide as the scene's `[ao] guard_band`) and every ray \
+         marched exactly through every pixel or cell it crosses, without mips; rays leaving the screen \
          count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
          error** = screen-space reference against the ray-traced one (hidden surfaces, thickness, \
          off-screen occluders: the same for every method with the same thickness model at a camera and radius); **sampling \
@@ -136,9 +136,8 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
          Each method is split against the ceiling with its own model of what lies behind a depth \
          sample: `vbao` against slabs of its thickness (the solid at a pixel is [z, z + T] in linear \
-         depth; a triangle between pixels more than T apart in depth is empty) or, with \
-         `thickness = \"backface\"`, against slabs reaching each pixel's back face (T where it has \
-         none, as `vbao` does); every other method against the heightfield (∞). The split table's \
+         depth) or, with `thickness = \"backface\"`, against slabs reaching each pixel's back \
+         face (T where it has none, as `vbao` does; with the triangles, never thinner than T); every other method against the heightfield (∞). The split table's \
          ceiling column says which each row used. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
         r.reference.width,
         r.reference.height,
