@@ -16,6 +16,7 @@ use crate::tools::bench::perf::PerfConfig;
 use crate::tools::bench::progress;
 use anyhow::{bail, Context as _, Result};
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::PathBuf;
 
 /// One method tuned on one scene.
@@ -34,8 +35,8 @@ pub struct MethodResult {
     pub train_tuned: f64,
     pub test_default: f64,
     pub test_tuned: f64,
-    /// With `--budget`: AO chain ms (median) of the lesson chain, the scene's table and the chosen
-    /// one, and the budget in ms.
+    /// With `--budget`: the AO time of the scene's table and of the chosen one over the lesson
+    /// chain's, as measured during the search.
     pub cost: Option<Cost>,
     /// Distinct configurations scored, and how many were over the budget.
     pub evaluated: usize,
@@ -48,10 +49,9 @@ pub struct MethodResult {
 
 #[derive(Clone, Copy, Debug, Serialize)]
 pub struct Cost {
-    pub lesson_ms: f64,
-    pub default_ms: f64,
-    pub tuned_ms: f64,
-    pub budget_ms: f64,
+    pub budget: f64,
+    pub default_ratio: f64,
+    pub tuned_ratio: f64,
 }
 
 pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
@@ -116,22 +116,26 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
     let mut position = 0u64;
     for ((path, sd, _), plan) in loaded.iter().zip(plans) {
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, perf.width, perf.height)?;
-        let lesson_ms = match cfg.budget {
-            Some(_) => Some(cost_ms(
-                &mut engine,
-                sd,
-                &start_of(sd, AoMethod::SaoLesson),
-                &perf,
-            )?),
-            None => None,
-        };
+        let lesson = start_of(sd, AoMethod::SaoLesson);
         for (method, start, axes) in plan {
             pb.set_message(format!("{} {}", sd.name, method.name()));
-            let budget_ms = lesson_ms.zip(cfg.budget).map(|(l, b)| l * b);
+            // Each configuration's AO time over the lesson chain's, timed just before it (the
+            // ratio survives the load of other programs better than either time alone).
+            let mut ratios: BTreeMap<String, f64> = BTreeMap::new();
             let score = |ao: &AoSettings| -> Result<Score> {
                 pb.inc(1);
-                if let Some(limit) = budget_ms {
-                    if cost_ms(&mut engine, sd, ao, &perf)? > limit {
+                if let Some(limit) = cfg.budget {
+                    let signature = format!("{:?}", space::cost_signature(ao));
+                    let ratio = match ratios.get(&signature) {
+                        Some(r) => *r,
+                        None => {
+                            let lesson_ms = cost_ms(&mut engine, sd, &lesson, &perf)?;
+                            let r = cost_ms(&mut engine, sd, ao, &perf)? / lesson_ms.max(1e-6);
+                            ratios.insert(signature, r);
+                            r
+                        }
+                    };
+                    if ratio > limit {
                         return Ok(None);
                     }
                 }
@@ -145,12 +149,16 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
             };
             let test_default = mean_psnr(&mut engine, sd, &start, &perf, false)?;
             let test_tuned = mean_psnr(&mut engine, sd, &found.best, &perf, false)?;
-            let cost = match (lesson_ms, budget_ms) {
-                (Some(lesson_ms), Some(budget_ms)) => Some(Cost {
-                    lesson_ms,
-                    default_ms: cost_ms(&mut engine, sd, &start, &perf)?,
-                    tuned_ms: cost_ms(&mut engine, sd, &found.best, &perf)?,
-                    budget_ms,
+            let ratio_of = |ao: &AoSettings| {
+                ratios
+                    .get(&format!("{:?}", space::cost_signature(ao)))
+                    .copied()
+            };
+            let cost = match (cfg.budget, ratio_of(&start), ratio_of(&found.best)) {
+                (Some(budget), Some(default_ratio), Some(tuned_ratio)) => Some(Cost {
+                    budget,
+                    default_ratio,
+                    tuned_ratio,
                 }),
                 _ => None,
             };

@@ -81,10 +81,9 @@ pub fn summary(r: &MethodResult) -> String {
         line.push('\n');
         line.push_str(&rust_i18n::t!(
             "tune.cost",
-            lesson = format!("{:.2}", c.lesson_ms),
-            budget = format!("{:.2}", c.budget_ms),
-            default = format!("{:.2}", c.default_ms),
-            tuned = format!("{:.2}", c.tuned_ms),
+            budget = c.budget,
+            default = format!("{:.2}", c.default_ratio),
+            tuned = format!("{:.2}", c.tuned_ratio),
             over = r.over_budget
         ));
     }
@@ -145,19 +144,25 @@ fn markdown(results: &[MethodResult], cfg: &TuneConfig) -> String {
         p.ref_scale,
         cfg.passes,
         match cfg.budget {
-            Some(b) => format!("; budget {b} × the lesson chain's AO time"),
+            Some(b) => format!(
+                "; budget {b} × the lesson chain's AO time, each configuration timed (wall clock \
+                 around glFinish, median of {} frames at the scene's camera and the output size) \
+                 just after the lesson chain",
+                p.frames
+            ),
             None => String::new(),
         }
     );
     s.push_str(
         "| scene | method | train (scene's) | train (tuned) | test (scene's) | test (tuned) | \
-         configurations | changed |\n|---|---|---:|---:|---:|---:|---:|---|\n",
+         configurations | AO time / lesson (scene's → tuned) | changed |\n\
+         |---|---|---:|---:|---:|---:|---:|---:|---|\n",
     );
     for r in results {
         let changed = changed_keys(r);
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} |",
+            "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} |",
             r.scene,
             r.method.name(),
             r.train_default,
@@ -165,6 +170,10 @@ fn markdown(results: &[MethodResult], cfg: &TuneConfig) -> String {
             r.test_default,
             r.test_tuned,
             r.evaluated,
+            match r.cost {
+                Some(c) => format!("{:.2} → {:.2}", c.default_ratio, c.tuned_ratio),
+                None => "—".to_string(),
+            },
             if changed.is_empty() {
                 "—".to_string()
             } else {

@@ -180,6 +180,23 @@ pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
     axes
 }
 
+/// `ao` with its free keys (which change no tap or pass) at fixed values: configurations with the
+/// same signature cost the same, so `tune` times each signature once instead of letting timing
+/// noise rule out some values of a free key.
+pub fn cost_signature(ao: &AoSettings) -> AoSettings {
+    let defaults = AoSettings::default();
+    AoSettings {
+        bias: defaults.bias,
+        intensity: defaults.intensity,
+        spiral_turns: defaults.spiral_turns,
+        thickness: match ao.thickness {
+            Some(Thickness::Backface) => Some(Thickness::Backface),
+            _ => None,
+        },
+        ..*ao
+    }
+}
+
 /// An axis whose first value is the start's own, then `grid` without it.
 fn axis<const N: usize>(key: &'static str, start: Choice, grid: [Choice; N]) -> Axis {
     axis_of(key, start, grid.to_vec())
@@ -235,5 +252,14 @@ mod tests {
             .collect();
         assert_eq!(lesson, ["bias", "intensity", "spiral_turns"]);
         assert!(axes(AoMethod::Hbao, &AoSettings::default(), false).is_empty());
+        // Free keys share a cost; the keys that add taps or passes do not.
+        for a in &free {
+            for v in &a.values {
+                assert_eq!(cost_signature(&v.apply(&start)), cost_signature(&start));
+            }
+        }
+        let costly = |c: Choice| cost_signature(&c.apply(&start)) != cost_signature(&start);
+        assert!(costly(Choice::Thickness(Some(Thickness::Backface))));
+        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(GtaoQuality::Ultra))));
     }
 }
