@@ -3,9 +3,9 @@
 //! PSNR of its training cameras; the test cameras are rendered only for the scene's own table and
 //! the chosen one.
 
+use super::config::TuneConfig;
 use super::search::{self, Score};
 use super::space;
-use super::TuneConfig;
 use crate::ao::{AoMethod, AoSettings};
 use crate::platform::HeadlessContext;
 use crate::render::Engine;

@@ -1,8 +1,8 @@
 //! What `tune` hands back: each chosen `[ao]` table as TOML (the whole table, so that pasted over
 //! a scene's `[ao]` it reproduces the figure), a summary line per method, and `tune.md`.
 
+use super::config::TuneConfig;
 use super::evaluate::MethodResult;
-use super::TuneConfig;
 use crate::ao::AoSettings;
 use anyhow::{Context as _, Result};
 use std::fmt::Write as _;
@@ -186,8 +186,8 @@ fn markdown(results: &[MethodResult], cfg: &TuneConfig) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-    use crate::ao::{AoMethod, GtaoQuality, GuardBand, Thickness};
+    use crate::ao::{AoMethod, AoSettings, GtaoQuality, GuardBand, Thickness};
+    use crate::tools::tune::output::ao_toml;
 
     #[derive(serde::Deserialize)]
     struct File {

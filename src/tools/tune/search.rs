@@ -97,9 +97,9 @@ pub fn search(
 
 #[cfg(test)]
 mod tests {
-    use super::super::space::{axes, Choice};
-    use super::*;
-    use crate::ao::{AoMethod, Thickness};
+    use crate::ao::{AoMethod, AoSettings, Thickness};
+    use crate::tools::tune::search::{max_evaluations, search};
+    use crate::tools::tune::space::{axes, Choice};
 
     fn lesson() -> AoSettings {
         AoSettings {

@@ -210,7 +210,8 @@ fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use crate::ao::{AoMethod, AoSettings, GtaoQuality, Thickness};
+    use crate::tools::tune::space::{axes, cost_signature, Choice};
 
     #[test]
     fn every_axis_starts_at_the_scene_value_and_costly_keys_need_a_budget() {
