@@ -85,7 +85,6 @@ pub fn search(
     if !best_score.is_finite() {
         bail!("{}", rust_i18n::t!("tune.nothing_in_budget"));
     }
-    drop(eval);
     Ok(Found {
         best,
         best_score,
