@@ -198,3 +198,28 @@ fn bad_inputs_are_refused_with_messages_that_name_them() {
     assert!(!o.status.success() && stderr.contains("ssao"), "{stderr}");
     assert!(!stderr.contains("panicked"), "{stderr}");
 }
+
+#[test]
+fn a_budget_opens_the_costly_keys_and_one_nothing_fits_is_refused() {
+    let out = temp_dir("tune-budget");
+    let cfg = TuneConfig {
+        budget: Some(1e6),
+        ..tiny_config(&out, vec![AoMethod::Hbao])
+    };
+    let results = tune::run(&ResDirs::default(), &cfg).expect("tune run");
+    let r = &results[0];
+    // hbao reads no free key: only the budget gives it anything to search.
+    assert_eq!(r.keys, ["samples", "resolution", "guard_band", "normals"]);
+    assert!(r.train_tuned >= r.train_default, "{r:?}");
+    let cost = r.cost.expect("timed under a budget");
+    for ratio in [cost.default_ratio, cost.tuned_ratio] {
+        assert!(ratio.is_finite() && ratio > 0.0, "{cost:?}");
+    }
+    assert_eq!(r.over_budget, 0);
+    let cfg = TuneConfig {
+        budget: Some(1e-9),
+        ..tiny_config(&out, vec![AoMethod::Hbao])
+    };
+    let e = tune::run(&ResDirs::default(), &cfg).unwrap_err();
+    assert!(format!("{e:#}").contains("--budget"), "{e:#}");
+}
