@@ -79,11 +79,10 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
         loaded.push((path.clone(), sd, bvh));
     }
     // The truths: every camera at the scene's radius (cached across runs).
-    let radius_of = |sd: &SceneData| sd.desc.ao.radius;
     let total: usize = loaded.iter().map(|(_, sd, _)| sd.cameras.len()).sum();
     let (mut done, mut count) = (0, RenderCount::default());
     for (_, sd, bvh) in &mut loaded {
-        let radius = radius_of(sd);
+        let radius = sd.desc.ao.radius;
         references::trace_references(sd, bvh, &[radius], &perf, &mut count, (&mut done, total));
     }
 
