@@ -59,6 +59,9 @@ pub enum Command {
     GradeStep(crate::tools::grade::GradeStepArgs),
     /// Run time against error of the AO methods, or `--stress` for numerical stability.
     Bench(crate::tools::bench::BenchArgs),
+    /// Search each AO method's free [ao] parameters on a scene's training cameras against the
+    /// ray-traced truth; writes the best [ao] table and the held-out test cameras' PSNR.
+    Tune(crate::tools::tune::TuneArgs),
     /// Regenerate the demo meshes in Res/meshes (with --res DIR: in DIR/meshes).
     GenDemo,
 }
@@ -123,6 +126,7 @@ pub fn run() -> Result<()> {
             Ok(())
         }
         Some(Command::Bench(args)) => crate::tools::bench::run(&res, &args),
+        Some(Command::Tune(args)) => crate::tools::tune::run_cli(&res, &args),
         Some(Command::GradeStep(args)) => crate::tools::grade::run_step(cli.res.as_deref(), &args),
         Some(Command::GenDemo) => {
             let dir = match &cli.res {

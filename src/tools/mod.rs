@@ -1,4 +1,4 @@
-//! The tools built on the engine: the ray-traced reference, the bench, the grader, the student's
+//! The tools built on the engine: the ray-traced reference, the bench, the parameter tuner, the grader, the student's
 //! lesson loop and the teacher's GitHub Classroom repository.
 
 pub mod bench;
@@ -7,3 +7,4 @@ pub mod error_map;
 pub mod grade;
 pub mod lesson;
 pub mod reference;
+pub mod tune;

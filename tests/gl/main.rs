@@ -42,5 +42,6 @@ mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;
 mod surface_normals;
+mod tune;
 mod vbao;
 mod vbao_convergence;

@@ -11,10 +11,10 @@
 
 pub mod catalog;
 pub mod depth_formats;
-mod limits;
+pub(crate) mod limits;
 pub mod metrics;
 pub mod perf;
-mod progress;
+pub(crate) mod progress;
 pub mod skips;
 pub mod stress;
 mod timing;

@@ -28,10 +28,10 @@ mod html;
 mod markdown;
 mod pictures;
 pub mod protocol;
-mod references;
+pub(crate) mod references;
 mod report;
 mod run;
-mod setting;
+pub(crate) mod setting;
 
 pub use config::PerfConfig;
 pub use protocol::Grid;

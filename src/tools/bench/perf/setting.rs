@@ -155,30 +155,66 @@ fn ao_views(
     s: &Setting,
     cfg: &PerfConfig,
 ) -> Result<Vec<Vec<f32>>> {
+    (0..sd.cameras.len())
+        .map(|ci| camera_view(engine, sd, ci, s.radius, cfg))
+        .collect()
+}
+
+/// The blurred AO view of camera `ci` under the engine's AO settings, box-averaged to the size of
+/// its reference at `radius` (also what `opengl3d tune` scores).
+pub(crate) fn camera_view(
+    engine: &mut Engine,
+    sd: &SceneData,
+    ci: usize,
+    radius: f32,
+    cfg: &PerfConfig,
+) -> Result<Vec<f32>> {
     let (w, h) = (cfg.width as usize, cfg.height as usize);
-    let mut views = Vec::new();
-    for (ci, cam) in sd.cameras.iter().enumerate() {
-        engine.camera = cam.camera(&sd.desc.camera);
-        engine.sync_shader_constants()?;
-        // `rtao` with `[ao] accumulate = N`: the view ends N frames at this camera.
-        if engine.ao_settings.method == AoMethod::Rtao {
-            for _ in 1..engine.ao_settings.accumulate {
-                engine.render_to_ao()?;
-            }
+    engine.camera = sd.cameras[ci].camera(&sd.desc.camera);
+    engine.sync_shader_constants()?;
+    // `rtao` with `[ao] accumulate = N`: the view ends N frames at this camera.
+    if engine.ao_settings.method == AoMethod::Rtao {
+        for _ in 1..engine.ao_settings.accumulate {
+            engine.render_to_ao()?;
         }
-        let v = engine.render_values(View::Ao)?;
-        let (v, dw, dh) = metrics::downsample(&v, w, h, cfg.ref_scale as usize);
-        let r = &sd.refs[&(ci, s.radius.to_bits())];
-        if (dw, dh) != (r.width as usize, r.height as usize) {
-            bail!(
-                "reference size {}x{} does not match {dw}x{dh}",
-                r.width,
-                r.height
-            );
-        }
-        views.push(v);
     }
-    Ok(views)
+    let v = engine.render_values(View::Ao)?;
+    let (v, dw, dh) = metrics::downsample(&v, w, h, cfg.ref_scale as usize);
+    let r = &sd.refs[&(ci, radius.to_bits())];
+    if (dw, dh) != (r.width as usize, r.height as usize) {
+        bail!(
+            "reference size {}x{} does not match {dw}x{dh}",
+            r.width,
+            r.height
+        );
+    }
+    Ok(v)
+}
+
+/// The error of camera `ci`'s view against its reference at `radius`, on the reference's surface
+/// (non-sky) pixels.
+pub(crate) fn raw_error(
+    sd: &SceneData,
+    ci: usize,
+    radius: f32,
+    view: &[f32],
+    flip: bool,
+) -> Metrics {
+    let r = &sd.refs[&(ci, radius.to_bits())];
+    let (rw, rh) = (r.width as usize, r.height as usize);
+    let mask = r.sky_mask().iter().map(|s| !s).collect::<Vec<bool>>();
+    metrics::compare(
+        Gray::new(rw, rh, &r.ao),
+        Gray::new(rw, rh, view),
+        Some(&mask),
+        flip,
+    )
+}
+
+/// Median AO-chain milliseconds (every pass of the "ao" group) of `cfg.frames` frames at the
+/// engine's camera after `cfg.warmup` frames, as the bench times a setting.
+pub(crate) fn ao_chain_ms(engine: &mut Engine, cfg: &PerfConfig) -> Result<f64> {
+    Ok(time_frames(engine, cfg)?.total_ms)
 }
 
 /// Fits `min(1, a·v^b)` on the training cameras' surface pixels (at most ~400k pixel pairs,
@@ -218,12 +254,7 @@ fn camera_errors(
         let (rw, rh) = (r.width as usize, r.height as usize);
         let mask = r.sky_mask().iter().map(|s| !s).collect::<Vec<bool>>();
         let reference = Gray::new(rw, rh, &r.ao);
-        let raw = metrics::compare(
-            reference,
-            Gray::new(rw, rh, &views[ci]),
-            Some(&mask),
-            flip && !cam.train,
-        );
+        let raw = raw_error(sd, ci, s.radius, &views[ci], flip && !cam.train);
         let fitted = if cam.train {
             Metrics::default()
         } else {

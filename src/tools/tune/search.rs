@@ -1,0 +1,162 @@
+//! Coordinate descent over the axes of `space`: each key in turn tries its values with the others
+//! held, and keeps the best; passes repeat until one changes nothing. Deterministic: fixed order,
+//! and a value must beat the current one strictly to replace it (ties keep the earlier).
+
+use super::space::Axis;
+use crate::ao::AoSettings;
+use anyhow::{bail, Result};
+use std::collections::BTreeMap;
+
+/// What one configuration scored: the training figure, or `None` when it is over the budget.
+pub type Score = Option<f64>;
+
+/// The outcome of a search.
+#[derive(Clone, Debug)]
+pub struct Found {
+    pub best: AoSettings,
+    pub best_score: f64,
+    /// The start's score (`None`: over the budget).
+    pub start_score: Score,
+    /// Distinct configurations scored, and how many of them were over the budget.
+    pub evaluated: usize,
+    pub over_budget: usize,
+}
+
+/// The most configurations `search` can score with `axes` and `passes` (for the progress bar):
+/// the start, then each pass every value but the current one of every key.
+pub fn max_evaluations(axes: &[Axis], passes: u32) -> usize {
+    1 + passes as usize
+        * axes
+            .iter()
+            .map(|a| a.values.len().saturating_sub(1))
+            .sum::<usize>()
+}
+
+/// Coordinate descent from `start` over `axes`, at most `passes` passes; `score` is called once
+/// per distinct configuration. `Err` when no configuration scored is within the budget.
+pub fn search(
+    start: &AoSettings,
+    axes: &[Axis],
+    passes: u32,
+    mut score: impl FnMut(&AoSettings) -> Result<Score>,
+) -> Result<Found> {
+    let mut seen: BTreeMap<String, Score> = BTreeMap::new();
+    let mut over_budget = 0;
+    let mut eval = |ao: &AoSettings| -> Result<Score> {
+        let key = format!("{ao:?}");
+        if let Some(s) = seen.get(&key) {
+            return Ok(*s);
+        }
+        let s = score(ao)?;
+        if let Some(v) = s {
+            if !v.is_finite() {
+                bail!("a configuration scored {v}");
+            }
+        } else {
+            over_budget += 1;
+        }
+        seen.insert(key, s);
+        Ok(s)
+    };
+    let start_score = eval(start)?;
+    let mut best = *start;
+    let mut best_score = start_score.unwrap_or(f64::NEG_INFINITY);
+    for _ in 0..passes {
+        let mut changed = false;
+        for axis in axes {
+            for choice in &axis.values {
+                let candidate = choice.apply(&best);
+                if candidate == best {
+                    continue;
+                }
+                if let Some(s) = eval(&candidate)? {
+                    if s > best_score {
+                        best = candidate;
+                        best_score = s;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    if !best_score.is_finite() {
+        bail!("{}", rust_i18n::t!("tune.nothing_in_budget"));
+    }
+    Ok(Found {
+        best,
+        best_score,
+        start_score,
+        evaluated: seen.len(),
+        over_budget,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ao::{AoMethod, AoSettings, Thickness};
+    use crate::tools::tune::search::{max_evaluations, search};
+    use crate::tools::tune::space::{axes, Choice};
+
+    fn lesson() -> AoSettings {
+        AoSettings {
+            method: AoMethod::SaoLesson,
+            ..AoSettings::default()
+        }
+    }
+
+    /// A smooth score peaking at bias 0.025, intensity 8: separable, so one pass finds the grid's
+    /// best and a second changes nothing.
+    fn peak(ao: &AoSettings) -> f64 {
+        let (b, i) = (ao.bias as f64, ao.intensity as f64);
+        -((b - 0.025) * 100.0).powi(2) - (i - 8.0).powi(2)
+    }
+
+    #[test]
+    fn descent_finds_the_grid_optimum_and_never_ends_below_the_start() {
+        let start = lesson();
+        let space = axes(AoMethod::SaoLesson, &start, false);
+        let mut calls = 0;
+        let found = search(&start, &space, 3, |ao| {
+            calls += 1;
+            Ok(Some(peak(ao)))
+        })
+        .unwrap();
+        assert_eq!((found.best.bias, found.best.intensity), (0.025, 8.0));
+        assert_eq!(
+            found.best.spiral_turns, start.spiral_turns,
+            "ties keep the start"
+        );
+        assert!(found.best_score >= found.start_score.unwrap());
+        assert_eq!(found.evaluated, calls, "each configuration scored once");
+        assert!(calls <= max_evaluations(&space, 3));
+        // A score the start already maximises leaves it unchanged.
+        let found = search(&start, &space, 2, |ao| {
+            Ok(Some(-(ao.bias - 0.012).abs() as f64))
+        })
+        .unwrap();
+        assert_eq!(found.best, start);
+    }
+
+    #[test]
+    fn over_budget_configurations_are_skipped_and_an_empty_budget_is_an_error() {
+        let start = AoSettings {
+            method: AoMethod::Vbao,
+            ..AoSettings::default()
+        };
+        let space = axes(AoMethod::Vbao, &start, false);
+        // Thicker is better but above 0.4 m is "over budget", the start (0.5 m) too.
+        let score = |ao: &AoSettings| {
+            let t = ao.thickness_metres();
+            Ok((t <= 0.4).then_some(t as f64))
+        };
+        let found = search(&start, &space, 2, score).unwrap();
+        assert_eq!(found.start_score, None);
+        assert_eq!(found.best.thickness, Some(Thickness::Metres(0.375)));
+        assert!(found.over_budget > 0);
+        assert!(search(&start, &space, 2, |_| Ok(None)).is_err());
+        assert_ne!(Choice::Bias(0.0), Choice::Bias(0.1));
+    }
+}

@@ -1,0 +1,266 @@
+//! What `opengl3d tune` may change for each method: the `[ao]` keys its shaders read, each with a
+//! small fixed list of values inside the range `ao::settings` documents.
+//!
+//! Two kinds of keys. *Free* ones change what a tap computes, not how many taps or passes there
+//! are (bias, intensity, spiral turns, a thickness in metres): they are always searched, at the
+//! cost of the scene's setting. Keys that *cost* (sample count or preset, resolution, normals pass,
+//! guard band, back-face pass, second layer, rays) are searched only with `--budget`, which bounds
+//! what they may spend. The radius is never searched: it defines the truth (rays of length R).
+
+use crate::ao::{
+    AoMethod, AoResolution, AoSettings, GtaoQuality, GuardBand, NormalSource, Thickness,
+};
+
+/// One value of one `[ao]` key.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Choice {
+    Bias(f32),
+    Intensity(f32),
+    SpiralTurns(u32),
+    Thickness(Option<Thickness>),
+    Layers(u32),
+    Normals(NormalSource),
+    GuardBand(GuardBand),
+    Resolution(AoResolution),
+    Samples(u32),
+    Quality(Option<GtaoQuality>),
+    Rays(u32),
+}
+
+impl Choice {
+    /// `ao` with this value set.
+    pub fn apply(self, ao: &AoSettings) -> AoSettings {
+        let mut a = *ao;
+        match self {
+            Choice::Bias(v) => a.bias = v,
+            Choice::Intensity(v) => a.intensity = v,
+            Choice::SpiralTurns(v) => a.spiral_turns = v,
+            Choice::Thickness(v) => a.thickness = v,
+            Choice::Layers(v) => a.layers = v,
+            Choice::Normals(v) => a.normals = v,
+            Choice::GuardBand(v) => a.guard_band = v,
+            Choice::Resolution(v) => a.resolution = v,
+            Choice::Samples(v) => a.samples = v,
+            Choice::Quality(v) => a.quality = v,
+            Choice::Rays(v) => a.rays = v,
+        }
+        a
+    }
+}
+
+/// One `[ao]` key and the values the search tries, the start's own value first.
+#[derive(Clone, Debug)]
+pub struct Axis {
+    pub key: &'static str,
+    pub values: Vec<Choice>,
+}
+
+/// Bias (m, `BIAS_RANGE` 0–10): self-occlusion shows below a few millimetres, and beyond a
+/// decimetre the bias hides real creases at any radius the scenes use.
+const BIASES: [f32; 7] = [0.0, 0.003, 0.006, 0.012, 0.025, 0.05, 0.1];
+/// The lesson's intensity (`INTENSITY_RANGE`; its occlusion is `min(1, sum · intensity / n)`).
+const INTENSITIES: [f32; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.5, 8.0, 10.0, 13.0];
+/// rtao's intensity: the exponent of its visibility is `5 / intensity` (5 is the identity).
+const RTAO_INTENSITIES: [f32; 5] = [3.0, 4.0, 5.0, 6.0, 7.5];
+/// Spiral turns (`SPIRAL_TURNS_RANGE` 1–64); the paper's table uses small counts prime to the
+/// sample count.
+const SPIRAL_TURNS: [u32; 6] = [1, 2, 3, 5, 7, 9];
+/// vbao's slab thickness as a fraction of the radius (`THICKNESS_RANGE` in metres).
+const THICKNESS_OF_RADIUS: [f32; 8] = [0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 1.5, 2.0];
+/// Sample counts of the methods without presets (`SAMPLES_RANGE`).
+const SAMPLES: [u32; 6] = [4, 8, 11, 16, 24, 32];
+/// rtao's rays per pixel and frame.
+const RAYS: [u32; 4] = [1, 2, 4, 8];
+
+/// The keys `method`'s shaders read, from `start` (the scene's `[ao]` with the method set): the
+/// free keys always, the costly ones only when `budgeted`. Costly keys come first, so that the
+/// free ones are tuned for the chosen taps.
+pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
+    let engine_method = !matches!(method, AoMethod::SaoLesson | AoMethod::Rtao);
+    let mut axes = Vec::new();
+    if budgeted {
+        match method {
+            AoMethod::Gtao | AoMethod::Vbao => {
+                let presets = GtaoQuality::ALL.map(Some);
+                axes.push(axis(
+                    "quality",
+                    Choice::Quality(start.quality),
+                    presets.map(Choice::Quality),
+                ));
+            }
+            AoMethod::Rtao => axes.push(axis(
+                "rays",
+                Choice::Rays(start.rays),
+                RAYS.map(Choice::Rays),
+            )),
+            _ => axes.push(axis(
+                "samples",
+                Choice::Samples(start.samples),
+                SAMPLES.map(Choice::Samples),
+            )),
+        }
+        if engine_method {
+            axes.push(axis(
+                "resolution",
+                Choice::Resolution(start.resolution),
+                AoResolution::ALL.map(Choice::Resolution),
+            ));
+            axes.push(axis(
+                "guard_band",
+                Choice::GuardBand(start.guard_band),
+                [GuardBand::Off, GuardBand::Auto].map(Choice::GuardBand),
+            ));
+            // Crytek's sphere reads no normal.
+            if method != AoMethod::Crytek {
+                axes.push(axis(
+                    "normals",
+                    Choice::Normals(start.normals),
+                    NormalSource::ALL.map(Choice::Normals),
+                ));
+            }
+        }
+        if method == AoMethod::Vbao {
+            axes.push(axis(
+                "layers",
+                Choice::Layers(start.layers),
+                [1, 2].map(Choice::Layers),
+            ));
+        }
+    }
+    // Free keys: what each shader reads besides the radius and its counts.
+    if matches!(
+        method,
+        AoMethod::SaoLesson
+            | AoMethod::Sao
+            | AoMethod::Crytek
+            | AoMethod::Hemisphere
+            | AoMethod::Vbao
+    ) {
+        axes.push(axis(
+            "bias",
+            Choice::Bias(start.bias),
+            BIASES.map(Choice::Bias),
+        ));
+    }
+    match method {
+        AoMethod::SaoLesson => axes.push(axis(
+            "intensity",
+            Choice::Intensity(start.intensity),
+            INTENSITIES.map(Choice::Intensity),
+        )),
+        AoMethod::Rtao => axes.push(axis(
+            "intensity",
+            Choice::Intensity(start.intensity),
+            RTAO_INTENSITIES.map(Choice::Intensity),
+        )),
+        _ => {}
+    }
+    if matches!(method, AoMethod::SaoLesson | AoMethod::Sao) {
+        axes.push(axis(
+            "spiral_turns",
+            Choice::SpiralTurns(start.spiral_turns),
+            SPIRAL_TURNS.map(Choice::SpiralTurns),
+        ));
+    }
+    if method == AoMethod::Vbao {
+        let mut values: Vec<Choice> = THICKNESS_OF_RADIUS
+            .iter()
+            .map(|f| Choice::Thickness(Some(Thickness::Metres(f * start.radius))))
+            .collect();
+        // The back-face pass costs a depth pass of the scene.
+        if budgeted {
+            values.push(Choice::Thickness(Some(Thickness::Backface)));
+        }
+        axes.push(axis_of(
+            "thickness",
+            Choice::Thickness(start.thickness),
+            values,
+        ));
+    }
+    axes
+}
+
+/// `ao` with its free keys (which change no tap or pass) at fixed values: configurations with the
+/// same signature cost the same, so `tune` times each signature once instead of letting timing
+/// noise rule out some values of a free key.
+pub fn cost_signature(ao: &AoSettings) -> AoSettings {
+    let defaults = AoSettings::default();
+    AoSettings {
+        bias: defaults.bias,
+        intensity: defaults.intensity,
+        spiral_turns: defaults.spiral_turns,
+        thickness: match ao.thickness {
+            Some(Thickness::Backface) => Some(Thickness::Backface),
+            _ => None,
+        },
+        ..*ao
+    }
+}
+
+/// An axis whose first value is the start's own, then `grid` without it.
+fn axis<const N: usize>(key: &'static str, start: Choice, grid: [Choice; N]) -> Axis {
+    axis_of(key, start, grid.to_vec())
+}
+
+fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
+    let mut values = vec![start];
+    values.extend(grid.into_iter().filter(|c| *c != start));
+    Axis { key, values }
+}
+
+#[cfg(test)]
+mod tests {
+    use crate::ao::{AoMethod, AoSettings, GtaoQuality, Thickness};
+    use crate::tools::tune::space::{axes, cost_signature, Choice};
+
+    #[test]
+    fn every_axis_starts_at_the_scene_value_and_costly_keys_need_a_budget() {
+        let start = AoSettings {
+            method: AoMethod::Vbao,
+            bias: 0.02,
+            ..AoSettings::default()
+        };
+        let free = axes(AoMethod::Vbao, &start, false);
+        let keys: Vec<&str> = free.iter().map(|a| a.key).collect();
+        assert_eq!(keys, ["bias", "thickness"]);
+        for a in &free {
+            let first = a.values[0].apply(&start);
+            assert_eq!(first, start, "{}", a.key);
+            let n = a.values.iter().filter(|v| v.apply(&start) == start).count();
+            assert_eq!(n, 1, "{}: the start's value once", a.key);
+        }
+        assert!(!free[1]
+            .values
+            .contains(&Choice::Thickness(Some(Thickness::Backface))));
+        let budgeted = axes(AoMethod::Vbao, &start, true);
+        let keys: Vec<&str> = budgeted.iter().map(|a| a.key).collect();
+        assert_eq!(
+            keys,
+            [
+                "quality",
+                "resolution",
+                "guard_band",
+                "normals",
+                "layers",
+                "bias",
+                "thickness"
+            ]
+        );
+        // The lesson reads bias, intensity and spiral turns; hbao reads none of them.
+        let lesson: Vec<&str> = axes(AoMethod::SaoLesson, &AoSettings::default(), false)
+            .iter()
+            .map(|a| a.key)
+            .collect();
+        assert_eq!(lesson, ["bias", "intensity", "spiral_turns"]);
+        assert!(axes(AoMethod::Hbao, &AoSettings::default(), false).is_empty());
+        // Free keys share a cost; the keys that add taps or passes do not.
+        for a in &free {
+            for v in &a.values {
+                assert_eq!(cost_signature(&v.apply(&start)), cost_signature(&start));
+            }
+        }
+        let costly = |c: Choice| cost_signature(&c.apply(&start)) != cost_signature(&start);
+        assert!(costly(Choice::Thickness(Some(Thickness::Backface))));
+        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(GtaoQuality::Ultra))));
+    }
+}
