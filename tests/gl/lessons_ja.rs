@@ -328,6 +328,82 @@ fn a_japanese_figure_stands_for_its_english_twin() {
     );
 }
 
+/// The comments in the fenced code blocks of a page: (line number, the comment without its marker).
+fn listing_comments(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut fence: Option<(String, String)> = None;
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if let Some((marker, lang)) = &fence {
+            if t.starts_with(marker.as_str()) {
+                fence = None;
+            } else if let Some(i) = comment_start(lang, line) {
+                let body = line[i..].trim_start_matches(['/', '#']).trim();
+                out.push((n + 1, body.to_string()));
+            }
+            continue;
+        }
+        if t.starts_with("```") || t.starts_with("~~~") {
+            fence = Some((t[..3].to_string(), t[3..].trim().to_string()));
+        }
+    }
+    out
+}
+
+/// A comment written in English: no Japanese in it and at least two words of letters only (so
+/// `// x = y`, `// dot(D, V)` or a lone identifier pass as code).
+fn is_english_prose(comment: &str) -> bool {
+    let words = comment
+        .split_whitespace()
+        .map(|w| w.trim_end_matches([',', '.', ':', ';', '!', '?']))
+        .filter(|w| w.len() >= 2 && w.chars().all(|c| c.is_ascii_alphabetic()))
+        .count();
+    !comment.chars().any(is_japanese) && words >= 2
+}
+
+#[test]
+fn japanese_listings_comment_in_japanese() {
+    let mut problems = Vec::new();
+    for page in pages(&root().join("lessons/ja"), "") {
+        let file = root().join("lessons/ja").join(&page);
+        let text = std::fs::read_to_string(&file).unwrap();
+        for (line, comment) in listing_comments(&text) {
+            if is_english_prose(&comment) {
+                problems.push(format!(
+                    "lessons/ja/{}:{line}: an English comment: {comment}",
+                    page.display()
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn the_comment_check_tells_english_from_code_and_japanese() {
+    let page = "```glsl\nfloat r = 1.0; // disc radius in pixels\nx = y; // x = y\n```\n\
+                ```sh\ncargo test  # 全部\necho '#1' # run it all\n```\n// outside a listing\n";
+    let comments = listing_comments(page);
+    let said: Vec<_> = comments.iter().map(|(l, c)| (*l, c.as_str())).collect();
+    assert_eq!(
+        said,
+        [
+            (2, "disc radius in pixels"),
+            (3, "x = y"),
+            (6, "全部"),
+            (7, "run it all")
+        ]
+    );
+    let english: Vec<_> = comments
+        .iter()
+        .filter(|(_, c)| is_english_prose(c))
+        .map(|(l, _)| *l)
+        .collect();
+    assert_eq!(english, [2, 7]);
+    assert!(!is_english_prose("dot(D, V) / len"));
+    assert!(!is_english_prose("32バイト。count 0は内部ノード"));
+}
+
 #[test]
 fn readmes_link_each_other() {
     let en = std::fs::read_to_string(root().join("README.md")).unwrap();
