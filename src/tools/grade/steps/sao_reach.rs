@@ -52,8 +52,5 @@ pub fn beside_a_near_post(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> R
         scene.project(Vec3::new(0.12, -1.5, -5.0)),
         scene.project(Vec3::new(0.75, 1.5, -5.0)),
     );
-    Ok((
-        rect_mean(&s, w, a, b, as_r8),
-        rect_mean(&r, w, a, b, as_r8),
-    ))
+    Ok((rect_mean(&s, w, a, b, as_r8), rect_mean(&r, w, a, b, as_r8)))
 }
