@@ -12,6 +12,8 @@ labels in Japanese (the Japanese pages use those variants, from img/ja/).
     python3 figures.py course-depth LINEAR_DEPTH_1280x720.pfm OUT.png
     python3 figures.py normals LINEAR_DEPTH_1280x720.pfm OUT.png
     python3 figures.py grid OUT.png W H LABEL=FILE.pfm@X,Y ...   (W x H crops, 2 per row)
+    python3 figures.py --lang ja error-legend ERROR.png ERROR.pfm OUT.png [RANGE]
+        (the engine's error map, `render --view error`, its scale's words in Japanese)
     python3 figures.py glyphs UNIFONT.hex... TEXT   (prints JA_GLYPHS entries that TEXT lacks)
 """
 
@@ -147,6 +149,13 @@ JA_GLYPHS = {
     "距": "00003EFE2280228022803EFE0882088228822EFE288028802E80388060FF0000",
     "離": "082408247F28007F55C84948557E7F4808487F48497E55487B484148437F0000",
     "面": "00003FFE008001003FFE2222222223E22222222223E22222222222223FFE0000",
+    "ぎ": "01000104016A0F84008000B80FC00040002007D00830100010000C0003C00000",
+    "す": "0000004000403FFC0040004003C00440044004C0034000400080010006000000",
+    "る": "0000000007F0002000400080010002F007080804100401840248023001E00000",
+    "大": "00800080008000803FFE00800080014001400220022004100808100420020000",
+    "明": "0000007E3E4222422242227E3E4222422242227E3E42008200820102060E0000",
+    "暗": "0040004003FC7908488848904FFF780049F84908490879F80108010801F80000",
+    "最": "1FF810081FF810081FF800007FFE12001EFC12441E4412281E10622802C60000",
 }
 
 
@@ -191,6 +200,9 @@ WORDS = {
     "turns": {"en": "%d turns, 100 px disc", "ja": "巻き回数%d、半径100 px"},
     "level": {"en": "level %d", "ja": "レベル%d"},
     "level-size": {"en": "level %d  %dx%d", "ja": "レベル%d  %d×%d"},
+    "max": {"en": "max %s", "ja": "最大 %s"},
+    "too-dark": {"en": "%s too dark", "ja": "%s 暗すぎ"},
+    "too-light": {"en": "too light %s", "ja": "明るすぎ %s"},
 }
 
 
@@ -278,6 +290,47 @@ class Image:
         png += chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
         with open(path, "wb") as f:
             f.write(png)
+
+
+def read_png(path):
+    """An 8-bit RGB or RGBA PNG (not interlaced), as written by the engine, as an Image."""
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        sys.exit("figures.py: %s is not a PNG" % path)
+    pos, idat, w, h, channels = 8, b"", 0, 0, 3
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            if depth != 8 or colour not in (2, 6) or interlace:
+                sys.exit("figures.py: %s: only 8-bit RGB(A) PNGs without interlacing are read" % path)
+            channels = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw = zlib.decompress(idat)
+    stride = w * channels
+    img, prev = Image(w, h), bytearray(stride)
+    for y in range(h):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = prev[i], prev[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        for x in range(w):
+            img.px[3 * (y * w + x):3 * (y * w + x) + 3] = line[channels * x:channels * x + 3]
+        prev = line
+    return img
 
 
 def read_pfm(path):
@@ -515,6 +568,48 @@ def grid(out, cw, ch, items):
     img.save(out)
 
 
+def scale_label(v):
+    """A number as the engine's scale bar writes it: 3 significant digits, trailing zeros dropped."""
+    a = abs(v)
+    if a == 0:
+        return "0"
+    if not 0.001 <= a < 10000:
+        return "%.1e" % v
+    text = "%.*f" % (max(0, 2 - math.floor(math.log10(a))), v)
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return ("+" if v > 0 else "") + text
+
+
+def error_legend(png, pfm, out, value_range):
+    """The engine's error map with the words of its scale (`io/scale_bar.rs`) redrawn in LANG: the map
+    and the colour bar stay as the engine drew them. The scale sits below the map: 6 rows, the
+    marker's label (10 rows), 2 rows, the marker (5), 1 row, the bar (14), 3 rows, the ticks' labels."""
+    img = read_png(png)
+    w, h, _, rows = read_pfm(pfm)
+    top = h * img.w // w  # maps narrower than 320 pixels are enlarged by a whole factor
+    if img.h != top + 57:
+        sys.exit("figures.py: %s is not an error map of %s (%d rows, expected %d)" % (png, pfm, img.h, top + 57))
+    worst = max((v for row in rows for v in row), key=abs)
+    bg = tuple(img.px[3 * (top + 1) * img.w:3 * (top + 1) * img.w + 3])
+    fg = (235, 235, 235)
+    marker_row = top + 6 + 10 + 2
+    lit = [x for x in range(img.w) if tuple(img.px[3 * (marker_row * img.w + x):3 * (marker_row * img.w + x) + 3]) == fg]
+    marker_x = (lit[0] + lit[-1]) // 2 if lit else img.w // 2
+    img.rect(0, top, img.w, marker_row, bg)
+    img.rect(0, marker_row + 5 + 1 + 14, img.w, img.h, bg)
+    text = words("max") % scale_label(worst)
+    x = max(8, min(img.w - 8 - img.text_width(text), marker_x - img.text_width(text) // 2))
+    img.text(x, top + 2, text, fg)
+    ticks_y = marker_row + 5 + 1 + 14 + 3
+    left = words("too-dark") % scale_label(-value_range)
+    right = words("too-light") % scale_label(value_range)
+    img.text(8, ticks_y, left, fg)
+    img.text(img.w // 2 - img.text_width("0") // 2, ticks_y, "0", fg)
+    img.text(img.w - 8 - img.text_width(right), ticks_y, right, fg)
+    img.save(out)
+
+
 def main(argv):
     global LANG
     if len(argv) > 2 and argv[1] == "--lang":
@@ -535,6 +630,8 @@ def main(argv):
         normals(argv[2], argv[3])
     elif cmd == "grid":
         grid(argv[2], int(argv[3]), int(argv[4]), argv[5:])
+    elif cmd == "error-legend":
+        error_legend(argv[2], argv[3], argv[4], float(argv[5]) if len(argv) > 5 else 0.25)
     elif cmd == "glyphs":
         glyph_lines(argv[2:-1], argv[-1])
     else:

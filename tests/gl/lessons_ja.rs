@@ -206,6 +206,16 @@ const FIGURES_WITH_WORDS: &[&str] = &[
     "lessons/methods/img/hbao-tangent-fix.png",
     "lessons/methods/img/vbao-thickness.png",
     "lessons/methods/img/sao-blurs.png",
+    // The bench's error maps: their colour scale is labelled.
+    "lessons/methods/img/bench-sao-lesson-error.png",
+    "lessons/methods/img/bench-sao-error.png",
+    "lessons/methods/img/bench-crytek-error.png",
+    "lessons/methods/img/bench-hemisphere-error.png",
+    "lessons/methods/img/bench-hbao-error.png",
+    "lessons/methods/img/bench-angle-based-error.png",
+    "lessons/methods/img/bench-gtao-error.png",
+    "lessons/methods/img/bench-vbao-error.png",
+    "lessons/methods/img/bench-rtao-error.png",
 ];
 
 /// Every `.png` a page points at, as an image or a link, resolved against the page's folder.
