@@ -1,16 +1,20 @@
 #!/usr/bin/env python3
 """Pictures for the lessons that the engine does not draw by itself.
 
-Pure Python 3 (no numpy, no PIL), so it runs anywhere `make-images.sh` runs. Each figure is a
+Pure Python 3 (no numpy, no PIL, no fonts), so it runs anywhere `make-images.sh` runs. Each figure is a
 subcommand; the engine's renders come in as PFM files (raw floats, written by `opengl3d render
---out X.pfm`), and everything goes out as 8-bit RGB PNG.
+--out X.pfm`), and everything goes out as 8-bit RGB PNG. `--lang ja` before the subcommand writes the
+labels in Japanese (the Japanese pages use those variants, from img/ja/).
 
-    python3 figures.py depth-curve OUT.png
+    python3 figures.py [--lang ja] depth-curve OUT.png
     python3 figures.py spiral OUT.png
     python3 figures.py mip-chain LINEAR_DEPTH_1280x720.pfm OUT.png
     python3 figures.py course-depth LINEAR_DEPTH_1280x720.pfm OUT.png
     python3 figures.py normals LINEAR_DEPTH_1280x720.pfm OUT.png
     python3 figures.py grid OUT.png W H LABEL=FILE.pfm@X,Y ...   (W x H crops, 2 per row)
+    python3 figures.py --lang ja error-legend ERROR.png ERROR.pfm OUT.png [RANGE]
+        (the engine's error map, `render --view error`, its scale's words in Japanese)
+    python3 figures.py glyphs UNIFONT.hex... TEXT   (prints JA_GLYPHS entries that TEXT lacks)
 """
 
 import math
@@ -79,6 +83,133 @@ FONT = {
 }
 
 
+# Glyphs for the Japanese labels: 16 rows of a 16-pixel (or 8-pixel) wide bitmap each, as hex, from
+# GNU Unifont (SIL Open Font License 1.1; Japanese forms from unifont_jp.hex). Only the characters
+# the labels use; `figures.py glyphs /usr/share/unifont/unifont_jp.hex /usr/share/unifont/unifont.hex
+# TEXT` prints the lines for new ones (Debian package unifont).
+JA_GLYPHS = {
+    "×": "00000000000000422418244200000000",
+    "、": "000000000000000000000000000010000C000600020000000000000000000000",
+    "あ": "00000100010001601F800200022003F806240A421282210222041C0800300000",
+    "い": "0000000000001000100010101008100810041004100409000A00040000000000",
+    "き": "0100010001600F80008000B80FC00040002007D00830100010000C0003C00000",
+    "し": "000004000400040004000400040004000400040004040408023001C000000000",
+    "な": "00000400040007883C0404020820082010202020002001E00238022401C00000",
+    "の": "00000000000001E0069808841084108221022102220412040C18006000000000",
+    "ま": "0000008000801FF80080008000800FF00080008000800FC010B010880F000000",
+    "り": "00000010081008100810081008100A100C100410001000200020004001800000",
+    "ア": "0000000000001FFC000400880090008000800080010001000200040000000000",
+    "イ": "0000000000100010002000400080018006801880008000800080008000800000",
+    "ウ": "00000080008000801FFC10041004100400040008000800100060018000000000",
+    "ェ": "00000000000000000000000000000000000007F000800080008000800FF80000",
+    "カ": "01000100010001003FFC01040104020402040404040408081008207000000000",
+    "ケ": "0000020002000200040007FE0810101020100020002000400080030000000000",
+    "ス": "0000000000000FF00010001000200020004000A0011002080404180400000000",
+    "ッ": "0000000000000000000000000000000001000888048804100010002000400080",
+    "ト": "00000200020002000200020003C0023002080200020002000200020002000000",
+    "バ": "000000000004000A040404400420081008081004100420024002000000000000",
+    "プ": "0006000900091FFE000400040004000800080010002000400180060000000000",
+    "ベ": "0000000000000000001006280910108020404020001800060000000000000000",
+    "ミ": "000000000380006000100000030000C00020000000000E000180006000100000",
+    "メ": "000000000008000800080010031000A000600050008801000600180000000000",
+    "ラ": "0000000007F00000000000001FFC0004000800080010002000C0030000000000",
+    "ル": "000000000040004004400440044004400440084008411042204C407000000000",
+    "レ": "00000000040004000400040004000400040004080410042004C0070000000000",
+    "ー": "000000000000000000000000000020001FFE0000000000000000000000000000",
+    "低": "080E0BF00A1012101210321053FF121012101208120813881605100517F20000",
+    "修": "0840084008FF11841648343054CC171314E01408143014C21004101811E00000",
+    "値": "082008200FFF104011FC350455FC1504150415FC1504150415FC140017FF0000",
+    "再": "00003FFE008000801FFC108410841FFC108410847FFF100410041004101C0000",
+    "分": "0060042004100810080810042FFA410901080108020802080410081010E00000",
+    "判": "24821482152204223FA20422042204227FA204220422040204020402040E0000",
+    "前": "081004207FFE00003E04224422443E44224422443E44224422042204261C0000",
+    "割": "040204027FD2405244523F9204123F9204127FD200123F82208220823F8E0000",
+    "半": "10840884088800803FFE0080008000807FFF0080008000800080008000800000",
+    "古": "0100010001007FFE01000100010001001FF8100810081008100810081FF80000",
+    "可": "000000007FFF000800081F8810881088108810881F8800080008000800380000",
+    "合": "0080014002200410180C600307F0000000000FF808080808080808080FF80000",
+    "回": "00007FFE40024002400247E2442244224422442247E24002400240027FFE0000",
+    "境": "1020102013FE1104788817FF100011FC110411FC190461FC009103110C0F0000",
+    "定": "008000803FFE200220020FF800800880088008F8088018801480238040FF0000",
+    "巻": "0888048804901FFC014002207FFF04100FF81814601307F00400040403FC0000",
+    "平": "00003FFE0080088808880490049000807FFF0080008000800080008000800000",
+    "度": "004000401FFF1000110817FE110811F8100017FC11082090206041980E070000",
+    "径": "080013FC2004410808901060319856071020102013FE10201020102017FF0000",
+    "後": "08401088211040A00844108E37F1508111FC120414881050102010D817070000",
+    "接": "1020102013FE1104788817FF102010201FFF7084110413C8103010CC37020000",
+    "数": "2490149015107FBF0E22156224A248227FD4091411083A080614192260C10000",
+    "既": "00003EFE224822483E48224822FF3E1020102418242824282A49328961070000",
+    "果": "00001FFC108410841FFC108410841FFC00807FFF02A00490188C608300800000",
+    "正": "00003FFC0080008000800880088008F80880088008800880088008807FFE0000",
+    "深": "200013FE0A02025240502091130F002008200BFF10A811242222242140200000",
+    "界": "00001FFC108410841FFC108410841FFC022004101C1C64130410081010100000",
+    "結": "0810101021FF14100810121026FE790009002AFE2A8249824882088208FE0000",
+    "線": "0810102022FE148208FE1282268279FE091129DA2C5C4A944A92091108300000",
+    "能": "10401246277878C000413F41213F21403F46217821403F4021412141233F0000",
+    "距": "00003EFE2280228022803EFE0882088228822EFE288028802E80388060FF0000",
+    "離": "082408247F28007F55C84948557E7F4808487F48497E55487B484148437F0000",
+    "面": "00003FFE008001003FFE2222222223E22222222223E22222222222223FFE0000",
+    "ぎ": "01000104016A0F84008000B80FC00040002007D00830100010000C0003C00000",
+    "す": "0000004000403FFC0040004003C00440044004C0034000400080010006000000",
+    "る": "0000000007F0002000400080010002F007080804100401840248023001E00000",
+    "大": "00800080008000803FFE00800080014001400220022004100808100420020000",
+    "明": "0000007E3E4222422242227E3E4222422242227E3E42008200820102060E0000",
+    "暗": "0040004003FC7908488848904FFF780049F84908490879F80108010801F80000",
+    "最": "1FF810081FF810081FF800007FFE12001EFC12441E4412281E10622802C60000",
+}
+
+
+def wide_glyph(ch):
+    """(16 row bitmaps as ints, width) of a character outside the 5x7 font."""
+    hexbits = JA_GLYPHS.get(ch)
+    if hexbits is None:
+        sys.exit("figures.py: no glyph for %r (U+%04X); add it to JA_GLYPHS with the glyphs subcommand" % (ch, ord(ch)))
+    w = len(hexbits) // 4  # 32 hex digits: 8 wide, 64: 16 wide
+    step = w // 4
+    return [int(hexbits[i:i + step], 16) for i in range(0, len(hexbits), step)], w
+
+
+def char_advance(ch, scale):
+    if ch in FONT:
+        return 6 * scale
+    return round(wide_glyph(ch)[1] * scale / 2) + scale // 2
+
+
+def glyph_lines(hex_files, text):
+    """JA_GLYPHS entries for the characters of `text` that have none yet (first file that has one wins)."""
+    wanted = sorted({ch for ch in text if ch not in FONT and ch not in JA_GLYPHS})
+    found = {}
+    for path in hex_files:
+        for line in open(path, encoding="ascii"):
+            code, _, bits = line.strip().partition(":")
+            ch = chr(int(code, 16))
+            if ch in wanted and ch not in found:
+                found[ch] = bits
+    for ch in wanted:
+        if ch in found:
+            print('    "%s": "%s",' % (ch, found[ch]))
+        else:
+            print("no glyph for %r" % ch, file=sys.stderr)
+
+
+LANG = "en"
+
+# Words on the figures, per language.
+WORDS = {
+    "distance": {"en": "distance (m)", "ja": "距離(m)"},
+    "turns": {"en": "%d turns, 100 px disc", "ja": "巻き回数%d、半径100 px"},
+    "level": {"en": "level %d", "ja": "レベル%d"},
+    "level-size": {"en": "level %d  %dx%d", "ja": "レベル%d  %d×%d"},
+    "max": {"en": "max %s", "ja": "最大 %s"},
+    "too-dark": {"en": "%s too dark", "ja": "%s 暗すぎ"},
+    "too-light": {"en": "too light %s", "ja": "明るすぎ %s"},
+}
+
+
+def words(key):
+    return WORDS[key][LANG]
+
+
 class Image:
     def __init__(self, w, h, bg=(255, 255, 255)):
         self.w, self.h = w, h
@@ -123,15 +254,24 @@ class Image:
 
     def text(self, x, y, s, c=(0, 0, 0), scale=2):
         for ch in s:
-            g = FONT.get(ch, FONT[" "])
-            for gy, row in enumerate(g):
-                for gx, bit in enumerate(row):
-                    if bit == "1":
-                        self.rect(x + gx * scale, y + gy * scale, x + (gx + 1) * scale, y + (gy + 1) * scale, c)
-            x += 6 * scale
+            if ch in FONT:
+                for gy, row in enumerate(FONT[ch]):
+                    for gx, bit in enumerate(row):
+                        if bit == "1":
+                            self.rect(x + gx * scale, y + gy * scale, x + (gx + 1) * scale, y + (gy + 1) * scale, c)
+            else:
+                # 16-pixel glyphs drawn at scale/2, so at scale 2 they stand as tall as the 5x7 ones
+                # (7 rows x 2) plus one pixel above and below.
+                bits, w = wide_glyph(ch)
+                k = scale / 2
+                for gy, row in enumerate(bits):
+                    for gx in range(w):
+                        if row >> (w - 1 - gx) & 1:
+                            self.rect(x + gx * k, y - k + gy * k, x + (gx + 1) * k, y - k + (gy + 1) * k, c)
+            x += char_advance(ch, scale)
 
     def text_width(self, s, scale=2):
-        return 6 * scale * len(s) - scale
+        return sum(char_advance(ch, scale) for ch in s) - scale
 
     def paste(self, other, ox, oy):
         for y in range(other.h):
@@ -150,6 +290,47 @@ class Image:
         png += chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b"")
         with open(path, "wb") as f:
             f.write(png)
+
+
+def read_png(path):
+    """An 8-bit RGB or RGBA PNG (not interlaced), as written by the engine, as an Image."""
+    data = open(path, "rb").read()
+    if data[:8] != b"\x89PNG\r\n\x1a\n":
+        sys.exit("figures.py: %s is not a PNG" % path)
+    pos, idat, w, h, channels = 8, b"", 0, 0, 3
+    while pos < len(data):
+        n, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        if kind == b"IHDR":
+            w, h, depth, colour, _, _, interlace = struct.unpack(">IIBBBBB", body)
+            if depth != 8 or colour not in (2, 6) or interlace:
+                sys.exit("figures.py: %s: only 8-bit RGB(A) PNGs without interlacing are read" % path)
+            channels = 3 if colour == 2 else 4
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + n
+    raw = zlib.decompress(idat)
+    stride = w * channels
+    img, prev = Image(w, h), bytearray(stride)
+    for y in range(h):
+        kind, line = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+        for i in range(stride):
+            a = line[i - channels] if i >= channels else 0
+            b, c = prev[i], prev[i - channels] if i >= channels else 0
+            if kind == 1:
+                line[i] = (line[i] + a) & 255
+            elif kind == 2:
+                line[i] = (line[i] + b) & 255
+            elif kind == 3:
+                line[i] = (line[i] + (a + b) // 2) & 255
+            elif kind == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[i] = (line[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        for x in range(w):
+            img.px[3 * (y * w + x):3 * (y * w + x) + 3] = line[channels * x:channels * x + 3]
+        prev = line
+    return img
 
 
 def read_pfm(path):
@@ -222,7 +403,7 @@ def depth_curve(out):
     for k in (0, 2, 4, 6, 8, 10):
         s = "%.1f" % (k / 10)
         img.text(x0 - 10 - img.text_width(s), py(k / 10) - 7, s)
-    img.text(x1 - img.text_width("distance (m)"), y1 + 28, "distance (m)")
+    img.text(x1 - img.text_width(words("distance")), y1 + 28, words("distance"))
     img.text(x0 + 10, y0 + 4, "D")
 
     for n, col in ((1.0, (150, 150, 150)), (NEAR, (30, 90, 200))):
@@ -280,12 +461,12 @@ def spiral(out):
             img.disc(x, y, 7, colours[level])
             s = str(i)
             img.text(x + 8, y - 16, s, (0, 0, 0), 2)
-        t = "%d turns, 100 px disc" % turns
+        t = words("turns") % turns
         img.text(cx - img.text_width(t) / 2, 298, t)
     x = 40
     for level, c in enumerate(colours):
         img.disc(x, 327, 6, c)
-        img.text(x + 12, 320, "level %d" % level, (0, 0, 0), 2)
+        img.text(x + 12, 320, words("level") % level, (0, 0, 0), 2)
         x += 150
     img.save(out)
 
@@ -307,7 +488,7 @@ def mip_chain(pfm, out):
             row = p[y * lh // 180]
             for x in range(320):
                 img.set(ox + x, oy + y, grey(row[x * lw // 320] * scale))
-        label(img, ox + 6, oy + 6, "level %d  %dx%d" % (i, lw, lh))
+        label(img, ox + 6, oy + 6, words("level-size") % (i, lw, lh))
     img.line(320, 0, 320, 359, (255, 0, 0))
     img.line(0, 180, 639, 180, (255, 0, 0))
     img.save(out)
@@ -387,7 +568,55 @@ def grid(out, cw, ch, items):
     img.save(out)
 
 
+def scale_label(v):
+    """A number as the engine's scale bar writes it: 3 significant digits, trailing zeros dropped."""
+    a = abs(v)
+    if a == 0:
+        return "0"
+    if not 0.001 <= a < 10000:
+        return "%.1e" % v
+    text = "%.*f" % (max(0, 2 - math.floor(math.log10(a))), v)
+    if "." in text:
+        text = text.rstrip("0").rstrip(".")
+    return ("+" if v > 0 else "") + text
+
+
+def error_legend(png, pfm, out, value_range):
+    """The engine's error map with the words of its scale (`io/scale_bar.rs`) redrawn in LANG: the map
+    and the colour bar stay as the engine drew them. The scale sits below the map: 6 rows, the
+    marker's label (10 rows), 2 rows, the marker (5), 1 row, the bar (14), 3 rows, the ticks' labels."""
+    img = read_png(png)
+    w, h, _, rows = read_pfm(pfm)
+    top = h * img.w // w  # maps narrower than 320 pixels are enlarged by a whole factor
+    if img.h != top + 57:
+        sys.exit("figures.py: %s is not an error map of %s (%d rows, expected %d)" % (png, pfm, img.h, top + 57))
+    worst = max((v for row in rows for v in row), key=abs)
+    bg = tuple(img.px[3 * (top + 1) * img.w:3 * (top + 1) * img.w + 3])
+    fg = (235, 235, 235)
+    marker_row = top + 6 + 10 + 2
+    lit = [x for x in range(img.w) if tuple(img.px[3 * (marker_row * img.w + x):3 * (marker_row * img.w + x) + 3]) == fg]
+    marker_x = (lit[0] + lit[-1]) // 2 if lit else img.w // 2
+    img.rect(0, top, img.w, marker_row, bg)
+    img.rect(0, marker_row + 5 + 1 + 14, img.w, img.h, bg)
+    text = words("max") % scale_label(worst)
+    x = max(8, min(img.w - 8 - img.text_width(text), marker_x - img.text_width(text) // 2))
+    img.text(x, top + 2, text, fg)
+    ticks_y = marker_row + 5 + 1 + 14 + 3
+    left = words("too-dark") % scale_label(-value_range)
+    right = words("too-light") % scale_label(value_range)
+    img.text(8, ticks_y, left, fg)
+    img.text(img.w // 2 - img.text_width("0") // 2, ticks_y, "0", fg)
+    img.text(img.w - 8 - img.text_width(right), ticks_y, right, fg)
+    img.save(out)
+
+
 def main(argv):
+    global LANG
+    if len(argv) > 2 and argv[1] == "--lang":
+        if argv[2] not in ("en", "ja"):
+            sys.exit("figures.py: --lang takes en or ja, not %r" % argv[2])
+        LANG = argv[2]
+        argv = argv[:1] + argv[3:]
     cmd = argv[1] if len(argv) > 1 else ""
     if cmd == "depth-curve":
         depth_curve(argv[2])
@@ -401,6 +630,10 @@ def main(argv):
         normals(argv[2], argv[3])
     elif cmd == "grid":
         grid(argv[2], int(argv[3]), int(argv[4]), argv[5:])
+    elif cmd == "error-legend":
+        error_legend(argv[2], argv[3], argv[4], float(argv[5]) if len(argv) > 5 else 0.25)
+    elif cmd == "glyphs":
+        glyph_lines(argv[2:-1], argv[-1])
     else:
         sys.exit(__doc__)
 

@@ -2,6 +2,8 @@
 # Regenerates every picture under lessons/img/ from the demo scene (Res/scenes/demo.toml).
 # Run from anywhere: sh lessons/make-images.sh
 # Needs: cargo (builds and runs the engine headless) and python3 (lessons/figures.py, no extra modules).
+# OPENGL3D=path/to/opengl3d uses an already-built binary instead of `cargo run --release --`.
+# Figures with words on them are drawn twice: img/NAME.png in English, img/ja/NAME.png in Japanese.
 # "Mistake" pictures are rendered with a broken copy of one lesson shader in a temporary --res folder.
 set -eu
 
@@ -10,14 +12,19 @@ ROOT=$(dirname "$HERE")
 IMG="$HERE/img"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
-mkdir -p "$IMG"
+mkdir -p "$IMG/ja"
 cd "$ROOT"
 
-cargo build --release
-run() { cargo run --release --quiet -- "$@"; }
+if [ -n "${OPENGL3D:-}" ]; then
+  run() { "$OPENGL3D" "$@"; }
+else
+  cargo build --release
+  run() { cargo run --release --quiet -- "$@"; }
+fi
 SMALL="--width 640 --height 360"
 M="--method sao-lesson"   # the lesson's shaders (the default method, pinned here)
 fig() { python3 "$HERE/figures.py" "$@"; }
+fig_ja() { python3 "$HERE/figures.py" --lang ja "$@"; }
 
 # Engine views, straight to PNG.
 run render $M --view composite $SMALL --out "$IMG/composite.png"
@@ -29,10 +36,13 @@ run render $M --view ao $SMALL --out "$IMG/ao.png"
 # Diagrams.
 fig depth-curve "$IMG/depth-curve.png"
 fig spiral "$IMG/spiral.png"
+fig_ja depth-curve "$IMG/ja/depth-curve.png"
+fig_ja spiral "$IMG/ja/spiral.png"
 
 # Figures computed from the linear depth (1280x720 view = one value per level-0 texel of 640x360).
 run render $M --view linear-depth --out "$TMP/linear-depth.pfm"
 fig mip-chain "$TMP/linear-depth.pfm" "$IMG/mip-chain.png"
+fig_ja mip-chain "$TMP/linear-depth.pfm" "$IMG/ja/mip-chain.png"
 fig course-depth "$TMP/linear-depth.pfm" "$IMG/course-depth.png"
 fig normals "$TMP/linear-depth.pfm" "$IMG/normals.png"
 
@@ -60,5 +70,10 @@ fig grid "$IMG/mistakes-sao.png" 320 180 \
   "correct, low camera=$TMP/low-ok.pfm@320,180" "no mip bias=$TMP/low-nomipbias.pfm@320,180"
 fig grid "$IMG/blur-edges.png" 320 180 \
   "edge weight=$TMP/ok-blur.pfm@100,120" "no edge weight=$TMP/noedge.pfm@100,120"
+fig_ja grid "$IMG/ja/mistakes-sao.png" 320 180 \
+  "正しい結果=$TMP/ok.pfm@100,80" "深度の境界判定なし=$TMP/noguard.pfm@100,80" \
+  "正しい結果、低いカメラ=$TMP/low-ok.pfm@320,180" "ミップバイアスなし=$TMP/low-nomipbias.pfm@320,180"
+fig_ja grid "$IMG/ja/blur-edges.png" 320 180 \
+  "境界のウェイトあり=$TMP/ok-blur.pfm@100,120" "境界のウェイトなし=$TMP/noedge.pfm@100,120"
 
 echo "pictures written to $IMG"

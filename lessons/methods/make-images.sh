@@ -2,6 +2,7 @@
 # Regenerates the pictures under lessons/methods/img/ from the demo scene (Res/scenes/demo.toml).
 # Run from anywhere: sh lessons/methods/make-images.sh
 # Needs cargo (builds and runs the engine headless) and python3 (lessons/figures.py, no extra modules).
+# Figures with words on them are drawn twice: img/NAME.png in English, img/ja/NAME.png in Japanese.
 # OPENGL3D=path/to/opengl3d uses an already-built binary instead of `cargo run --release --`.
 # With TIMINGS=1 it also prints the AO passes of `render --stats` at 1280x720 (3 runs per method).
 set -eu
@@ -11,7 +12,7 @@ ROOT=$(cd "$HERE/../.." && pwd)
 IMG="$HERE/img"
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
-mkdir -p "$IMG"
+mkdir -p "$IMG/ja"
 cd "$ROOT"
 
 if [ -n "${OPENGL3D:-}" ]; then
@@ -23,6 +24,7 @@ fi
 SMALL="--width 640 --height 360"
 METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao vbao"
 fig() { python3 "$ROOT/lessons/figures.py" "$@"; }
+fig_ja() { python3 "$ROOT/lessons/figures.py" --lang ja "$@"; }
 
 # Raw and blurred AO of every method (visibility: white = open), and two composites.
 for m in $METHODS; do
@@ -44,6 +46,8 @@ run render --method crytek --view ao-raw $SMALL --out "$TMP/crytek.pfm"
 run --res "$V" render --method crytek --view ao-raw $SMALL --out "$TMP/crytek-norescale.pfm"
 fig grid "$IMG/crytek-rescale.png" 320 180 \
   "rescaled=$TMP/crytek.pfm@320,60" "fraction as is=$TMP/crytek-norescale.pfm@320,60"
+fig_ja grid "$IMG/ja/crytek-rescale.png" 320 180 \
+  "再スケールあり=$TMP/crytek.pfm@320,60" "割合のまま=$TMP/crytek-norescale.pfm@320,60"
 
 # GTAO: 2 slices always; --samples only adds steps (N/4 per side).
 run render --method gtao --samples 11 --view ao-raw $SMALL --out "$TMP/gtao-11.pfm"
@@ -62,6 +66,8 @@ if git cat-file -e 2711d1e:Res/ao/hbao.frag 2>/dev/null; then
   run render --method hbao --samples 8 --view ao-raw $SMALL --out "$TMP/hbao-new.pfm"
   fig grid "$IMG/hbao-tangent-fix.png" 320 180 \
     "before (old tangent)=$TMP/hbao-old.pfm@0,180" "now (tangent plane)=$TMP/hbao-new.pfm@0,180"
+  fig_ja grid "$IMG/ja/hbao-tangent-fix.png" 320 180 \
+    "修正前(古い接線)=$TMP/hbao-old.pfm@0,180" "修正後(接平面)=$TMP/hbao-new.pfm@0,180"
 else
   echo "no git history: hbao-tangent-fix.png left as it is" >&2
 fi
@@ -74,12 +80,17 @@ run render --method vbao --view ao-raw $SMALL --out "$TMP/vbao-default.pfm"
 fig grid "$IMG/vbao-thickness.png" 320 180 \
   "--thickness 0.1=$TMP/vbao-0.1.pfm@140,140" "default, 1 m=$TMP/vbao-default.pfm@140,140" \
   "--thickness 3=$TMP/vbao-3.pfm@140,140" "--thickness backface=$TMP/vbao-backface.pfm@140,140"
+fig_ja grid "$IMG/ja/vbao-thickness.png" 320 180 \
+  "--thickness 0.1=$TMP/vbao-0.1.pfm@140,140" "既定値、1 m=$TMP/vbao-default.pfm@140,140" \
+  "--thickness 3=$TMP/vbao-3.pfm@140,140" "--thickness backface=$TMP/vbao-backface.pfm@140,140"
 
 # The two blurs on the same wall: the lesson's 9x9 (taps 2 texels apart) and the separable 2 x 9.
 run render --method sao-lesson --view ao $SMALL --out "$TMP/lesson-blur.pfm"
 run render --method sao --view ao $SMALL --out "$TMP/sao-blur.pfm"
 fig grid "$IMG/sao-blurs.png" 320 180 \
   "sao-lesson: 9x9=$TMP/lesson-blur.pfm@320,60" "sao: separable=$TMP/sao-blur.pfm@320,60"
+fig_ja grid "$IMG/ja/sao-blurs.png" 320 180 \
+  "sao-lesson: 9×9=$TMP/lesson-blur.pfm@320,60" "sao: 分離可能=$TMP/sao-blur.pfm@320,60"
 
 echo "pictures written to $IMG"
 

@@ -196,6 +196,7 @@ fails! {
     sao_including_itself_is_an_include_cycle: "sao-include-self" => ["sao-include-self/sao.frag:3: #include \"sao.frag\"", "#include cycle"],
     blur_with_an_edge_distance_twice_too_large_fails: "blur-edge-distance-x2" => ["depth step of 0.05 m weigh 0.83", "gives 0.67"],
     sao_clamped_at_half_fails: "sao-clamped-at-half" => ["fully occluded pixels stay at 0.5", "min(1.0,"],
+    sao_with_a_falloff_below_zero_fails: "sao-falloff-below-zero" => ["post 1.5 m in front of the wall", "must count 0", "f = max(RADIUS2 − vv, 0)"],
 }
 
 #[test]

@@ -1,7 +1,8 @@
 //! The Japanese lessons (`lessons/ja/`) stay in step with the English ones: the same pages, the same
 //! heading structure, the same code blocks (every checkpoint command and listing, verbatim once the
 //! comments, which each language writes in its own words, are taken out) and the same images;
-//! `README.ja.md` and `README.md` link each other.
+//! `README.ja.md` and `README.md` link each other. Figures with words on them have a Japanese twin in
+//! an `img/ja/` folder, which the Japanese pages show instead.
 
 use std::collections::BTreeSet;
 use std::path::{Component, Path, PathBuf};
@@ -163,7 +164,8 @@ fn japanese_lessons_match_the_english_ones() {
                 j.code.len()
             ));
         }
-        if e.images != j.images {
+        let j_as_en: Vec<PathBuf> = j.images.iter().map(|p| english_twin(p)).collect();
+        if e.images != j_as_en {
             problems.push(format!(
                 "{name}: images {:?} (en) vs {:?} (ja)",
                 e.images, j.images
@@ -176,6 +178,240 @@ fn japanese_lessons_match_the_english_ones() {
         }
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// The English figure a Japanese one translates: `…/img/ja/x.png` → `…/img/x.png`; other paths as they are.
+fn english_twin(p: &Path) -> PathBuf {
+    let in_img_ja = p.parent().is_some_and(|d| {
+        d.file_name().is_some_and(|n| n == "ja")
+            && d.parent()
+                .and_then(Path::file_name)
+                .is_some_and(|n| n == "img")
+    });
+    match (in_img_ja, p.file_name()) {
+        (true, Some(name)) => p.parent().unwrap().parent().unwrap().join(name),
+        _ => p.to_path_buf(),
+    }
+}
+
+/// Figures with English words drawn on them (labels, axis titles; not command options): the Japanese
+/// pages show their `img/ja/` twins, drawn by `figures.py --lang ja`.
+const FIGURES_WITH_WORDS: &[&str] = &[
+    "lessons/img/depth-curve.png",
+    "lessons/img/spiral.png",
+    "lessons/img/mip-chain.png",
+    "lessons/img/mistakes-sao.png",
+    "lessons/img/blur-edges.png",
+    "lessons/methods/img/crytek-rescale.png",
+    "lessons/methods/img/hbao-tangent-fix.png",
+    "lessons/methods/img/vbao-thickness.png",
+    "lessons/methods/img/sao-blurs.png",
+    // The bench's error maps: their colour scale is labelled.
+    "lessons/methods/img/bench-sao-lesson-error.png",
+    "lessons/methods/img/bench-sao-error.png",
+    "lessons/methods/img/bench-crytek-error.png",
+    "lessons/methods/img/bench-hemisphere-error.png",
+    "lessons/methods/img/bench-hbao-error.png",
+    "lessons/methods/img/bench-angle-based-error.png",
+    "lessons/methods/img/bench-gtao-error.png",
+    "lessons/methods/img/bench-vbao-error.png",
+    "lessons/methods/img/bench-rtao-error.png",
+];
+
+/// Every `.png` a page points at, as an image or a link, resolved against the page's folder.
+fn png_targets(file: &Path) -> Vec<PathBuf> {
+    let text = std::fs::read_to_string(file).unwrap_or_else(|e| panic!("{}: {e}", file.display()));
+    let dir = file.parent().unwrap();
+    let mut out = Vec::new();
+    for (i, _) in text.match_indices("](") {
+        let after = &text[i + 2..];
+        let Some(k) = after.find(')') else { continue };
+        let target = after[..k].split_whitespace().next().unwrap_or("");
+        if target.ends_with(".png") && !target.contains("://") {
+            out.push(normalise(&dir.join(target)));
+        }
+    }
+    out
+}
+
+/// The Markdown pages of the course in both languages and the READMEs.
+fn course_pages() -> Vec<PathBuf> {
+    let lessons = root().join("lessons");
+    let mut out: Vec<PathBuf> = pages(&lessons, "")
+        .into_iter()
+        .map(|p| lessons.join(p))
+        .collect();
+    out.push(root().join("README.md"));
+    out.push(root().join("README.ja.md"));
+    out
+}
+
+#[test]
+fn every_picture_a_page_shows_exists() {
+    let pages = course_pages();
+    assert!(pages.len() > 40, "{pages:?}");
+    let mut problems = Vec::new();
+    for page in &pages {
+        for png in png_targets(page) {
+            if !png.is_file() {
+                problems.push(format!(
+                    "{}: {} does not exist",
+                    page.display(),
+                    png.display()
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn japanese_pages_show_the_japanese_figures() {
+    let labelled: BTreeSet<PathBuf> = FIGURES_WITH_WORDS.iter().map(|f| root().join(f)).collect();
+    let mut problems = Vec::new();
+    for en in &labelled {
+        let ja = en
+            .parent()
+            .unwrap()
+            .join("ja")
+            .join(en.file_name().unwrap());
+        if !en.is_file() || !ja.is_file() {
+            problems.push(format!(
+                "{} needs itself and {}",
+                en.display(),
+                ja.display()
+            ));
+        }
+    }
+    // Each Japanese twin is of a listed figure, so the list names every figure with words.
+    for dir in ["lessons/img/ja", "lessons/methods/img/ja"] {
+        for e in std::fs::read_dir(root().join(dir)).unwrap() {
+            let p = e.unwrap().path();
+            if !labelled.contains(&english_twin(&p)) {
+                problems.push(format!(
+                    "{} is not the twin of a listed figure",
+                    p.display()
+                ));
+            }
+        }
+    }
+    let japanese = course_pages()
+        .into_iter()
+        .filter(|p| p.starts_with(root().join("lessons/ja")) || p.ends_with("README.ja.md"));
+    for page in japanese {
+        for png in png_targets(&page) {
+            if labelled.contains(&png) {
+                problems.push(format!(
+                    "{}: shows {} with English words; its Japanese twin is in img/ja/",
+                    page.display(),
+                    png.display()
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn a_japanese_figure_stands_for_its_english_twin() {
+    assert_eq!(
+        english_twin(Path::new("lessons/img/ja/spiral.png")),
+        Path::new("lessons/img/spiral.png")
+    );
+    assert_eq!(
+        english_twin(Path::new("lessons/ja/img/spiral.png")),
+        Path::new("lessons/ja/img/spiral.png")
+    );
+    let dir = std::env::temp_dir().join(format!("opengl3d-ja-png-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let page = dir.join("p.md");
+    std::fs::write(
+        &page,
+        "![a](img/a.png) and [b](../b.png \"t\"), [c](c.md)\n",
+    )
+    .unwrap();
+    let found = png_targets(&page);
+    std::fs::remove_dir_all(&dir).unwrap();
+    assert_eq!(
+        found,
+        [dir.join("img/a.png"), dir.parent().unwrap().join("b.png")]
+    );
+}
+
+/// The comments in the fenced code blocks of a page: (line number, the comment without its marker).
+fn listing_comments(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut fence: Option<(String, String)> = None;
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if let Some((marker, lang)) = &fence {
+            if t.starts_with(marker.as_str()) {
+                fence = None;
+            } else if let Some(i) = comment_start(lang, line) {
+                let body = line[i..].trim_start_matches(['/', '#']).trim();
+                out.push((n + 1, body.to_string()));
+            }
+            continue;
+        }
+        if t.starts_with("```") || t.starts_with("~~~") {
+            fence = Some((t[..3].to_string(), t[3..].trim().to_string()));
+        }
+    }
+    out
+}
+
+/// A comment written in English: no Japanese in it and at least two words of letters only (so
+/// `// x = y`, `// dot(D, V)` or a lone identifier pass as code).
+fn is_english_prose(comment: &str) -> bool {
+    let words = comment
+        .split_whitespace()
+        .map(|w| w.trim_end_matches([',', '.', ':', ';', '!', '?']))
+        .filter(|w| w.len() >= 2 && w.chars().all(|c| c.is_ascii_alphabetic()))
+        .count();
+    !comment.chars().any(is_japanese) && words >= 2
+}
+
+#[test]
+fn japanese_listings_comment_in_japanese() {
+    let mut problems = Vec::new();
+    for page in pages(&root().join("lessons/ja"), "") {
+        let file = root().join("lessons/ja").join(&page);
+        let text = std::fs::read_to_string(&file).unwrap();
+        for (line, comment) in listing_comments(&text) {
+            if is_english_prose(&comment) {
+                problems.push(format!(
+                    "lessons/ja/{}:{line}: an English comment: {comment}",
+                    page.display()
+                ));
+            }
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+#[test]
+fn the_comment_check_tells_english_from_code_and_japanese() {
+    let page = "```glsl\nfloat r = 1.0; // disc radius in pixels\nx = y; // x = y\n```\n\
+                ```sh\ncargo test  # 全部\necho '#1' # run it all\n```\n// outside a listing\n";
+    let comments = listing_comments(page);
+    let said: Vec<_> = comments.iter().map(|(l, c)| (*l, c.as_str())).collect();
+    assert_eq!(
+        said,
+        [
+            (2, "disc radius in pixels"),
+            (3, "x = y"),
+            (6, "全部"),
+            (7, "run it all")
+        ]
+    );
+    let english: Vec<_> = comments
+        .iter()
+        .filter(|(_, c)| is_english_prose(c))
+        .map(|(l, _)| *l)
+        .collect();
+    assert_eq!(english, [2, 7]);
+    assert!(!is_english_prose("dot(D, V) / len"));
+    assert!(!is_english_prose("32バイト。count 0は内部ノード"));
 }
 
 #[test]

@@ -30,6 +30,10 @@ pub const SAO_MEAN_REL: f64 = 0.25;
 /// SAO: mean occlusion of the band beside a step, relative to the reference (listing +3%,
 /// rewrite −1%, f·f falloff +36%, output written in the loop +81%).
 pub const SAO_FALLOFF_REL: f64 = 0.2;
+/// SAO: mean occlusion of the wall between a raised panel and a post 1.5 m in front of the wall, in
+/// the disc (`sao_reach`), relative to the reference (listing +3%, rewrite −1%; the falloff
+/// bounded at −1 instead of 0, `max(RADIUS2 − vv, -1)`, −60%).
+pub const SAO_NEAR_POST_REL: f64 = 0.2;
 /// SAO: RMSE of 8×8 block means against the reference, same pixels as the mean (listing 0.021,
 /// rewrite 0.018, f·f 0.029, no max(…, 0) 0.102, flipped normal 0.20).
 pub const SAO_BLOCK_RMSE: f64 = 0.035;

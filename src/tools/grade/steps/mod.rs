@@ -8,6 +8,7 @@ mod sao;
 mod sao_checkpoint;
 mod sao_isotropy;
 mod sao_measure;
+mod sao_reach;
 mod simple;
 
 pub use blur::{blur, BLUR_SIZE};

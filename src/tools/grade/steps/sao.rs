@@ -13,7 +13,9 @@
 //! spread not along an axis; and that far samples come from mip levels 1–3 and near ones from
 //! level 0 (the output must move when levels 1–3 are emptied, about as much as the project's does:
 //! not much less, not far more); and that fully occluded pixels reach 1 (the intensity raised a
-//! hundredfold: where the project's output is 1, the student's must be too).
+//! hundredfold: where the project's output is 1, the student's must be too); last, that samples
+//! beyond the sampling radius count 0 (the wall beside a panel keeps its occlusion with a near post
+//! in the disc, `sao_reach`).
 
 use super::sao_measure::{measure, mip_change, saturation, Measured, ProbeResult};
 use crate::ao::AoSettings;
@@ -164,6 +166,14 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
     };
     metrics.insert("anisotropy".into(), aniso_s);
     metrics.insert("anisotropy_reference".into(), aniso_r);
+    // Occluders beyond the radius count 0: the band beside the panel keeps its occlusion with a
+    // near post in the disc (`sao_reach`).
+    let (near_s, near_r) = match super::sao_reach::beside_a_near_post(rig, params, SAO_SIZE) {
+        Ok(v) => v,
+        Err(e) => return Verdict::grader_error(&e),
+    };
+    metrics.insert("beside_near_post".into(), near_s);
+    metrics.insert("beside_near_post_reference".into(), near_r);
     let (spread, spread_reference) = (
         format!("{:.0}", 100.0 * aniso_s),
         format!("{:.0}", 100.0 * aniso_r),
@@ -425,6 +435,20 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
                 "grade.verdict.sao_near_mips",
                 got = got,
                 reference = reference
+            ),
+        );
+    }
+    // Last, so that each mistake the checks above name keeps its message.
+    if (near_s / near_r.max(1e-6) - 1.0).abs() > tol::SAO_NEAR_POST_REL {
+        let (got, expected) = (f3(near_s), f3(near_r));
+        let percent = format!("{:.0}", tol::SAO_NEAR_POST_REL * 100.0);
+        return verdict(
+            false,
+            say!(
+                "grade.verdict.sao_far_occluders",
+                got = got,
+                expected = expected,
+                percent = percent
             ),
         );
     }
