@@ -5,6 +5,7 @@
 
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
+use crate::platform::window::truth_view::TruthView;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
 use rust_i18n::t;
@@ -28,6 +29,8 @@ pub struct PanelActions {
     pub sync_shader_constants: bool,
     /// "Rebuild shaders" was clicked (same as R).
     pub reload_shaders: bool,
+    /// The truth of this view was asked for (same as T).
+    pub compute_truth: bool,
 }
 
 pub struct Panel {
@@ -52,6 +55,11 @@ impl Panel {
         }
     }
 
+    /// The language of the labels.
+    pub fn lang(&self) -> Lang {
+        self.lang
+    }
+
     /// Builds the frame's UI: the error overlay (whenever `shader_errors` is non-empty), then the
     /// panel or, when hidden, a one-line hint.
     pub fn show(
@@ -59,6 +67,7 @@ impl Panel {
         ui: &mut egui::Ui,
         engine: &mut Engine,
         shader_errors: &[String],
+        truth: &mut TruthView,
     ) -> PanelActions {
         let mut actions = PanelActions::default();
         // Before the side panel, so the overlay spans the whole width and stays visible when the
@@ -74,6 +83,8 @@ impl Panel {
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
                         self.contents(ui, engine, &mut actions);
+                        ui.separator();
+                        actions.compute_truth |= truth.panel_section(ui, engine, self.lang);
                     });
                 });
         } else {

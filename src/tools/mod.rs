@@ -7,3 +7,4 @@ pub mod error_map;
 pub mod grade;
 pub mod lesson;
 pub mod reference;
+pub mod window_truth;

@@ -1,6 +1,8 @@
 //! Opening the window: the GL context on winit + glutin, egui's painter, and the engine on the
 //! chosen shaders or, when a student's shader does not build at start-up, on the project's own.
 
+use super::accumulation::{window_accumulate, AccumulationWatch};
+use super::truth_view::TruthView;
 use super::{App, GlWindowState, Gui, StartupFallback};
 use crate::gl::ProgramError;
 use crate::platform::panel::Panel;
@@ -82,6 +84,7 @@ impl App {
         let mut engine = self.create_engine(&gl, size)?;
         engine.view = self.options.view;
         engine.collect_stats = self.options.time_passes;
+        engine.ao_settings.accumulate = window_accumulate(engine.ao_settings.accumulate);
 
         let painter = egui_glow::Painter::new(gui_gl, "", None, false)
             .map_err(|e| anyhow!("cannot set up the parameter panel's painter: {e}"))?;
@@ -116,6 +119,8 @@ impl App {
                 painter,
             },
             panel: Panel::new(self.options.panel_visible, renderer, fonts.lang),
+            truth: TruthView::new(self.options.truth.as_ref().map(|t| t.0.clone())),
+            accumulation: AccumulationWatch::default(),
             surface,
             context,
             window,

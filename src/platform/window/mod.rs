@@ -12,13 +12,17 @@
 //! the console, and the last working program keeps running until the file compiles. When a `--res`
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
 
+mod accumulation;
 mod create;
+pub mod truth;
+pub mod truth_view;
 
 use super::panel::{self, Panel};
 use super::shader_errors::ShaderErrors;
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
+use accumulation::AccumulationWatch;
 use anyhow::{Context as _, Result};
 use glam::Vec3;
 use glutin::context::PossiblyCurrentContext;
@@ -28,6 +32,8 @@ use std::collections::HashSet;
 use std::num::NonZeroU32;
 use std::path::PathBuf;
 use std::time::{Duration, Instant, SystemTime};
+use truth::TruthTools;
+use truth_view::TruthView;
 use winit::application::ApplicationHandler;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
@@ -48,6 +54,10 @@ pub struct WindowOptions {
     pub panel_visible: bool,
     /// Start with per-pass timing on (the panel's "time each pass").
     pub time_passes: bool,
+    /// The ray tracer behind T (the truth view); without one the panel says it is unavailable.
+    pub truth: Option<TruthTools>,
+    /// Ask for the truth of the first frame's view at start-up (scripted runs: `OPENGL3D_TRUTH=1`).
+    pub truth_at_start: bool,
 }
 
 impl WindowOptions {
@@ -68,6 +78,9 @@ impl WindowOptions {
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             time_passes: flag("OPENGL3D_TIME_PASSES")
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
+            truth: None,
+            truth_at_start: flag("OPENGL3D_TRUTH")
+                .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             panel_visible: !flag("OPENGL3D_PANEL")
                 .is_some_and(|v| matches!(v.as_str(), "0" | "off" | "no" | "false" | "hidden")),
         }
@@ -85,6 +98,8 @@ struct GlWindowState {
     engine: Engine,
     gui: Gui,
     panel: Panel,
+    truth: TruthView,
+    accumulation: AccumulationWatch,
     surface: Surface<WindowSurface>,
     context: PossiblyCurrentContext,
     // Dropped last: the GL objects above need the window's context.
@@ -309,6 +324,15 @@ impl App {
         }
         let last_frame = self.frames_left.is_some_and(|n| n <= 1);
         let s = self.state.as_mut().unwrap();
+        if s.accumulation
+            .changed(&s.engine.ao_settings, s.engine.size())
+        {
+            s.engine.ao.restart_accumulation();
+        }
+        if std::mem::take(&mut self.options.truth_at_start) {
+            s.truth.request(&s.engine);
+        }
+        s.truth.update(&mut s.engine);
         if let Err(e) = s.engine.render(None) {
             // Shown like a shader error and retried next frame: the window stays usable.
             if self.shader_errors.record_any(&e) {
@@ -323,9 +347,10 @@ impl App {
         let errors = self.shader_errors.lines();
         let raw_input = s.gui.input.take_egui_input(&s.window);
         let mut actions = panel::PanelActions::default();
-        let (panel, engine) = (&mut s.panel, &mut s.engine);
+        let (panel, engine, truth) = (&mut s.panel, &mut s.engine, &mut s.truth);
         let output = s.gui.ctx.run_ui(raw_input, |ui| {
-            actions = panel.show(ui, engine, &errors);
+            actions = panel.show(ui, engine, &errors, truth);
+            truth.map_window(ui.ctx(), engine, panel.lang());
         });
         s.gui
             .input
@@ -352,6 +377,10 @@ impl App {
         if actions.reload_shaders {
             self.check_reload(true);
         }
+        if actions.compute_truth {
+            let s = self.state.as_mut().unwrap();
+            s.truth.request(&s.engine);
+        }
         self.update_title();
         Ok(())
     }
@@ -366,6 +395,7 @@ impl App {
             KeyCode::KeyV | KeyCode::Tab => s.engine.view = s.engine.view.next(),
             KeyCode::KeyB => s.engine.ao_settings.blur = !s.engine.ao_settings.blur,
             KeyCode::KeyR => self.check_reload(true),
+            KeyCode::KeyT => s.truth.request(&s.engine),
             KeyCode::KeyM => {
                 let all = crate::ao::AoMethod::ALL;
                 let i = all
