@@ -44,3 +44,4 @@ mod shader_memory;
 mod surface_normals;
 mod vbao;
 mod vbao_convergence;
+mod window_truth;

@@ -35,8 +35,8 @@ pub fn window_accumulate(from_scene: u32) -> u32 {
 
 #[cfg(test)]
 mod tests {
-    use crate::platform::window::accumulation::*;
     use crate::ao::AoMethod;
+    use crate::platform::window::accumulation::*;
 
     #[test]
     fn any_change_of_setting_or_size_starts_the_mean_again() {

@@ -12,7 +12,7 @@
 //! the console, and the last working program keeps running until the file compiles. When a `--res`
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
 
-mod accumulation;
+pub mod accumulation;
 mod create;
 pub mod truth;
 pub mod truth_view;
