@@ -330,7 +330,10 @@ impl App {
             s.engine.ao.restart_accumulation();
         }
         if std::mem::take(&mut self.options.truth_at_start) {
+            // Scripted runs wait for the truth, so that their frames show its map.
+            s.truth.report = true;
             s.truth.request(&s.engine);
+            s.truth.state.wait();
         }
         s.truth.update(&mut s.engine);
         if let Err(e) = s.engine.render(None) {

@@ -90,6 +90,8 @@ pub struct TruthView {
     comparison_error: Option<String>,
     /// The floating map window is open.
     pub shown: bool,
+    /// Print each new score on stdout (scripted runs).
+    pub report: bool,
 }
 
 impl TruthView {
@@ -104,6 +106,7 @@ impl TruthView {
             texture_stale: false,
             comparison_error: None,
             shown: false,
+            report: false,
         }
     }
 
@@ -168,6 +171,16 @@ impl TruthView {
         });
         match evaluate(engine, &truth, backend.as_ref()) {
             Ok(p) => {
+                if self.report {
+                    crate::outln!(
+                        "{}",
+                        t!(
+                            "truth.psnr",
+                            psnr = format!("{:.2}", p.psnr),
+                            rmse = format!("{:.4}", p.rmse)
+                        )
+                    );
+                }
                 self.picture = Some(p);
                 self.texture_stale = true;
                 self.comparison_error = None;
@@ -284,7 +297,9 @@ impl TruthView {
             method = engine.ao_settings.method.name()
         );
         let [w, h] = texture.size();
-        let size = egui::vec2(MAP_WIDTH, MAP_WIDTH * h as f32 / w.max(1) as f32);
+        // Small windows keep most of the scene in sight.
+        let width = MAP_WIDTH.min(ctx.content_rect().width() * 0.45);
+        let size = egui::vec2(width, width * h as f32 / w.max(1) as f32);
         let text = psnr_text(picture, lang);
         let legend = t!("truth.legend", locale = lang.code());
         egui::Window::new(title.as_ref())
