@@ -3,7 +3,8 @@
 //!
 //! Keys: W/A/S/D/Q/E move, drag with a mouse button to look, Space toggles AO, M cycles AO methods, V cycles the views
 //! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, F1 shows or
-//! hides the parameter panel, Esc quits. Keys and drags go to the camera only when the panel does not use them.
+//! hides the parameter panel, T traces the truth of the view and shows the current method's error map
+//! against it (`truth_view.rs`), Esc quits. Keys and drags go to the camera only when the panel does not use them.
 //! The panel (egui, painted over the frame) sets the AO method, composite mode, radius, bias, intensity,
 //! sample count, spiral turns, blur and view, and shows the time of each pass (GPU timer queries
 //! on a hardware driver, the wall clock on llvmpipe).
@@ -11,6 +12,7 @@
 //! shown in the window (red, `file:line: message`, even with the panel hidden), in the title bar and on
 //! the console, and the last working program keeps running until the file compiles. When a `--res`
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
+//! `rtao` averages its frames while nothing changes (`accumulation.rs`).
 
 pub mod accumulation;
 mod create;
