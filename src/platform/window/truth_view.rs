@@ -156,7 +156,9 @@ impl TruthView {
                 let changed = c.key != key || c.settings != settings;
                 let accumulating = settings.method == AoMethod::Rtao && c.frames != frames;
                 let waited = now - c.at;
-                (changed && waited >= FOLLOW_INTERVAL)
+                // Another truth: compare at once, not to show the last truth's map meanwhile.
+                c.key != key
+                    || (changed && waited >= FOLLOW_INTERVAL)
                     || (accumulating && waited >= ACCUMULATION_INTERVAL)
             }
         };
