@@ -1,6 +1,6 @@
 //! The window's egui parameter panel (F1) and the shader-error overlay.
 //!
-//! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
+//! Only the UI lives here: the window (`window/mod.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
 use crate::ao::settings::RAYS_RANGE;
