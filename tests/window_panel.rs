@@ -379,3 +379,62 @@ fn the_panel_follows_the_language_when_a_cjk_font_is_installed_else_stays_englis
         );
     }
 }
+
+/// Bluish or orange pixels (the error map's two colours).
+fn error_map_pixels(img: &RgbImage) -> usize {
+    let (w, h) = img.dimensions();
+    (0..h)
+        .flat_map(|y| (0..w).map(move |x| (x, y)))
+        .filter(|&(x, y)| {
+            let p = img.get_pixel(x, y);
+            let (r, g, b) = (p[0] as i32, p[1] as i32, p[2] as i32);
+            (b > r + 60 && b > g + 20) || (r > b + 100 && r > g + 40)
+        })
+        .count()
+}
+
+#[test]
+fn the_truth_view_shows_the_error_map_and_scores_it() {
+    if !xvfb_available() {
+        return;
+    }
+    let dir = common::temp_dir("window-truth");
+    let run = |shot: &Path, truth: &str| {
+        let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+        let o = Command::new("xvfb-run")
+            .args(["-a", "-s", "-screen 0 640x480x24"])
+            .arg(env!("CARGO_BIN_EXE_opengl3d"))
+            .args([
+                "--lang", "en", "window", "--frames", "3", "--method", "hbao",
+            ])
+            .args(["--width", &W.to_string(), "--height", &H.to_string()])
+            .args(["--screenshot", shot.to_str().unwrap()])
+            .env("OPENGL3D_SCREENSHOT_UI", "1")
+            .env("OPENGL3D_PANEL", "off")
+            .env("OPENGL3D_TRUTH", truth)
+            .env("OPENGL3D_CACHE", dir.join("cache"))
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "window run failed:\n{}", stderr(&o));
+        (
+            String::from_utf8_lossy(&o.stdout).to_string(),
+            image::open(shot).unwrap().to_rgb8(),
+        )
+    };
+    let (plain_out, plain) = run(&dir.join("plain.png"), "0");
+    let (out, with_truth) = run(&dir.join("truth.png"), "1");
+    assert!(!plain_out.contains("PSNR"), "{plain_out}");
+    let psnr: f64 = out
+        .split("PSNR ")
+        .nth(1)
+        .and_then(|s| s.split(" dB").next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no PSNR on stdout:\n{out}"));
+    assert!(psnr > 5.0 && psnr < 60.0, "{psnr}");
+    let (before, after) = (error_map_pixels(&plain), error_map_pixels(&with_truth));
+    assert!(
+        after > before + 300,
+        "error-map pixels: {before} without, {after} with the truth"
+    );
+}

@@ -78,6 +78,8 @@ pub trait AoMethodPass {
     fn accumulated_frames(&self) -> u32 {
         1
     }
+    /// Starts its running mean again at the next frame (the window, after any change of setting).
+    fn restart_accumulation(&self) {}
 }
 
 /// The whole number of units (steps, directions' steps, pairs) whose `taps_per_unit` depth taps come

@@ -228,6 +228,13 @@ impl AoPipeline {
             .map_or(1, |m| m.accumulated_frames())
     }
 
+    /// Starts every method's running mean again at its next frame.
+    pub fn restart_accumulation(&self) {
+        for m in self.methods.values() {
+            m.restart_accumulation();
+        }
+    }
+
     /// Runs the method's blur.
     pub fn blur(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
         self.method(method)?.blur(inputs, &self.separable_blur)

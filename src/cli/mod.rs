@@ -109,8 +109,7 @@ pub fn run() -> Result<()> {
                 OutFormat::of("--screenshot", shot, &[OutFormat::Png])?;
             }
             let scene = load_scene(&args.scene, &res)?;
-            let mut options =
-                platform::window::WindowOptions::from_env(args.view, args.frames, args.screenshot);
+            let mut options = window_options(args.view, args.frames, args.screenshot);
             options.screenshot_with_ui |= args.screenshot_ui;
             options.panel_visible &= !args.no_panel;
             options.time_passes |= args.time_passes;
@@ -141,7 +140,11 @@ pub fn run() -> Result<()> {
         None => {
             if platform::display_available() {
                 let scene = load_scene(&SceneArgs::default(), &res)?;
-                match platform::window::run(res.clone(), scene, View::Composite, None, None) {
+                match platform::window::run_with(
+                    res.clone(),
+                    scene,
+                    window_options(View::Composite, None, None),
+                ) {
                     Ok(()) => return Ok(()),
                     Err(e) => {
                         eprintln!("{}", t!("cli.window_failed", error = format!("{e:#}")))
@@ -339,8 +342,21 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
         crate::outln!("{}", t!("lesson.wrote", path = args.out.display()));
         Ok(())
     } else {
-        platform::window::run(res.clone(), scene, view, None, None)
+        platform::window::run_with(res.clone(), scene, window_options(view, None, None))
     }
+}
+
+/// The window's options from the environment, with the CPU ray tracer behind its truth view (T).
+fn window_options(
+    view: View,
+    frames: Option<u32>,
+    screenshot: Option<std::path::PathBuf>,
+) -> platform::window::WindowOptions {
+    let mut options = platform::window::WindowOptions::from_env(view, frames, screenshot);
+    options.truth = Some(platform::window::truth::TruthTools(std::sync::Arc::new(
+        crate::tools::window_truth::CpuTruth::new(),
+    )));
+    options
 }
 
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {

@@ -1,10 +1,13 @@
 //! The window's egui parameter panel (F1) and the shader-error overlay.
 //!
-//! Only the UI lives here: the window (`window.rs`) feeds it events, paints it after the engine's
+//! Only the UI lives here: the window (`window/mod.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
+use crate::ao::settings::RAYS_RANGE;
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
+use crate::platform::window::accumulation::WINDOW_ACCUMULATE;
+use crate::platform::window::truth_view::TruthView;
 use crate::render::{Engine, PassStat, View};
 use egui::{Color32, RichText};
 use rust_i18n::t;
@@ -28,6 +31,8 @@ pub struct PanelActions {
     pub sync_shader_constants: bool,
     /// "Rebuild shaders" was clicked (same as R).
     pub reload_shaders: bool,
+    /// The truth of this view was asked for (same as T).
+    pub compute_truth: bool,
 }
 
 pub struct Panel {
@@ -39,6 +44,8 @@ pub struct Panel {
     smoothed_ms: HashMap<&'static str, f64>,
     /// Sample count being dragged: applied on release, as each value costs a shader compile.
     pending_samples: Option<u32>,
+    /// `rtao`'s rays per frame being dragged, likewise.
+    pending_rays: Option<u32>,
 }
 
 impl Panel {
@@ -49,7 +56,13 @@ impl Panel {
             lang,
             smoothed_ms: HashMap::new(),
             pending_samples: None,
+            pending_rays: None,
         }
+    }
+
+    /// The language of the labels.
+    pub fn lang(&self) -> Lang {
+        self.lang
     }
 
     /// Builds the frame's UI: the error overlay (whenever `shader_errors` is non-empty), then the
@@ -59,6 +72,7 @@ impl Panel {
         ui: &mut egui::Ui,
         engine: &mut Engine,
         shader_errors: &[String],
+        truth: &mut TruthView,
     ) -> PanelActions {
         let mut actions = PanelActions::default();
         // Before the side panel, so the overlay spans the whole width and stays visible when the
@@ -74,6 +88,8 @@ impl Panel {
                 .show(ui, |ui| {
                     egui::ScrollArea::vertical().show(ui, |ui| {
                         self.contents(ui, engine, &mut actions);
+                        ui.separator();
+                        actions.compute_truth |= truth.panel_section(ui, engine, self.lang);
                     });
                 });
         } else {
@@ -235,6 +251,9 @@ impl Panel {
         .on_hover_text(tr("panel.spiral_help"));
         actions.sync_shader_constants |= p.spiral_turns != turns;
         ui.checkbox(&mut p.blur, tr("panel.blur"));
+        if p.method == AoMethod::Rtao {
+            self.rtao_section(ui, engine, actions);
+        }
 
         ui.separator();
         egui::ComboBox::from_label(tr("panel.view"))
@@ -255,6 +274,56 @@ impl Panel {
             self.timing_table(ui, &engine.last_stats());
         } else {
             self.smoothed_ms.clear();
+        }
+    }
+
+    /// `rtao`: rays per frame, the running mean and its frame count, the BVH's cost.
+    fn rtao_section(&mut self, ui: &mut egui::Ui, engine: &mut Engine, actions: &mut PanelActions) {
+        let tr = |key: &str| label(self.lang, key);
+        let code = self.lang.code();
+        let p = &mut engine.ao_settings;
+        let mut rays = self.pending_rays.unwrap_or(p.rays);
+        let r = ui.add(
+            egui::Slider::new(&mut rays, RAYS_RANGE.0..=64)
+                .logarithmic(true)
+                .text(tr("panel.rays")),
+        );
+        if r.dragged() {
+            self.pending_rays = Some(rays);
+        } else if rays != p.rays || self.pending_rays.is_some() {
+            self.pending_rays = None;
+            actions.sync_shader_constants |= rays != p.rays;
+            p.rays = rays;
+        }
+        let mut accumulate = p.accumulate > 1;
+        ui.checkbox(&mut accumulate, tr("panel.accumulate"))
+            .on_hover_text(tr("panel.accumulate_help"));
+        p.accumulate = match (accumulate, p.accumulate) {
+            (false, _) => 1,
+            (true, 1) => WINDOW_ACCUMULATE,
+            (true, n) => n,
+        };
+        if accumulate {
+            let frames = engine.ao.accumulated_frames(AoMethod::Rtao);
+            ui.small(t!(
+                "panel.frames",
+                locale = code,
+                n = frames,
+                max = p.accumulate
+            ));
+        }
+        if let Some(b) = engine.ao.bvh_stats(AoMethod::Rtao) {
+            let mib = format!("{:.2}", b.bytes as f64 / (1024.0 * 1024.0));
+            let ms = format!("{:.1}", b.build_ms);
+            ui.small(t!(
+                "panel.bvh",
+                locale = code,
+                triangles = b.triangles,
+                nodes = b.nodes,
+                mib = mib,
+                ms = ms,
+                builds = b.builds
+            ));
         }
     }
 
@@ -371,19 +440,28 @@ mod tests {
             .split("#[cfg(test)]")
             .next()
             .unwrap();
-        let used: Vec<&str> = source
-            .split("\"panel.")
-            .skip(1)
-            .filter_map(|rest| rest.split_once('"').map(|(k, _)| k))
-            .filter(|k| !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_'))
-            .collect();
+        let keys_after = |source: &'static str, prefix: &'static str| {
+            source
+                .split(prefix)
+                .skip(1)
+                .filter_map(|rest| rest.split_once('"').map(|(k, _)| k))
+                .filter(|k| {
+                    !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+                })
+                .map(move |k| format!("{}{k}", &prefix[1..]))
+                .collect::<Vec<_>>()
+        };
+        let mut used = keys_after(source, "\"panel.");
         assert!(used.len() >= 20, "{used:?}");
+        // The truth view's section and map window.
+        let truth = keys_after(include_str!("window/truth_view.rs"), "\"truth.");
+        assert!(truth.len() >= 10, "{truth:?}");
+        used.extend(truth);
         let (en, ja) = (
             keys(include_str!("../../locales/en.yml")),
             keys(include_str!("../../locales/ja.yml")),
         );
-        for k in used {
-            let key = format!("panel.{k}");
+        for key in used {
             assert!(en.contains(&key.as_str()), "{key} missing from en.yml");
             assert!(ja.contains(&key.as_str()), "{key} missing from ja.yml");
             let (e, j) = (label(Lang::En, &key), label(Lang::Ja, &key));

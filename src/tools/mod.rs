@@ -8,3 +8,4 @@ pub mod grade;
 pub mod lesson;
 pub mod reference;
 pub mod tune;
+pub mod window_truth;

@@ -45,3 +45,4 @@ mod surface_normals;
 mod tune;
 mod vbao;
 mod vbao_convergence;
+mod window_truth;

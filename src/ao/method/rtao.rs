@@ -75,6 +75,22 @@ fn objects_key(objects: &[GameObject], meshes: &crate::gl::MeshBuffer) -> u64 {
     h.finish()
 }
 
+/// The count after one more frame whose inputs hash to `key`, and the frames already in the mean
+/// before it (0: start again). A new key, or `accumulate` 1, starts again.
+fn next_accumulation(previous: Accumulation, key: u64, accumulate: u32) -> (Accumulation, u32) {
+    let frames = if previous.key == key && accumulate > 1 {
+        previous.frames
+    } else {
+        0
+    };
+    let next = Accumulation {
+        key,
+        frames: frames.saturating_add(1),
+        averaged: frames.min(accumulate.max(1) - 1) + 1,
+    };
+    (next, frames)
+}
+
 /// Every object's triangles in world space.
 pub fn world_triangles(objects: &[GameObject], meshes: &crate::gl::MeshBuffer) -> Vec<[Vec3; 3]> {
     let mut out = Vec::new();
@@ -152,17 +168,8 @@ impl RtaoMethod {
         }
         (s.rays, s.accumulate, s.stratified, inputs.targets.size()).hash(&mut h);
         let key = h.finish();
-        let previous = self.accumulation.get();
-        let frames = if previous.key == key && s.accumulate > 1 {
-            previous.frames
-        } else {
-            0
-        };
-        self.accumulation.set(Accumulation {
-            key,
-            frames: frames.saturating_add(1),
-            averaged: frames.min(s.accumulate - 1) + 1,
-        });
+        let (next, frames) = next_accumulation(self.accumulation.get(), key, s.accumulate);
+        self.accumulation.set(next);
         frames
     }
 
@@ -315,11 +322,35 @@ impl AoMethodPass for RtaoMethod {
     fn accumulated_frames(&self) -> u32 {
         self.accumulation.get().averaged.max(1)
     }
+    fn restart_accumulation(&self) {
+        self.accumulation.set(Accumulation::default());
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_frame_count_grows_on_the_same_inputs_and_starts_again_on_new_ones() {
+        let mut a = Accumulation::default();
+        let mut before = Vec::new();
+        for key in [7, 7, 7, 8, 8] {
+            let (next, frames) = next_accumulation(a, key, 16);
+            before.push(frames);
+            a = next;
+        }
+        assert_eq!(before, [0, 1, 2, 0, 1]);
+        assert_eq!(a.averaged, 2);
+        // The mean stops growing at `accumulate` frames.
+        for _ in 0..20 {
+            a = next_accumulation(a, 8, 4).0;
+        }
+        assert_eq!(a.averaged, 4);
+        // Without accumulation every frame starts again; a restart (the default) does too.
+        assert_eq!(next_accumulation(a, 8, 1).1, 0);
+        assert_eq!(next_accumulation(Accumulation::default(), 8, 16).1, 0);
+    }
 
     #[test]
     fn centre_error_is_a_quarter_texel_at_half_size_and_none_at_full() {

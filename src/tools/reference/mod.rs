@@ -34,4 +34,4 @@ pub use screen::{load_or_render_screen_cached, render_screen_space, screen_cache
 pub use screen_box::{
     load_or_render_screen_box_cached, render_screen_space_box, screen_box_cache_key,
 };
-pub use trace::render_reference;
+pub use trace::{render_reference, render_reference_watched};

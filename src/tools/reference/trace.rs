@@ -30,6 +30,7 @@ use super::params::{AoVariant, RefParams};
 use super::sampling;
 use super::scene::Scene;
 use crate::math::Camera;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// Per-pixel result: (ao, std_error, linear_depth).
 type PixelOut = (f32, f32, f32);
@@ -44,14 +45,35 @@ pub fn render_reference(
     height: u32,
     params: &RefParams,
 ) -> RefImage {
+    render_reference_watched(scene, cam, width, height, params, &|| true)
+}
+
+/// [`render_reference`] that calls `row_done` after each row and leaves the remaining pixels sky
+/// once it returns false (the window's progress bar, and a trace nobody waits for any more).
+pub fn render_reference_watched(
+    scene: &Scene,
+    cam: &Camera,
+    width: u32,
+    height: u32,
+    params: &RefParams,
+    row_done: &(dyn Fn() -> bool + Sync),
+) -> RefImage {
     let Some(frame) = camera::frame(cam) else {
         // A camera with no usable frame: nothing to trace (all sky).
         return shade_image(width, height, "reference AO", false, |_, _| None);
     };
+    let stopped = AtomicBool::new(false);
     shade_image(width, height, "reference AO", params.progress, |x, y| {
-        Some(shade_pixel(
+        if stopped.load(Ordering::Relaxed) {
+            return None;
+        }
+        let pixel = shade_pixel(
             scene, &frame, cam, x as u32, y as u32, width, height, params,
-        ))
+        );
+        if x + 1 == width as usize && !row_done() {
+            stopped.store(true, Ordering::Relaxed);
+        }
+        Some(pixel)
     })
 }
 

@@ -3,7 +3,8 @@
 //!
 //! Keys: W/A/S/D/Q/E move, drag with a mouse button to look, Space toggles AO, M cycles AO methods, V cycles the views
 //! (composite, linear depth, raw SAO, blurred SAO), B toggles the blur, R rebuilds every shader, F1 shows or
-//! hides the parameter panel, Esc quits. Keys and drags go to the camera only when the panel does not use them.
+//! hides the parameter panel, T traces the truth of the view and shows the current method's error map
+//! against it (`truth_view.rs`), Esc quits. Keys and drags go to the camera only when the panel does not use them.
 //! The panel (egui, painted over the frame) sets the AO method, composite mode, radius, bias, intensity,
 //! sample count, spiral turns, blur and view, and shows the time of each pass (GPU timer queries
 //! on a hardware driver, the wall clock on llvmpipe).
@@ -11,34 +12,31 @@
 //! shown in the window (red, `file:line: message`, even with the panel hidden), in the title bar and on
 //! the console, and the last working program keeps running until the file compiles. When a `--res`
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
+//! `rtao` averages its frames while nothing changes (`accumulation.rs`).
+
+pub mod accumulation;
+mod create;
+pub mod truth;
+pub mod truth_view;
 
 use super::panel::{self, Panel};
-use super::panel_fonts;
-use super::shader_errors::{shader_stamps, ShaderErrorEntry, ShaderErrors};
-use crate::gl::ProgramError;
+use super::shader_errors::ShaderErrors;
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
 use crate::scene::SceneDesc;
-use anyhow::{anyhow, Context as _, Result};
+use accumulation::AccumulationWatch;
+use anyhow::{Context as _, Result};
 use glam::Vec3;
-use glutin::config::{ConfigTemplateBuilder, GlConfig};
-use glutin::context::{
-    ContextApi, ContextAttributesBuilder, GlProfile, PossiblyCurrentContext, Version,
-};
-use glutin::display::GetGlDisplay;
+use glutin::context::PossiblyCurrentContext;
 use glutin::prelude::*;
-use glutin::surface::{Surface, SwapInterval, WindowSurface};
-use glutin_winit::{DisplayBuilder, GlWindow};
-use raw_window_handle::HasWindowHandle;
+use glutin::surface::{Surface, WindowSurface};
 use std::collections::HashSet;
-use std::ffi::CStr;
 use std::num::NonZeroU32;
 use std::path::PathBuf;
-use std::rc::Rc;
-use std::sync::Arc;
 use std::time::{Duration, Instant, SystemTime};
+use truth::TruthTools;
+use truth_view::TruthView;
 use winit::application::ApplicationHandler;
-use winit::dpi::PhysicalSize;
 use winit::event::{ElementState, MouseButton, WindowEvent};
 use winit::event_loop::{ActiveEventLoop, ControlFlow, EventLoop};
 use winit::keyboard::{KeyCode, PhysicalKey};
@@ -58,6 +56,10 @@ pub struct WindowOptions {
     pub panel_visible: bool,
     /// Start with per-pass timing on (the panel's "time each pass").
     pub time_passes: bool,
+    /// The ray tracer behind T (the truth view); without one the panel says it is unavailable.
+    pub truth: Option<TruthTools>,
+    /// Ask for the truth of the first frame's view at start-up (scripted runs: `OPENGL3D_TRUTH=1`).
+    pub truth_at_start: bool,
 }
 
 impl WindowOptions {
@@ -78,6 +80,9 @@ impl WindowOptions {
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             time_passes: flag("OPENGL3D_TIME_PASSES")
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
+            truth: None,
+            truth_at_start: flag("OPENGL3D_TRUTH")
+                .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             panel_visible: !flag("OPENGL3D_PANEL")
                 .is_some_and(|v| matches!(v.as_str(), "0" | "off" | "no" | "false" | "hidden")),
         }
@@ -95,6 +100,8 @@ struct GlWindowState {
     engine: Engine,
     gui: Gui,
     panel: Panel,
+    truth: TruthView,
+    accumulation: AccumulationWatch,
     surface: Surface<WindowSurface>,
     context: PossiblyCurrentContext,
     // Dropped last: the GL objects above need the window's context.
@@ -195,185 +202,7 @@ pub fn run_with(res: ResDirs, scene: SceneDesc, options: WindowOptions) -> Resul
     }
 }
 
-/// The shader error inside an engine start-up error, if that is what stopped it.
-fn startup_shader_error(e: &anyhow::Error) -> Option<&ProgramError> {
-    e.chain().find_map(|c| c.downcast_ref::<ProgramError>())
-}
-
 impl App {
-    fn create(&mut self, event_loop: &ActiveEventLoop) -> Result<GlWindowState> {
-        let (w, h) = (self.scene.output.width, self.scene.output.height);
-        let attrs = Window::default_attributes()
-            .with_title("opengl3d")
-            .with_inner_size(PhysicalSize::new(w, h));
-        let template = ConfigTemplateBuilder::new()
-            .with_alpha_size(8)
-            .with_depth_size(0);
-        let (window, config) = DisplayBuilder::new()
-            .with_window_attributes(Some(attrs))
-            .build(event_loop, template, |configs| {
-                // Prefer single-sampled configs: the engine renders into its own FBOs.
-                configs
-                    .min_by_key(|c| (c.num_samples(), c.srgb_capable() as u8))
-                    .expect("at least one GL config")
-            })
-            .map_err(|e| anyhow!("cannot create a GL window: {e}"))?;
-        let window = window.ok_or_else(|| anyhow!("no window was created"))?;
-        let raw = window.window_handle().map_err(|e| anyhow!("{e}"))?.as_raw();
-        let display = config.display();
-        let ctx_attrs = ContextAttributesBuilder::new()
-            .with_profile(GlProfile::Core)
-            .with_context_api(ContextApi::OpenGl(Some(Version::new(4, 5))))
-            .build(Some(raw));
-        let not_current = unsafe { display.create_context(&config, &ctx_attrs) }
-            .context("cannot create an OpenGL 4.5 core context")?;
-        let surface_attrs = window
-            .build_surface_attributes(Default::default())
-            .map_err(|e| anyhow!("{e}"))?;
-        let surface = unsafe { display.create_window_surface(&config, &surface_attrs) }
-            .context("window surface")?;
-        let context = not_current.make_current(&surface).context("make current")?;
-        // Without vsync the window still works (it only draws more frames than shown).
-        if let Err(e) =
-            surface.set_swap_interval(&context, SwapInterval::Wait(NonZeroU32::new(1).unwrap()))
-        {
-            log::warn!("vsync unavailable: {e}");
-        }
-        // Two function tables for the same context: the engine shares an Rc, egui wants an Arc.
-        let load = || unsafe {
-            glow::Context::from_loader_function_cstr(|s: &CStr| display.get_proc_address(s))
-        };
-        let gl = Rc::new(load());
-        crate::gl::clip_control::register_loader(|s| display.get_proc_address(s));
-        #[allow(clippy::arc_with_non_send_sync)]
-        let gui_gl = Arc::new(load());
-        let renderer = crate::gl::describe_renderer(&gl);
-        log::info!("window context: {renderer}");
-        let size = window.inner_size();
-        let mut engine = self.create_engine(&gl, size)?;
-        engine.view = self.options.view;
-        engine.collect_stats = self.options.time_passes;
-
-        let painter = egui_glow::Painter::new(gui_gl, "", None, false)
-            .map_err(|e| anyhow!("cannot set up the parameter panel's painter: {e}"))?;
-        let ctx = egui::Context::default();
-        let fonts = panel_fonts::install_fonts(
-            &ctx,
-            crate::i18n::current(),
-            &panel_fonts::known_cjk_fonts(),
-        );
-        for warning in &fonts.warnings {
-            eprintln!("{warning}");
-        }
-        let input = egui_winit::State::new(
-            ctx.clone(),
-            egui::ViewportId::ROOT,
-            event_loop,
-            Some(window.scale_factor() as f32),
-            event_loop.system_theme(),
-            Some(painter.max_texture_side()),
-        );
-        // Scripts (and the tests) wait for this line before touching shader files.
-        crate::outln!(
-            "window {}x{} on {renderer}; F1 shows or hides the parameter panel",
-            size.width,
-            size.height
-        );
-        Ok(GlWindowState {
-            engine,
-            gui: Gui {
-                ctx,
-                input,
-                painter,
-            },
-            panel: Panel::new(self.options.panel_visible, renderer, fonts.lang),
-            surface,
-            context,
-            window,
-        })
-    }
-
-    /// The engine on the chosen shaders or, when a student's shader does not build, on the
-    /// project's own ones (the error goes to the overlay and the folder is watched for a fix).
-    fn create_engine(&mut self, gl: &crate::gl::Gl, size: PhysicalSize<u32>) -> Result<Engine> {
-        let (w, h) = (size.width.max(1), size.height.max(1));
-        let err = match Engine::new(gl, self.res.clone(), &self.scene, w, h) {
-            Ok(e) => return Ok(e),
-            Err(e) => e,
-        };
-        let dirs = self.res.dirs();
-        let Some(shader_error) = startup_shader_error(&err).filter(|_| dirs.len() > 1) else {
-            return Err(err);
-        };
-        let project = ResDirs::only(vec![dirs[dirs.len() - 1].clone()]);
-        let engine = match Engine::new(gl, project.clone(), &self.scene, w, h) {
-            Ok(e) => e,
-            // The project's shaders do not help either: report the first problem.
-            Err(_) => return Err(err),
-        };
-        eprintln!(
-            "{shader_error}\n(running the project's own shaders until this compiles; save the file to retry)"
-        );
-        self.shader_errors
-            .record(std::slice::from_ref(shader_error));
-        self.fallback = Some(StartupFallback {
-            stamps: shader_stamps(&self.res),
-            student_res: std::mem::replace(&mut self.res, project),
-        });
-        Ok(engine)
-    }
-
-    /// After a start-up failure: rebuilds the engine on the student's shaders once they were saved again.
-    fn retry_student_shaders(&mut self) {
-        let (Some(fb), Some(s)) = (self.fallback.as_mut(), self.state.as_mut()) else {
-            return;
-        };
-        let stamps = shader_stamps(&fb.student_res);
-        if stamps == fb.stamps {
-            return;
-        }
-        fb.stamps = stamps;
-        let (w, h) = s.engine.size();
-        match Engine::new(s.engine.gl(), fb.student_res.clone(), &self.scene, w, h) {
-            Ok(mut engine) => {
-                engine.camera = s.engine.camera;
-                engine.view = s.engine.view;
-                engine.ao_settings = s.engine.ao_settings;
-                engine.collect_stats = s.engine.collect_stats;
-                self.shader_errors.clear();
-                if let Err(e) = engine.sync_shader_constants() {
-                    self.shader_errors.record_any(&e);
-                }
-                s.engine = engine;
-                self.res = fb.student_res.clone();
-                self.fallback = None;
-                let dir = self.res.dirs()[0].display();
-                eprintln!("{}", rust_i18n::t!("window.rebuilt_using", dir = dir));
-            }
-            Err(e) => {
-                let text = match startup_shader_error(&e) {
-                    Some(p) => p.to_string(),
-                    None => format!("{e:#}"),
-                };
-                if self.shader_errors.text() != text {
-                    eprintln!("{text}\n{}", rust_i18n::t!("window.project_shaders_run"));
-                }
-                self.shader_errors.clear();
-                match startup_shader_error(&e) {
-                    Some(p) => {
-                        self.shader_errors.record(std::slice::from_ref(p));
-                    }
-                    None => self.shader_errors.entries.push(ShaderErrorEntry {
-                        file: None,
-                        stamp: None,
-                        text,
-                    }),
-                }
-            }
-        }
-        self.update_title();
-    }
-
     fn update_title(&mut self) {
         if let Some(s) = &self.state {
             let e = &s.engine;
@@ -497,6 +326,18 @@ impl App {
         }
         let last_frame = self.frames_left.is_some_and(|n| n <= 1);
         let s = self.state.as_mut().unwrap();
+        if s.accumulation
+            .changed(&s.engine.ao_settings, s.engine.size())
+        {
+            s.engine.ao.restart_accumulation();
+        }
+        if std::mem::take(&mut self.options.truth_at_start) {
+            // Scripted runs wait for the truth, so that their frames show its map.
+            s.truth.report = true;
+            s.truth.request(&s.engine);
+            s.truth.state.wait();
+        }
+        s.truth.update(&mut s.engine);
         if let Err(e) = s.engine.render(None) {
             // Shown like a shader error and retried next frame: the window stays usable.
             if self.shader_errors.record_any(&e) {
@@ -511,9 +352,10 @@ impl App {
         let errors = self.shader_errors.lines();
         let raw_input = s.gui.input.take_egui_input(&s.window);
         let mut actions = panel::PanelActions::default();
-        let (panel, engine) = (&mut s.panel, &mut s.engine);
+        let (panel, engine, truth) = (&mut s.panel, &mut s.engine, &mut s.truth);
         let output = s.gui.ctx.run_ui(raw_input, |ui| {
-            actions = panel.show(ui, engine, &errors);
+            actions = panel.show(ui, engine, &errors, truth);
+            truth.map_window(ui.ctx(), engine, panel.lang());
         });
         s.gui
             .input
@@ -540,6 +382,10 @@ impl App {
         if actions.reload_shaders {
             self.check_reload(true);
         }
+        if actions.compute_truth {
+            let s = self.state.as_mut().unwrap();
+            s.truth.request(&s.engine);
+        }
         self.update_title();
         Ok(())
     }
@@ -554,6 +400,7 @@ impl App {
             KeyCode::KeyV | KeyCode::Tab => s.engine.view = s.engine.view.next(),
             KeyCode::KeyB => s.engine.ao_settings.blur = !s.engine.ao_settings.blur,
             KeyCode::KeyR => self.check_reload(true),
+            KeyCode::KeyT => s.truth.request(&s.engine),
             KeyCode::KeyM => {
                 let all = crate::ao::AoMethod::ALL;
                 let i = all
