@@ -90,6 +90,15 @@ pub struct ReferenceArgs {
     /// cached beside the CPU's results.
     #[arg(long, conflicts_with_all = ["screen_space", "obscurance"])]
     pub gpu: bool,
+    /// The idealised one-layer visibility instead, traced on the scene's triangles: a point is solid
+    /// when it lies in the view between the first surface its camera ray meets and the nearest back
+    /// face behind it (the scene's AO thickness where none). What the planar-patch ceiling rebuilds
+    /// from pixels, without them: an independent check of it.
+    #[arg(long, conflicts_with_all = ["screen_space", "obscurance", "gpu"])]
+    pub ideal: bool,
+    /// With --ideal: points tested along each ray (evenly spaced within the radius).
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(1..=4096))]
+    pub ideal_steps: u32,
 }
 
 #[derive(Args, Debug)]

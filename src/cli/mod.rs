@@ -440,6 +440,15 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         } else {
             crate::tools::reference::load_or_render_screen_cached(&cache, &depth, &params)?
         }
+    } else if args.ideal {
+        crate::tools::reference::render_ideal_one_layer(
+            &bvh,
+            &cam,
+            (w, h),
+            &params,
+            scene.ao.thickness_metres(),
+            args.ideal_steps,
+        )
     } else if args.gpu {
         crate::tools::reference::load_or_render_gpu_cached(
             &cache,
@@ -476,6 +485,13 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             "{}, {surface}, {slabs}, {normals}, {guard}",
             t!("reference.kind_screen")
         )
+    } else if args.ideal {
+        t!(
+            "reference.kind_ideal",
+            thickness = scene.ao.thickness_metres(),
+            steps = args.ideal_steps
+        )
+        .into_owned()
     } else if args.gpu {
         t!("reference.kind_gpu").into_owned()
     } else {

@@ -93,8 +93,12 @@ impl Heightfield {
         };
         // An on-screen point at distance ℓ from the eye has a depth of at least ℓ / k.
         let k = (1.0 + sx * sx + sy * sy).sqrt();
-        // A patch's corners reach twice its centre's depth (patches.rs).
-        let k = if patched { 2.0 * k } else { k };
+        // A patch's corners reach 1 / (1 − MAX_CORNER_CHANGE) times its centre's depth.
+        let k = if patched {
+            k / (1.0 - super::patches::MAX_CORNER_CHANGE)
+        } else {
+            k
+        };
         let lo = if patched { -0.5 } else { 0.0 };
         let mut field = Heightfield {
             w,
