@@ -143,6 +143,16 @@ pub fn html(report: &Report) -> String {
                 &format!("{title}: error"),
                 &format!("{title}: error, PSNR {:.2} dB, {cost}", p.psnr),
             );
+            if let (Some(map), Some(psnr)) = (&p.ceiling_error, p.ceiling_psnr) {
+                // What the depth buffer alone allows, on the same scale: the row's error minus this
+                // is what its sampling loses.
+                figure(
+                    &mut out,
+                    map,
+                    &format!("{title}: its ceiling's error"),
+                    &format!("ceiling ({}): error, PSNR {psnr:.2} dB", row.ceiling_label),
+                );
+            }
             out.push_str("</div>\n");
         }
     }

@@ -1,9 +1,10 @@
 //! The pictures of `report.html`, in `pictures/` next to it: per scene, the first test camera's
 //! ray-traced truth at each radius, and each setting's AO view (box-averaged to the truth's size)
-//! with its signed error map against that truth (`crate::tools::error_map`).
+//! with its signed error map against that truth (`crate::tools::error_map`); with the error split, the
+//! ceiling's own error map too (the screen-space reference the row is split against, same scale).
 
 use super::config::PerfConfig;
-use super::references::SceneData;
+use super::references::{Ceiling, SceneData, ScreenMap};
 use crate::ao::AoMethod;
 use crate::tools::bench::catalog::Setting;
 use crate::tools::error_map;
@@ -22,6 +23,9 @@ pub struct SettingPictures {
     pub error: String,
     /// The error map's PSNR at that camera (dB; the same pixels as the row's raw figure).
     pub psnr: f64,
+    /// The ceiling's error map against the same truth and its PSNR (dB), when the run computed it.
+    pub ceiling_error: Option<String>,
+    pub ceiling_psnr: Option<f64>,
 }
 
 /// `text` with anything but ASCII letters, digits, `-` and `.` as `_`: a plain file name.
@@ -38,14 +42,16 @@ fn plain(text: &str) -> String {
 }
 
 /// Writes the truth (shared by the settings of a radius), the AO view and the error map of `method` at
-/// `s` for the scene's first test camera; `views` are the box-averaged AO views of every camera.
-/// `None` when the scene has no test camera.
+/// `s` for the scene's first test camera; `views` are the box-averaged AO views of every camera;
+/// `ceiling`: the screen-space references and the row's ceiling (its map is shared by the rows with
+/// that ceiling). `None` when the scene has no test camera.
 pub fn write(
     cfg: &PerfConfig,
     sd: &SceneData,
     method: AoMethod,
     s: &Setting,
     views: &[Vec<f32>],
+    (screen, ceiling): (&ScreenMap, Ceiling),
 ) -> Result<Option<SettingPictures>> {
     let Some(ci) = sd.cameras.iter().position(|c| !c.train) else {
         return Ok(None);
@@ -70,11 +76,29 @@ pub fn write(
     );
     error_map::write(&dir.join(&error), &map, error_map::DEFAULT_RANGE)?;
     let rel = |f: &str| format!("{FOLDER}/{f}");
+    let mut ceiling_error = None;
+    let mut ceiling_psnr = None;
+    if let Some(img) = screen.get(&(ci, s.radius.to_bits(), ceiling.key())) {
+        if (img.width, img.height) == (w, h) {
+            let file = format!(
+                "{stem}-r{}-ceiling-{}-error.png",
+                plain(&s.radius.to_string()),
+                plain(&ceiling.label())
+            );
+            let map =
+                error_map::at_truth_size(&img.ao, &r.ao, r.sky_mask(), (w as usize, h as usize), 1);
+            error_map::write(&dir.join(&file), &map, error_map::DEFAULT_RANGE)?;
+            ceiling_error = Some(rel(&file));
+            ceiling_psnr = Some(map.psnr);
+        }
+    }
     Ok(Some(SettingPictures {
         camera: camera.clone(),
         truth: rel(&truth),
         ao: rel(&ao),
         error: rel(&error),
         psnr: map.psnr,
+        ceiling_error,
+        ceiling_psnr,
     }))
 }

@@ -47,12 +47,12 @@ pub fn run_setting(
     let timing = time_frames(engine, cfg)?;
 
     let views = ao_views(engine, sd, s, cfg)?;
-    let pictures = super::pictures::write(cfg, sd, method, s, &views)?;
+    let ceiling = Ceiling::of(method, &engine.ao_settings);
+    let pictures = super::pictures::write(cfg, sd, method, s, &views, (screen, ceiling))?;
     engine.camera = scene_camera;
     engine.sync_shader_constants()?;
 
     let fit = fit_on_training_cameras(sd, s, &views);
-    let ceiling = Ceiling::of(method, &engine.ao_settings);
     let cameras = camera_errors(sd, screen, s, ceiling, &views, &fit, cfg.flip)?;
     let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
     let raw = mean_metrics(&test, |c| c.raw);
