@@ -13,6 +13,10 @@ static FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// Process groups of the running step processes (each step leads its own group).
 static GROUPS: Mutex<Vec<i32>> = Mutex::new(Vec::new());
 
+/// How many times the handler removes the folders while something still writes into them (20 ms
+/// apart: a killed step is gone well within that).
+const REMOVAL_ATTEMPTS: usize = 10;
+
 /// The status an interrupted grader exits with (128 + SIGINT, as shells report Ctrl-C).
 pub const INTERRUPTED_STATUS: i32 = 130;
 
@@ -31,8 +35,17 @@ fn install() {
                 // SAFETY: a plain system call; the group's leader is a step not yet reaped.
                 unsafe { libc::kill(-group, libc::SIGKILL) };
             }
-            for dir in folders.iter() {
-                let _ = std::fs::remove_dir_all(dir);
+            // A killed step dies a moment after the signal, and the grader's own threads may be
+            // copying into a folder while it is removed ("directory not empty", or recreated):
+            // remove until none is left, a few times at most, then end before they write again.
+            for _ in 0..REMOVAL_ATTEMPTS {
+                for dir in folders.iter() {
+                    let _ = std::fs::remove_dir_all(dir);
+                }
+                if !folders.iter().any(|d| d.exists()) {
+                    break;
+                }
+                std::thread::sleep(std::time::Duration::from_millis(20));
             }
             std::process::exit(INTERRUPTED_STATUS);
         });
