@@ -56,7 +56,8 @@ impl Patches {
                 };
                 let corner = 0.5 * (gx.abs() + gy.abs());
                 let limit = MAX_CORNER_CHANGE * centre;
-                if !(corner <= limit) {
+                // NaN slopes (an odd normal) count as too steep.
+                if corner.is_nan() || corner > limit {
                     let scale = if corner.is_finite() {
                         limit / corner
                     } else {
