@@ -10,17 +10,8 @@ set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(dirname "$HERE")
 IMG="$HERE/img"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$IMG/ja"
-cd "$ROOT"
-
-if [ -n "${OPENGL3D:-}" ]; then
-  run() { "$OPENGL3D" "$@"; }
-else
-  cargo build --release
-  run() { cargo run --release --quiet -- "$@"; }
-fi
+. "$ROOT/lessons/engine.sh"
 SMALL="--width 640 --height 360"
 M="--method sao-lesson"   # the lesson's shaders (the default method, pinned here)
 fig() { python3 "$HERE/figures.py" "$@"; }

@@ -14,17 +14,8 @@ set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
 IMG="$HERE/img"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$IMG/ja"
-cd "$ROOT"
-
-if [ -n "${OPENGL3D:-}" ]; then
-  run() { "$OPENGL3D" "$@"; }
-else
-  cargo build --release
-  run() { cargo run --release --quiet -- "$@"; }
-fi
+. "$ROOT/lessons/engine.sh"
 SIZE="--width 480 --height 270 --radius 1"
 METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao vbao rtao"
 

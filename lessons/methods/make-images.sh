@@ -10,17 +10,10 @@ set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
 IMG="$HERE/img"
-TMP=$(mktemp -d)
-trap 'rm -rf "$TMP"' EXIT
 mkdir -p "$IMG/ja"
-cd "$ROOT"
-
-if [ -n "${OPENGL3D:-}" ]; then
-  run() { "$OPENGL3D" "$@" >/dev/null; }
-else
-  cargo build --release
-  run() { cargo run --release --quiet -- "$@" >/dev/null; }
-fi
+. "$ROOT/lessons/engine.sh"
+# The renders' own messages are not wanted here: only the script's summary lines.
+run() { engine "$@" >/dev/null; }
 SMALL="--width 640 --height 360"
 METHODS="sao-lesson sao crytek hemisphere hbao angle-based gtao vbao"
 fig() { python3 "$ROOT/lessons/figures.py" "$@"; }
