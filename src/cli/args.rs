@@ -66,9 +66,11 @@ pub struct ReferenceArgs {
     /// `--normals geometric` takes each pixel's triangle normal.
     #[arg(long)]
     pub screen_space: bool,
-    /// With --screen-space: render the depth buffer N times wider and taller and average the
-    /// visibility over each N×N block (the bench's `--ref-scale N` protocol); the output keeps the
-    /// scene's size.
+    /// Each pixel the mean over its footprint, N×N sub-pixels (the bench's `--ref-scale N` truth,
+    /// which an engine image N times larger box-averaged by N is compared with): the ray tracer
+    /// traces every sub-pixel's centre with rays/N² rays (rounded up); with --screen-space the depth
+    /// buffer is rendered N times wider and taller and the visibility averaged over each N×N block.
+    /// The output keeps the scene's size.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]
     pub supersample: u32,
     /// With --screen-space: how the surface is rebuilt from the pixels: `patches` (each pixel's

@@ -399,6 +399,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
         },
         seed: 1,
         progress: true,
+        supersample: 1,
     };
     let (w, h) = (scene.output.width, scene.output.height);
     let cache = crate::tools::reference::reference_cache_dir(args.cache.as_deref())?;
@@ -409,8 +410,8 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     if args.surface != SurfaceArg::Auto && !args.screen_space {
         bail!("--surface applies to the screen-space reference: add --screen-space")
     }
-    if args.supersample > 1 && !args.screen_space {
-        bail!("--supersample applies to the screen-space reference: add --screen-space")
+    if args.supersample > 1 && args.ideal {
+        bail!("--supersample does not apply to --ideal (it traces pixel centres)")
     }
     let mut surface = None;
     let img = if args.screen_space {
@@ -449,16 +450,23 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             scene.ao.thickness_metres(),
             args.ideal_steps,
         )
-    } else if args.gpu {
-        crate::tools::reference::load_or_render_gpu_cached(
-            &cache,
-            res,
-            &scene,
-            bvh.content_hash(),
-            &params,
-        )?
     } else {
-        load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
+        // The ray tracer's footprint mean (the screen-space one box-averages its own way above).
+        let params = RefParams {
+            supersample: args.supersample,
+            ..params
+        };
+        if args.gpu {
+            crate::tools::reference::load_or_render_gpu_cached(
+                &cache,
+                res,
+                &scene,
+                bvh.content_hash(),
+                &params,
+            )?
+        } else {
+            load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
+        }
     };
     crate::io::create_parent(&args.out)?;
     match format {

@@ -37,6 +37,7 @@ impl CpuTruth {
             variant: AoVariant::Visibility,
             seed: 1,
             progress: false,
+            supersample: 1,
         }
     }
 }
@@ -50,7 +51,10 @@ impl Default for CpuTruth {
 impl TruthBackend for CpuTruth {
     fn trace(&self, r: &TruthRequest, progress: &TruthProgress) -> Result<Truth> {
         let scene = Scene::new(r.triangles.as_ref().clone())?;
-        let params = self.params(r.radius);
+        let params = RefParams {
+            supersample: r.footprint.max(1),
+            ..self.params(r.radius)
+        };
         let key = cache_key(scene.content_hash(), &r.camera, r.width, r.height, &params);
         let cached = self.cache_dir.as_ref().and_then(|d| read_cached(d, &key));
         let img = match cached.filter(|i| (i.width, i.height) == (r.width, r.height)) {

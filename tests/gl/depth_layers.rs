@@ -88,6 +88,7 @@ fn a_second_layer_finds_the_occluder_hidden_under_a_plate() {
         variant: AoVariant::Visibility,
         seed: 7,
         progress: false,
+        supersample: 1,
     };
     let truth = load_or_render_cached(&temp_dir("layers-cache"), &scene, &cam, W, H, &params);
     let mean = strip_mean(surface_points(&truth, &cam));
@@ -153,6 +154,7 @@ fn the_screen_space_ceiling_with_two_layers_sees_the_hidden_block_too() {
         variant: AoVariant::Visibility,
         seed: 3,
         progress: false,
+        supersample: 1,
     };
     let ceiling_one = render_screen_space(&one, &params).unwrap();
     let ceiling_two = render_screen_space(&two, &params).unwrap();

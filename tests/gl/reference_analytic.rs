@@ -51,6 +51,7 @@ fn params(radius: f32, rays: u32, variant: AoVariant) -> RefParams {
         variant,
         seed: 12345,
         progress: false,
+        supersample: 1,
     }
 }
 
@@ -591,6 +592,7 @@ fn cache_round_trip() {
             variant: AoVariant::Visibility,
             seed: 7,
             progress: false,
+            supersample: 1,
         },
     );
     assert_eq!(fixed, GOLDEN_KEY);

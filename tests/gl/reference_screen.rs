@@ -22,6 +22,7 @@ pub(crate) fn params(radius: f32, rays: u32) -> RefParams {
         variant: AoVariant::Visibility,
         seed: 5,
         progress: false,
+        supersample: 1,
     }
 }
 

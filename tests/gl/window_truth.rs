@@ -33,11 +33,13 @@ fn window_truth_scores_the_psnr_of_render_view_error() {
     let truth_size_flags =
         ["--width", &tw.to_string(), "--height", &th.to_string()].map(String::from);
 
-    // The command line: the reference at the truth's size, then the error map of hbao against it.
+    // The command line: the reference at the truth's size, each pixel the mean over the window
+    // pixels the map averages onto it, then the error map of hbao against it.
     let truth_file = dir.join("truth.pfm");
     let mut args = vec!["reference".to_string(), "--out".into()];
     args.push(truth_file.to_str().unwrap().into());
     args.extend(truth_size_flags);
+    args.extend(["--supersample".into(), (W / tw).to_string()]);
     let o = common::run(&args);
     assert!(o.status.success(), "{}", common::stderr(&o));
     let mut args = vec![
@@ -75,6 +77,7 @@ fn window_truth_scores_the_psnr_of_render_view_error() {
         radius: engine.ao_settings.radius,
         width: tw,
         height: th,
+        footprint: W / tw,
         triangles: Arc::new(engine.world_triangles()),
     };
     assert!(state.request(key, request, backend.clone()));

@@ -27,6 +27,9 @@ pub struct TruthRequest {
     pub radius: f32,
     pub width: u32,
     pub height: u32,
+    /// Each truth pixel is the mean over this many sub-pixels squared: the window's pixels the
+    /// error map box-averages onto it.
+    pub footprint: u32,
     /// The scene's triangles in world space.
     pub triangles: Arc<Vec<[Vec3; 3]>>,
 }
@@ -364,6 +367,7 @@ mod tests {
             radius,
             width: 8,
             height: 6,
+            footprint: 1,
             triangles: Arc::new(Vec::new()),
         };
         state.request(key, request, tracer.clone());

@@ -131,6 +131,7 @@ impl TruthView {
             radius: engine.ao_settings.radius,
             width,
             height,
+            footprint: engine.size().0 / width.max(1),
             triangles,
         };
         self.state.request(key, request, backend);

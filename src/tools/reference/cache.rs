@@ -69,6 +69,11 @@ pub fn cache_key(
         AoVariant::Obscurance => 1,
     });
     h.u64(params.seed);
+    // Hashed only when it changes the pixels, so centre-sampled keys stay as they were.
+    if params.supersample > 1 {
+        h.bytes(b"supersample");
+        h.u32(params.supersample);
+    }
     format!("{:016x}", h.0)
 }
 

@@ -7,7 +7,7 @@
 
 use super::cache::{cache_key, read_cached, store_or_warn};
 use super::hash::Fnv64;
-use super::image::RefImage;
+use super::image::{footprint_mean, RefImage};
 use super::params::{AoVariant, RefParams};
 use crate::ao::{AoMethod, AoResolution, GuardBand};
 use crate::platform::HeadlessContext;
@@ -42,15 +42,20 @@ pub fn render_reference_gpu(
     ao.blur = false;
     ao.radius = params.radius;
     ao.intensity = 5.0; // the identity: occlusion as traced
-    ao.rays = params.rays;
+                        // With a footprint, every sub-pixel of an image `supersample` times larger gets its share.
+    let footprint = params.supersample.max(1);
+    ao.rays = params.rays.div_ceil(footprint * footprint);
     ao.accumulate = 1;
     ao.stratified = true;
+    let (out_w, out_h) = (scene.output.width, scene.output.height);
+    scene.output.width = out_w.saturating_mul(footprint);
+    scene.output.height = out_h.saturating_mul(footprint);
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
     let ao = engine.render_values(View::AoRaw)?;
     let depth = engine.render_values(View::LinearDepth)?;
     let far = engine.camera.far;
-    let n = params.rays as f32;
+    let n = scene.ao.rays as f32;
     let (w, h) = engine.size();
     let mut img = RefImage {
         width: w,
@@ -66,7 +71,28 @@ pub fn render_reference_gpu(
         img.std_error.push((v * (1.0 - v) / n).max(0.0).sqrt());
         img.linear_depth.push(if sky { f32::INFINITY } else { z });
     }
-    Ok(img)
+    if footprint == 1 {
+        return Ok(img);
+    }
+    let mut mean = RefImage {
+        width: out_w,
+        height: out_h,
+        ao: Vec::with_capacity(out_w as usize * out_h as usize),
+        std_error: Vec::with_capacity(out_w as usize * out_h as usize),
+        linear_depth: Vec::with_capacity(out_w as usize * out_h as usize),
+    };
+    for y in 0..out_h {
+        for x in 0..out_w {
+            let (a, e, d) = footprint_mean(footprint, |i, j| {
+                let k = img.index(x * footprint + i, y * footprint + j);
+                (img.ao[k], img.std_error[k], img.linear_depth[k])
+            });
+            mean.ao.push(a);
+            mean.std_error.push(e);
+            mean.linear_depth.push(d);
+        }
+    }
+    Ok(mean)
 }
 
 /// [`render_reference_gpu`] through the reference's cache folder: the same file format, under a key

@@ -48,6 +48,44 @@ impl RefImage {
     }
 }
 
+/// One pixel from the `n`×`n` sub-pixels of its footprint, `sub(i, j)` giving each one's (ao,
+/// std_error, linear depth) as a pixel of an image `n` times wider and taller: the mean ao, so that a
+/// board thinner than the pixel counts by the share of it that it covers, as in that image
+/// box-averaged by `n`. Sky sub-pixels count as open (ao 1), as the engine's AO view is there; the
+/// pixel is sky when at least half of them are (the error map's rule), else its depth is that of
+/// the sub-pixel nearest its centre that saw a surface.
+pub(crate) fn footprint_mean(
+    n: u32,
+    mut sub: impl FnMut(u32, u32) -> (f32, f32, f32),
+) -> (f32, f32, f32) {
+    let n = n.max(1);
+    let centre = (n as f32 - 1.0) / 2.0;
+    let (mut ao, mut variance, mut sky) = (0.0f64, 0.0f64, 0u32);
+    let mut nearest = (f32::INFINITY, f32::INFINITY); // (distance² to the centre, depth)
+    for j in 0..n {
+        for i in 0..n {
+            let (a, e, d) = sub(i, j);
+            ao += a as f64;
+            variance += (e as f64) * (e as f64);
+            if d.is_finite() {
+                let r2 = (i as f32 - centre).powi(2) + (j as f32 - centre).powi(2);
+                if r2 < nearest.0 {
+                    nearest = (r2, d);
+                }
+            } else {
+                sky += 1;
+            }
+        }
+    }
+    let count = (n * n) as f64;
+    let depth = if 2 * sky >= n * n {
+        f32::INFINITY
+    } else {
+        nearest.1
+    };
+    ((ao / count) as f32, (variance.sqrt() / count) as f32, depth)
+}
+
 /// Runs `shade` over every pixel in parallel (rows on rayon, a progress bar labelled `what`):
 /// `Some((ao, std_error, linear depth))`, or `None` for sky (ao 1, error 0, depth ∞).
 pub(crate) fn shade_image(

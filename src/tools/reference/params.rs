@@ -24,6 +24,10 @@ pub struct RefParams {
     pub seed: u64,
     /// Show an indicatif progress bar (rows) on stderr. Nothing is printed when false.
     pub progress: bool,
+    /// Each pixel is the mean over its footprint: N×N sub-pixel centres (those of an image N times
+    /// wider and taller), each with `rays / N²` rays rounded up. What a render N times larger,
+    /// box-averaged by N, estimates: the bench's `--ref-scale N` protocol. 1 (or 0): the centre.
+    pub supersample: u32,
 }
 
 impl Default for RefParams {
@@ -34,6 +38,7 @@ impl Default for RefParams {
             variant: AoVariant::Visibility,
             seed: 0,
             progress: false,
+            supersample: 1,
         }
     }
 }

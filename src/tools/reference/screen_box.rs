@@ -160,6 +160,7 @@ mod tests {
             variant: AoVariant::Visibility,
             seed: 9,
             progress: false,
+            supersample: 1,
         }
     }
 

@@ -25,7 +25,7 @@
 //! cameras / parameters fall back to the documented defaults below.
 
 use super::camera::{self, Frame};
-use super::image::{shade_image, RefImage};
+use super::image::{footprint_mean, shade_image, RefImage};
 use super::params::{AoVariant, RefParams};
 use super::sampling;
 use super::scene::Scene;
@@ -67,13 +67,51 @@ pub fn render_reference_watched(
         if stopped.load(Ordering::Relaxed) {
             return None;
         }
-        let pixel = shade_pixel(
-            scene, &frame, cam, x as u32, y as u32, width, height, params,
-        );
-        if x + 1 == width as usize && !row_done() {
+        let (x, y) = (x as u32, y as u32);
+        let pixel = if params.supersample > 1 {
+            shade_footprint(scene, &frame, cam, x, y, width, height, params)
+        } else {
+            shade_pixel(scene, &frame, cam, x, y, width, height, params)
+        };
+        if x + 1 == width && !row_done() {
             stopped.store(true, Ordering::Relaxed);
         }
         Some(pixel)
+    })
+}
+
+/// The mean over pixel (x, y)'s footprint ([`footprint_mean`]): the `n`×`n` pixels an image `n`
+/// times wider and taller has there, each traced as [`shade_pixel`] traces a pixel, with
+/// `rays / n²` rays (rounded up).
+#[allow(clippy::too_many_arguments)]
+fn shade_footprint(
+    scene: &Scene,
+    frame: &Frame,
+    cam: &Camera,
+    x: u32,
+    y: u32,
+    width: u32,
+    height: u32,
+    params: &RefParams,
+) -> PixelOut {
+    let n = params.supersample;
+    let sub = RefParams {
+        rays: params.rays.max(1).div_ceil(n * n),
+        supersample: 1,
+        ..*params
+    };
+    let (fine_w, fine_h) = (width.saturating_mul(n), height.saturating_mul(n));
+    footprint_mean(n, |i, j| {
+        shade_pixel(
+            scene,
+            frame,
+            cam,
+            x * n + i,
+            y * n + j,
+            fine_w,
+            fine_h,
+            &sub,
+        )
     })
 }
 
@@ -167,6 +205,7 @@ fn shade_pixel(
 mod tests {
     use super::*;
     use crate::tools::reference::camera::{pixel_dir, view_direction};
+    use crate::tools::reference::image::footprint_mean;
     use glam::Vec3;
 
     /// Two triangles forming the square [-s, s]^2 in the plane z = z0 (facing +Z).
@@ -285,5 +324,100 @@ mod tests {
         let b = render_reference(&scene, &cam_down_neg_z(0.1, 100.0), 8, 8, &p);
         assert_eq!(a, b);
         assert!(a.ao.iter().any(|&v| v < 1.0));
+    }
+
+    #[test]
+    fn a_footprint_is_the_box_average_of_the_larger_image() {
+        // A floor with a thin post standing on it: pixels the post crosses are partly open floor.
+        let mut tris = quad_z(-3.0, 10.0);
+        let post = |x0: f32| {
+            let (a, b) = (
+                Vec3::new(x0, -10.0, -2.6),
+                Vec3::new(x0 + 0.03, -10.0, -2.6),
+            );
+            let (c, d) = (Vec3::new(x0 + 0.03, 10.0, -2.6), Vec3::new(x0, 10.0, -2.6));
+            [[a, b, c], [a, c, d]]
+        };
+        tris.extend(post(0.1));
+        let scene = Scene::new(tris).unwrap();
+        let cam = cam_down_neg_z(0.1, 100.0);
+        let n = 3;
+        let fine = render_reference(
+            &scene,
+            &cam,
+            8 * n,
+            6 * n,
+            &RefParams {
+                rays: 4,
+                ..params()
+            },
+        );
+        let wide = RefParams {
+            rays: 4 * n * n,
+            supersample: n,
+            ..params()
+        };
+        let mean = render_reference(&scene, &cam, 8, 6, &wide);
+        // Each sub-pixel is traced as the larger image's pixel, with its seed: the same rays.
+        for y in 0..6 {
+            for x in 0..8 {
+                let mut sum = 0.0;
+                for j in 0..n {
+                    for i in 0..n {
+                        sum += fine.ao[fine.index(x * n + i, y * n + j)];
+                    }
+                }
+                let expected = sum / (n * n) as f32;
+                let got = mean.ao[mean.index(x, y)];
+                assert!(
+                    (got - expected).abs() < 1e-6,
+                    "({x}, {y}): {got} vs {expected}"
+                );
+            }
+        }
+        // Some pixel is neither all post nor all floor: the share the centre alone cannot give.
+        let centre = render_reference(
+            &scene,
+            &cam,
+            8,
+            6,
+            &RefParams {
+                rays: 36,
+                ..params()
+            },
+        );
+        assert!(mean.ao != centre.ao);
+    }
+
+    #[test]
+    fn a_footprint_is_sky_when_half_of_it_is_and_takes_the_central_depth() {
+        // 2x2 sub-pixels: two sky, two surfaces at depths 5 (nearer the centre: all are equally
+        // near, the first wins) and 7.
+        let subs = [
+            (0.5, 0.1, 5.0),
+            (1.0, 0.0, f32::INFINITY),
+            (1.0, 0.0, f32::INFINITY),
+            (0.5, 0.1, 7.0),
+        ];
+        let (ao, se, depth) = footprint_mean(2, |i, j| subs[(j * 2 + i) as usize]);
+        assert!(
+            (ao - 0.75).abs() < 1e-6 && depth.is_infinite(),
+            "{ao} {depth}"
+        );
+        assert!((se - (0.02f32).sqrt() / 4.0).abs() < 1e-6, "{se}");
+        // One sky sub-pixel of four: a surface, at the depth nearest the centre.
+        let subs = [
+            (0.5, 0.0, 5.0),
+            (1.0, 0.0, f32::INFINITY),
+            (0.2, 0.0, 6.0),
+            (0.5, 0.0, 7.0),
+        ];
+        let (ao, _, depth) = footprint_mean(2, |i, j| subs[(j * 2 + i) as usize]);
+        assert!((ao - 0.55).abs() < 1e-6 && depth == 5.0, "{ao} {depth}");
+        // 3x3: the middle sub-pixel's depth, though a corner is nearer the camera.
+        let (_, _, depth) = footprint_mean(3, |i, j| {
+            (1.0, 0.0, if (i, j) == (1, 1) { 9.0 } else { 2.0 })
+        });
+        assert_eq!(depth, 9.0);
     }
 }
