@@ -58,7 +58,8 @@ pub fn html(report: &Report) -> String {
         out,
         "<p>{}</p>",
         esc(&format!(
-            "Renderer {}; methods at {}x{}, box-averaged to the truth's {}x{} (ray-traced, {} rays per pixel). \
+            "Renderer {}; methods at {}x{}, box-averaged to the truth's {}x{} (ray-traced, {} rays per pixel, \
+             over the pixel's whole footprint). \
              Each picture is the first test camera. Error maps: engine minus truth, blue too dark, \
              orange too light, full colour at ±{DEFAULT_RANGE}, white 0, sky grey. AO ms: median \
              of the AO chain at {}x{} by the {} ({}); PSNR: the mean over the test cameras, and in \

@@ -93,8 +93,12 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         r.reference.height,
         if r.reference.width != r.width {
             format!(
-                " (the engine's {}×{} output is box-averaged {}× before comparing)",
-                r.width, r.height, cfg.ref_scale
+                " (the engine's {}×{} output is box-averaged {}× before comparing; each truth pixel \
+                 is the mean over the same footprint, {n}×{n} sub-pixel centres sharing its rays)",
+                r.width,
+                r.height,
+                cfg.ref_scale,
+                n = cfg.ref_scale
             )
         } else {
             " (the engine's output size)".to_string()
@@ -124,8 +128,8 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
         writeln!(
         s,
         "- **Error split**: a **screen-space reference** is computed from the engine's own depth \
-         buffer, rendered at the reference's size ({}×{}, so its pixel centres are the ray-traced \
-         reference's): the same visibility (radius and sampling; {} rays per pixel, test cameras only), but with the \
+         buffer at the engine's size ({}×{}), its visibility averaged over the blocks the comparison \
+         box-averages (each truth pixel's footprint): the same visibility (radius and sampling; at least {} rays per block, test cameras only), but with the \
          scene replaced by the depth buffer (normals as the scene's engine methods read them: each triangle's own with `[ao] normals = \"geometric\"`, and then each pixel's footprint holds the plane through its centre with that normal, solid to its exact back face; else (the default) rebuilt from the depth buffer, and then inverse depth is interpolated over triangles between pixel centres, a triangle solid only where its pixels' slabs overlap; as wide as the scene's `[ao] guard_band`) and every ray \
          marched exactly through every pixel or cell it crosses, without mips; rays leaving the screen \
          count as open. It is what a perfect screen-space method could compute. **Depth-buffer \
@@ -139,8 +143,8 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          depth) or, with `thickness = \"backface\"`, against slabs reaching each pixel's back \
          face (T where it has none, as `vbao` does; with the triangles, never thinner than T); every other method against the heightfield (∞). The split table's \
          ceiling column says which each row used. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
-        r.reference.width,
-        r.reference.height,
+        r.width,
+        r.height,
         r.reference.screen_rays,
         r.reference.screen_rendered,
         r.reference.screen_render_s,

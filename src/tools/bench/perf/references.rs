@@ -12,8 +12,8 @@ use crate::scene::framing;
 use crate::scene::SceneDesc;
 use crate::tools::bench::catalog::{self, BenchCamera};
 use crate::tools::reference::{
-    cache_key, cache_path, load_or_render_cached, load_or_render_screen_cached, screen_cache_key,
-    AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene, Surface,
+    cache_key, cache_path, load_or_render_cached, load_or_render_screen_box_cached,
+    screen_box_cache_key, AoVariant, Capture, DepthBuffer, RefImage, RefParams, Scene, Surface,
 };
 use anyhow::{Context as _, Result};
 use indicatif::ProgressBar;
@@ -273,7 +273,8 @@ impl Ceiling {
 }
 
 /// Screen-space reference of every test camera and (radius, ceiling) pair, from the engine's depth
-/// buffer at its current size (the reference's, so that the pixel centres match).
+/// buffer at the bench size, its visibility averaged over each `ref_scale`² block (the truth's
+/// pixel footprint).
 pub fn screen_references(
     engine: &mut Engine,
     sd: &SceneData,
@@ -283,10 +284,8 @@ pub fn screen_references(
     count: &mut RenderCount,
 ) -> Result<ScreenMap> {
     let mut out = BTreeMap::new();
-    // The ceilings read what the scene's engine methods read: its normals and its guard band (scaled
-    // from the bench's output size to the reference's).
+    // The ceilings read what the scene's engine methods read: its normals and its guard band.
     let normals = sd.desc.ao.normals == NormalSource::Geometric;
-    let ref_width = engine.size().0;
     for (ci, cam) in sd.cameras.iter().enumerate().filter(|(_, c)| !c.train) {
         let camera = cam.camera(&sd.desc.camera);
         engine.camera = camera;
@@ -297,7 +296,7 @@ pub fn screen_references(
             let params = screen_params(r, cfg.screen_rays, cfg.progress);
             let band =
                 guard_band_pixels(sd.desc.ao.guard_band, &camera, (cfg.width, cfg.height), r);
-            let guard = (band as u64 * ref_width as u64 / cfg.width.max(1) as u64) as u32;
+            let guard = band;
             let back_faces = matches!(ceiling, Ceiling::BackFaces { .. });
             // The scene's second layer, its separation following the ceiling's radius.
             let second_layer = (sd.desc.ao.layers >= 2).then_some(LAYER_SEPARATION_OF_RADIUS * r);
@@ -320,7 +319,7 @@ pub fn screen_references(
                 Ceiling::Slabs(t) | Ceiling::BackFaces { fallback: t } => buffer.with_thickness(t),
             };
             depth.surface = Surface::for_normals(normals);
-            let key = screen_cache_key(&depth, &params);
+            let key = screen_box_cache_key(&depth, cfg.ref_scale, &params);
             let hit = cache_path(&cfg.cache, &key).is_file();
             if cfg.progress {
                 pb.suspend(|| {
@@ -337,7 +336,9 @@ pub fn screen_references(
                 });
             }
             let t = Instant::now();
-            let img = pb.suspend(|| load_or_render_screen_cached(&cfg.cache, &depth, &params))?;
+            let img = pb.suspend(|| {
+                load_or_render_screen_box_cached(&cfg.cache, &depth, cfg.ref_scale, &params)
+            })?;
             count.add(hit, t);
             out.insert((ci, r.to_bits(), ceiling.key()), img);
         }

@@ -93,19 +93,17 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
     let mut rows = Vec::new();
     let mut screen_count = RenderCount::default();
     for (sd, plan) in scenes.iter().zip(&plans) {
-        // The engine starts at the reference's size for the screen-space references' depth
-        // buffers (same pixel centres as the ray-traced reference), then runs at the bench size.
-        // (Integrated from the bench-size buffer over the same blocks instead, `reference
-        // --supersample`, the ceiling came out lower on the thin-things scene: 16.8 against
-        // 17.3 dB, docs/bench/vbao/layers.md, at six times the cost.)
-        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, rw, rh)?;
+        // The screen-space references read the depth buffer at the bench size, the one the
+        // methods read, averaged over the blocks the comparison box-averages (as the ray-traced
+        // truth averages each pixel's footprint): at the truth's own size a board thinner than one
+        // of its pixels would be missing from the buffer the ceiling integrates.
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, cfg.width, cfg.height)?;
         let screen = if cfg.ceilings {
             let ceilings = ceilings(plan, &engine.ao_settings);
             references::screen_references(&mut engine, sd, &ceilings, cfg, &pb, &mut screen_count)?
         } else {
             Default::default()
         };
-        engine.resize(cfg.width, cfg.height)?;
         for (method, settings) in plan {
             for s in settings {
                 pb.set_message(format!("{} {} {}", sd.name, method.name(), s.label()));
