@@ -68,7 +68,7 @@ pub struct ReferenceArgs {
     pub screen_space: bool,
     /// Each pixel the mean over its footprint, N×N sub-pixels (the bench's `--ref-scale N` truth,
     /// which an engine image N times larger box-averaged by N is compared with): the ray tracer
-    /// traces every sub-pixel's centre with rays/N² rays (rounded up); with --screen-space the depth
+    /// (and --ideal) traces every sub-pixel's centre with rays/N² rays (rounded up); with --screen-space the depth
     /// buffer is rendered N times wider and taller and the visibility averaged over each N×N block.
     /// The output keeps the scene's size.
     #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=16))]

@@ -410,9 +410,6 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     if args.surface != SurfaceArg::Auto && !args.screen_space {
         bail!("--surface applies to the screen-space reference: add --screen-space")
     }
-    if args.supersample > 1 && args.ideal {
-        bail!("--supersample does not apply to --ideal (it traces pixel centres)")
-    }
     let mut surface = None;
     let img = if args.screen_space {
         use crate::tools::reference::DepthBuffer;
@@ -446,7 +443,10 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             &bvh,
             &cam,
             (w, h),
-            &params,
+            &RefParams {
+                supersample: args.supersample,
+                ..params
+            },
             scene.ao.thickness_metres(),
             args.ideal_steps,
         )

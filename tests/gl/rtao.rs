@@ -366,6 +366,21 @@ fn rtao_gpu_reference_agrees_with_the_cpu_reference_at_1024_rays() {
     for (g, c) in gpu.linear_depth.iter().zip(&cpu.linear_depth) {
         assert!(g == c || (g - c).abs() < 1e-3 * c, "depth {g} vs {c}");
     }
+    // Each pixel the mean over its footprint (2×2 sub-pixels of 256 rays), on both tracers.
+    let wide = RefParams {
+        supersample: 2,
+        ..params
+    };
+    let gpu2 = opengl3d::tools::reference::render_reference_gpu(&res, &s, &wide).unwrap();
+    let cpu2 = render_reference(&cpu_scene, &s.camera.camera(), W, H, &wide);
+    assert_eq!((gpu2.width, gpu2.height), (W, H));
+    common::assert_finite("gpu footprint reference", &gpu2.ao);
+    let psnr2 = 10.0 * (1.0 / rmse(&gpu2.ao, &cpu2.ao).powi(2)).log10();
+    eprintln!("GPU vs CPU footprint reference: {psnr2:.1} dB");
+    assert!(psnr2 >= 45.0, "{psnr2:.1} dB");
+    // The footprint is not the centre: silhouettes and contacts average over it.
+    let moved = rmse(&cpu2.ao, &cpu.ao);
+    assert!(moved > 2.0 * rmse(&gpu2.ao, &cpu2.ao), "{moved}");
 }
 
 #[test]

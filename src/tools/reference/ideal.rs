@@ -17,7 +17,7 @@
 use glam::DVec3;
 
 use super::camera::{self, Frame};
-use super::image::{shade_image, RefImage};
+use super::image::{footprint_mean, shade_image, RefImage};
 use super::params::RefParams;
 use super::sampling;
 use super::scene::Scene;
@@ -53,7 +53,27 @@ pub fn render_ideal_one_layer(
         height,
         "idealised one layer",
         params.progress,
-        |x, y| shade_pixel(&view, x as u32, y as u32, (width, height), params, steps),
+        |x, y| {
+            let (x, y) = (x as u32, y as u32);
+            let n = params.supersample;
+            if n <= 1 {
+                return shade_pixel(&view, x, y, (width, height), params, steps);
+            }
+            // The footprint's mean, as the ray-traced truth takes it (`trace.rs`).
+            let sub = RefParams {
+                rays: params.rays.max(1).div_ceil(n * n),
+                supersample: 1,
+                ..*params
+            };
+            let fine = (width.saturating_mul(n), height.saturating_mul(n));
+            Some(footprint_mean(n, |i, j| {
+                shade_pixel(&view, x * n + i, y * n + j, fine, &sub, steps).unwrap_or((
+                    1.0,
+                    0.0,
+                    f32::INFINITY,
+                ))
+            }))
+        },
     )
 }
 
