@@ -459,6 +459,12 @@ impl AoSettings {
         self.method == AoMethod::Vbao && self.layers >= 2
     }
 
+    /// Whether a frame needs the second layer's back faces: both the back faces and the second
+    /// layer, so the hidden surface's slab reaches its own back face as the visible one's does.
+    pub fn uses_second_layer_back_faces(&self) -> bool {
+        self.uses_back_faces() && self.uses_second_layer()
+    }
+
     /// How far behind the visible surface the second layer begins (m).
     pub fn layer_separation_metres(&self) -> f32 {
         LAYER_SEPARATION_OF_RADIUS * self.radius

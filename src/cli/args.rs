@@ -216,9 +216,10 @@ pub enum RenderView {
 }
 
 impl RenderView {
-    pub const ALL: [RenderView; 5] = [
+    pub const ALL: [RenderView; 6] = [
         RenderView::Engine(View::Composite),
         RenderView::Engine(View::LinearDepth),
+        RenderView::Engine(View::SecondLayerDepth),
         RenderView::Engine(View::AoRaw),
         RenderView::Engine(View::Ao),
         RenderView::Error,

@@ -116,6 +116,11 @@ impl Engine {
                 let separation = s.layer_separation_metres();
                 passes.second_layer.draw(f, depth, separation, ao_size)
             })?);
+            if s.uses_second_layer_back_faces() {
+                out.second_back_depth = Some(self.pass("second layer back faces", "ao", || {
+                    passes.second_layer.draw_back_faces(f, depth, ao_size)
+                })?);
+            }
         }
         if s.uses_surface_normals() {
             out.normals = match normals_drawn {
