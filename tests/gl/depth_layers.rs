@@ -21,7 +21,7 @@ const H: u32 = 120;
 /// A floor; over its x < 0 half a thin plate 1.5 m up; under the plate, flush with its edge, a block
 /// 0.9 m high that the camera (straight above the edge) cannot see. R = 1 m, thickness R/2: the
 /// plate's slab ends 1 m above the floor, so only the hidden block can shade the floor at x > 0.
-fn hidden_block(dir: &std::path::Path) -> SceneDesc {
+pub fn hidden_block(dir: &std::path::Path) -> SceneDesc {
     let mut plate = MeshData::default();
     shapes::add_box(
         &mut plate,
@@ -185,7 +185,7 @@ fn surface_points_of(buf: &DepthBuffer, cam: &opengl3d::math::Camera) -> Vec<(us
 
 /// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
 /// no off-screen occluder matters) of an image with these pixels' world points.
-fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
+pub fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
     let strip: Vec<usize> = points
         .into_iter()
         .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 0.05 && p.x < 0.4 && p.z.abs() < 0.5)
