@@ -187,7 +187,8 @@ pub struct SceneArgs {
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
     /// Depth layers `vbao` marches: 1 (the visible surface) or 2 (also the nearest surface hidden at
-    /// least a tenth of the radius behind it, from one more depth pass).
+    /// least a tenth of the radius behind it, from one more depth pass; with `--thickness backface`
+    /// its slabs reach its own back faces, from another).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
     pub layers: Option<u32>,
     /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
@@ -236,8 +237,8 @@ impl RenderView {
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 =
-    /// open), or `error`: the blurred AO view minus `--truth`, box-averaged to the truth's size
+    /// What to write: the lit composite, linear depth (m), the second depth layer's (`vbao` with
+    /// `--layers 2`), raw SAO or blurred SAO (visibility, 1 = open), or `error`: the blurred AO view minus `--truth`, box-averaged to the truth's size
     /// (too dark blue, too light orange, sky grey, with a colour scale; PSNR and RMSE on stdout).
     #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
     pub view: RenderView,

@@ -4,13 +4,13 @@
 //! tracer.
 
 use crate::common::*;
-use crate::depth_layers::{hidden_block, strip_mean};
+use crate::depth_layers::{hidden_block, plate_over, strip_mean};
 use crate::reference_screen::ref_camera;
 use glam::Vec3;
 use opengl3d::ao::{AoMethod, AoResolution, AoSettings, Thickness};
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::math::DepthMode;
-use opengl3d::render::{Engine, View};
+use opengl3d::render::View;
 use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
@@ -290,29 +290,24 @@ fn the_window_skips_the_second_layers_view_without_a_second_layer() {
     assert!(View::ALL.iter().all(|v| v.available(true)));
 }
 
-/// `vbao`'s visibility over the floor strip beside the hidden block, and the block's known top.
-fn strip_visibility(e: &mut Engine) -> Vec<f32> {
-    let v = e.render_values(View::AoRaw).unwrap();
-    assert_finite("vbao", &v);
-    v
-}
-
-#[test]
-fn vbao_with_the_second_layers_back_faces_darkens_beside_the_hidden_block_and_not_past_the_truth() {
+/// `vbao`'s visibility (raw, rows top-down) with two layers and the set thickness, then with back
+/// faces; the means over the floor strip beside the hidden box of the ray-traced truth and of both
+/// runs; and the floor pixels out of the hidden box's reach.
+fn constant_and_back_faces(
+    label: &str,
+    desc: &mut SceneDesc,
+) -> ([Vec<f32>; 2], [f64; 3], Vec<usize>) {
     let ctx = context();
-    let dir = temp_dir("layer2-back-vbao");
-    let mut desc = hidden_block(&dir);
-    // The plate (2 cm) and the floor (no back face) keep the set thickness in the first layer
-    // either way, so the two runs differ only in the hidden block's slab: R/2 from its top (0.9 m
-    // down to 0.4 m), or down to its bottom on the floor with its back faces.
     let mut runs = Vec::new();
     for thickness in [None, Some(Thickness::Backface)] {
         desc.ao.thickness = thickness;
         desc.ao.layers = 2;
-        let mut e = engine(&ctx, &desc);
-        runs.push(strip_visibility(&mut e));
+        let mut e = engine(&ctx, desc);
+        let v = e.render_values(View::AoRaw).unwrap();
+        assert_finite("vbao", &v);
+        runs.push(v);
     }
-    let e = engine(&ctx, &desc);
+    let e = engine(&ctx, desc);
     let cam = ref_camera(&e);
     let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
     let params = RefParams {
@@ -322,38 +317,73 @@ fn vbao_with_the_second_layers_back_faces_darkens_beside_the_hidden_block_and_no
         seed: 7,
         progress: false,
     };
-    let truth = load_or_render_cached(
-        &temp_dir("layer2-back-cache"),
-        &scene,
-        &cam,
-        160,
-        120,
-        &params,
+    let (w, h) = e.size();
+    let cache = temp_dir(&format!("{label}-cache"));
+    let truth = load_or_render_cached(&cache, &scene, &cam, w, h, &params);
+    let points = surface_points(&truth, &cam);
+    // Floor more than R from the plate's edge and the hidden box: no second layer within reach.
+    let far_floor = points
+        .iter()
+        .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 1.5 && p.z.abs() < 1.0)
+        .map(|(i, _)| *i)
+        .collect();
+    let mean = strip_mean(points);
+    let means = [mean(&truth.ao), mean(&runs[0]), mean(&runs[1])];
+    eprintln!(
+        "{label}: truth {:.4}, set thickness {:.4}, back faces {:.4}",
+        means[0], means[1], means[2]
     );
-    let mean = strip_mean(surface_points(&truth, &cam));
-    let (want, constant, backs) = (mean(&truth.ao), mean(&runs[0]), mean(&runs[1]));
-    eprintln!("truth {want:.4}, constant slab {constant:.4}, back faces {backs:.4}");
+    let [a, b] = <[Vec<f32>; 2]>::try_from(runs).unwrap();
+    ([a, b], means, far_floor)
+}
+
+/// Pixels out of the hidden box's reach do not change.
+fn assert_unchanged(runs: &[Vec<f32>; 2], pixels: &[usize]) {
+    assert!(pixels.len() > 50, "{} far floor pixels", pixels.len());
+    for &i in pixels {
+        let (a, b) = (runs[0][i], runs[1][i]);
+        assert!((a - b).abs() < 1e-5, "far floor pixel {i}: {a} vs {b}");
+    }
+}
+
+#[test]
+fn vbao_with_the_second_layers_back_faces_darkens_beside_the_hidden_block_and_not_past_the_truth() {
+    let dir = temp_dir("layer2-back-block");
+    // The plate (2 cm) and the floor (no back face) take the set thickness in the first layer
+    // either way, so the two runs differ only in the hidden block's slab: R/2 from its top (0.9 m
+    // down to 0.4 m), or with its back faces down to its bottom on the floor.
+    let mut desc = hidden_block(&dir);
+    let (runs, [want, constant, backs], far) = constant_and_back_faces("layer2-block", &mut desc);
     assert!(
         backs < constant - 0.02,
-        "back faces {backs} vs constant {constant} (truth {want})"
+        "back faces {backs} vs set thickness {constant} (truth {want})"
     );
     assert!(
         backs > want - 0.05,
         "back faces {backs} darker than the truth {want}"
     );
-    // Floor more than R from the plate and the block has no second layer near it: unchanged.
-    let far_floor: Vec<usize> = surface_points(&truth, &cam)
-        .into_iter()
-        .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 1.5 && p.z.abs() < 1.0)
-        .map(|(i, _)| i)
-        .collect();
-    assert!(far_floor.len() > 50, "{} far floor pixels", far_floor.len());
-    for i in far_floor {
-        assert!(
-            (runs[0][i] - runs[1][i]).abs() < 1e-5,
-            "far floor pixel {i}: {} vs {}",
-            runs[0][i],
-            runs[1][i]
-        );
-    }
+    assert_unchanged(&runs, &far);
+}
+
+#[test]
+fn vbao_with_the_second_layers_back_faces_leaves_light_under_a_hidden_thin_board() {
+    let dir = temp_dir("layer2-back-board");
+    // A 2 cm board 0.6 m up under the plate: with the set thickness its slab is a wall from 0.62 m
+    // down to 0.12 m beside the strip; with its back faces it is the board.
+    let lo = Vec3::new(-0.8, 0.6, -4.0);
+    let mut desc = plate_over(&dir, lo, Vec3::new(0.0, 0.62, 4.0));
+    let (runs, [want, constant, backs], far) = constant_and_back_faces("layer2-board", &mut desc);
+    assert!(
+        constant < want - 0.05,
+        "set thickness {constant} not darker than the truth {want}"
+    );
+    assert!(
+        backs > constant + 0.05,
+        "back faces {backs} vs set thickness {constant} (truth {want})"
+    );
+    assert!(
+        (backs - want).abs() < 0.5 * (constant - want).abs(),
+        "back faces {backs}, set thickness {constant}, truth {want}"
+    );
+    assert_unchanged(&runs, &far);
 }
