@@ -19,6 +19,11 @@ layout(binding=3) uniform sampler2D texSecondDepth; // linear depth of the secon
 layout(binding=4) uniform sampler2D texSecondBackDepth; // its back faces' linear depth (m), AO size
 
 const int SECTORS = 32;
+// The second layer's slab reaches its back face but is never thinner than this fraction of the set
+// thickness (R/2, so R/8): exact slabs of a hidden 2 cm board leave gaps between the taps that let
+// light through, R/2 makes it a wall. Chosen on the bench's training cameras
+// (docs/bench/vbao/layer2-backfaces.md).
+const float LAYER2_MIN_THICKNESS = 0.25;
 
 // Cosine-weighted measure of the slice from angle 0 (the view vector) to g + b, signed, for the normal
 // at angle g from V and a direction at angle b from the normal: the integral of cos(t - g) * |sin t|
@@ -203,15 +208,15 @@ void main()
         mask |= SlabBits(slice, e, zq, thickness);
         if (aoLayers > 1) {
           // The nearest surface hidden behind the tap ('far' where none), reaching its own back
-          // face exactly when the back faces are drawn (the set thickness where none lies behind
-          // it), else the set thickness. Unlike the first layer's, no minimum: a hidden 2 cm board
-          // given R/2 darkens like a wall (training cameras in docs/bench/vbao/layer2-backfaces.md).
+          // face when the back faces are drawn (the set thickness where none lies behind it), else
+          // the set thickness.
           float hidden = texelFetch(texSecondDepth, q, 0).x;
           if (hidden < CAMERA_FAR) {
             float thickness2 = aoThickness;
             if (aoLayerBackFaces != 0) {
               float back2 = texelFetch(texSecondBackDepth, q, 0).x;
-              thickness2 = back2 > hidden && back2 < CAMERA_FAR ? back2 - hidden : aoThickness;
+              thickness2 = back2 > hidden && back2 < CAMERA_FAR
+                  ? max(back2 - hidden, LAYER2_MIN_THICKNESS * aoThickness) : aoThickness;
             }
             mask |= SlabBits(slice, e, hidden, thickness2);
           }

@@ -331,8 +331,8 @@ pub enum Thickness {
     /// object ends, and the slab reaches there but is never thinner than the default thickness
     /// (the taps skip the texels between them, and a back face a few centimetres behind one texel
     /// says nothing of the next ones); the default where no back face lies behind (open planes).
-    /// With `layers = 2` the hidden surface's slab reaches its own back face exactly (one more
-    /// pass), the default where it has none.
+    /// With `layers = 2` the hidden surface's slab reaches its own back face (one more pass) but is
+    /// never thinner than a quarter of the default, the default where it has none.
     Backface,
 }
 
