@@ -238,8 +238,9 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
     /// What to write: the lit composite, linear depth (m), the second depth layer's (`vbao` with
-    /// `--layers 2`), raw SAO or blurred SAO (visibility, 1 = open), or `error`: the blurred AO view minus `--truth`, box-averaged to the truth's size
-    /// (too dark blue, too light orange, sky grey, with a colour scale; PSNR and RMSE on stdout).
+    /// `--layers 2`), raw SAO or blurred SAO (visibility, 1 = open), or `error`: the blurred AO view
+    /// minus `--truth`, box-averaged to the truth's size (too dark blue, too light orange, sky grey,
+    /// with a colour scale; PSNR and RMSE on stdout).
     #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
     pub view: RenderView,
     /// With `--view error`: the truth, a one-channel PFM of visibility (e.g. `opengl3d reference`'s)

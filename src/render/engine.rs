@@ -355,7 +355,11 @@ impl Engine {
     ) -> Result<()> {
         self.stats.borrow_mut().clear();
         if view == View::SecondLayerDepth && !self.ao_settings.uses_second_layer() {
-            bail!("the {} view shows vbao's second depth layer: use --method vbao --layers 2 ([ao] layers = 2)", view.name());
+            bail!(
+                "the {} view shows vbao's second depth layer: use --method vbao --layers 2 \
+                 ([ao] layers = 2)",
+                view.name()
+            );
         }
         let f = self.frame();
         let shadow_matrix = shadow::shadow_matrix(&f);
