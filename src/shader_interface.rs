@@ -52,6 +52,9 @@ pub mod loc {
     pub const AO_SURFACE_NORMALS: i32 = 206;
     /// ao/vbao.frag: depth layers marched per tap (2 = also `texSecondDepth`).
     pub const AO_LAYERS: i32 = 207;
+    /// ao/vbao.frag: 1 = read the second layer's thickness from its back faces
+    /// (`texSecondBackDepth`).
+    pub const AO_LAYER_BACK_FACES: i32 = 208;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -92,6 +95,8 @@ pub mod binding {
     pub const AO_AMBIENT: u32 = 3;
     /// ao/vbao.frag: `texSecondDepth`, the second depth layer at the AO size.
     pub const SECOND_LAYER: u32 = 3;
+    /// ao/vbao.frag: `texSecondBackDepth`, the second layer's back faces at the AO size.
+    pub const SECOND_LAYER_BACK: u32 = 4;
     /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
     pub const RTAO_HISTORY: u32 = 3;
 }
@@ -324,12 +329,14 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoBackFaces", AO_BACK_FACES),
             u("aoSurfaceNormals", AO_SURFACE_NORMALS),
             u("aoLayers", AO_LAYERS),
+            u("aoLayerBackFaces", AO_LAYER_BACK_FACES),
         ],
         &[
             s("texDepth", INPUT),
             s("texBackDepth", SECOND_INPUT),
             s("texNormal", SURFACE_NORMALS),
             s("texSecondDepth", SECOND_LAYER),
+            s("texSecondBackDepth", SECOND_LAYER_BACK),
         ],
     ),
     fullscreen(

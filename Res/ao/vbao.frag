@@ -5,17 +5,25 @@
 // to the radius sphere around the pixel (the reference counts a ray as blocked by a hit within the
 // radius). The sectors have equal cosine-weighted measure in the slice, so the set bits are the
 // occluded fraction of the quantity the ray tracer measures. With two depth layers each tap adds the
-// slab of the nearest surface hidden behind it (the second_layer pass).
+// slab of the nearest surface hidden behind it (the second_layer pass), reaching that surface's own
+// back face when the back faces are drawn for it too.
 
 #include "common.glsl"
 
 layout(location=204) uniform float aoThickness; // metres behind each depth sample
 layout(location=205) uniform int aoBackFaces;   // 1: each tap's thickness from texBackDepth
 layout(location=207) uniform int aoLayers;      // 2: each tap also marches texSecondDepth
+layout(location=208) uniform int aoLayerBackFaces; // 1: the second layer's thickness from texSecondBackDepth
 layout(binding=1) uniform sampler2D texBackDepth; // linear depth of the back faces (m), AO size
 layout(binding=3) uniform sampler2D texSecondDepth; // linear depth of the second layer (m), AO size
+layout(binding=4) uniform sampler2D texSecondBackDepth; // its back faces' linear depth (m), AO size
 
 const int SECTORS = 32;
+// The second layer's slab reaches its back face but is never thinner than this fraction of the set
+// thickness (R/2, so R/8): exact slabs of a hidden 2 cm board leave gaps between the taps that let
+// light through, R/2 makes it a wall. Chosen on the bench's training cameras
+// (docs/bench/vbao/layer2-backfaces.md).
+const float LAYER2_MIN_THICKNESS = 0.25;
 
 // Cosine-weighted measure of the slice from angle 0 (the view vector) to g + b, signed, for the normal
 // at angle g from V and a direction at angle b from the normal: the integral of cos(t - g) * |sin t|
@@ -199,10 +207,18 @@ void main()
         }
         mask |= SlabBits(slice, e, zq, thickness);
         if (aoLayers > 1) {
-          // The nearest surface hidden behind the tap ('far' where none), with the set thickness.
+          // The nearest surface hidden behind the tap ('far' where none), reaching its own back
+          // face when the back faces are drawn (the set thickness where none lies behind it), else
+          // the set thickness.
           float hidden = texelFetch(texSecondDepth, q, 0).x;
           if (hidden < CAMERA_FAR) {
-            mask |= SlabBits(slice, e, hidden, aoThickness);
+            float thickness2 = aoThickness;
+            if (aoLayerBackFaces != 0) {
+              float back2 = texelFetch(texSecondBackDepth, q, 0).x;
+              thickness2 = back2 > hidden && back2 < CAMERA_FAR
+                  ? max(back2 - hidden, LAYER2_MIN_THICKNESS * aoThickness) : aoThickness;
+            }
+            mask |= SlabBits(slice, e, hidden, thickness2);
           }
         }
       }

@@ -30,6 +30,8 @@ pub struct AoInputs<'a> {
     pub normals: Option<&'a Texture>,
     /// Linear depth of the second depth layer at the AO size, when the settings ask for it.
     pub second_depth: Option<&'a Texture>,
+    /// Linear depth of the second layer's back faces at the AO size, when the settings ask for it.
+    pub second_back_depth: Option<&'a Texture>,
     /// The scene's objects (`rtao` traces their triangles).
     pub objects: &'a [GameObject],
 }
@@ -132,6 +134,10 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     if program.has_location(loc::AO_LAYERS) {
         program.set_i32(loc::AO_LAYERS, 1 + inputs.second_depth.is_some() as i32);
     }
+    if program.has_location(loc::AO_LAYER_BACK_FACES) {
+        let on = inputs.second_depth.is_some() && inputs.second_back_depth.is_some();
+        program.set_i32(loc::AO_LAYER_BACK_FACES, on as i32);
+    }
     if program.has_location(loc::AO_SURFACE_NORMALS) {
         program.set_i32(loc::AO_SURFACE_NORMALS, inputs.normals.is_some() as i32);
     }
@@ -198,6 +204,9 @@ impl AoMethodPass for ShaderMethod {
         }
         if let Some(second) = inputs.second_depth {
             second.bind(binding::SECOND_LAYER);
+        }
+        if let Some(back) = inputs.second_back_depth {
+            back.bind(binding::SECOND_LAYER_BACK);
         }
         inputs.bind_normals();
         inputs.meshes.draw_plane_xy();

@@ -331,6 +331,8 @@ pub enum Thickness {
     /// object ends, and the slab reaches there but is never thinner than the default thickness
     /// (the taps skip the texels between them, and a back face a few centimetres behind one texel
     /// says nothing of the next ones); the default where no back face lies behind (open planes).
+    /// With `layers = 2` the hidden surface's slab reaches its own back face (one more pass) but is
+    /// never thinner than a quarter of the default, the default where it has none.
     Backface,
 }
 
@@ -457,6 +459,12 @@ impl AoSettings {
     /// Whether a frame needs the second depth layer: `vbao` with `layers = 2`.
     pub fn uses_second_layer(&self) -> bool {
         self.method == AoMethod::Vbao && self.layers >= 2
+    }
+
+    /// Whether a frame needs the second layer's back faces: both the back faces and the second
+    /// layer, so the hidden surface's slab reaches its own back face as the visible one's does.
+    pub fn uses_second_layer_back_faces(&self) -> bool {
+        self.uses_back_faces() && self.uses_second_layer()
     }
 
     /// How far behind the visible surface the second layer begins (m).

@@ -189,7 +189,8 @@ pub struct SceneArgs {
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
     /// Depth layers `vbao` marches: 1 (the visible surface) or 2 (also the nearest surface hidden at
-    /// least a tenth of the radius behind it, from one more depth pass).
+    /// least a tenth of the radius behind it, from one more depth pass; with `--thickness backface`
+    /// its slabs reach its own back faces, from another).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
     pub layers: Option<u32>,
     /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
@@ -218,9 +219,10 @@ pub enum RenderView {
 }
 
 impl RenderView {
-    pub const ALL: [RenderView; 5] = [
+    pub const ALL: [RenderView; 6] = [
         RenderView::Engine(View::Composite),
         RenderView::Engine(View::LinearDepth),
+        RenderView::Engine(View::SecondLayerDepth),
         RenderView::Engine(View::AoRaw),
         RenderView::Engine(View::Ao),
         RenderView::Error,
@@ -237,9 +239,10 @@ impl RenderView {
 pub struct RenderArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
-    /// What to write: the lit composite, linear depth (m), raw SAO or blurred SAO (visibility, 1 =
-    /// open), or `error`: the blurred AO view minus `--truth`, box-averaged to the truth's size
-    /// (too dark blue, too light orange, sky grey, with a colour scale; PSNR and RMSE on stdout).
+    /// What to write: the lit composite, linear depth (m), the second depth layer's (`vbao` with
+    /// `--layers 2`), raw SAO or blurred SAO (visibility, 1 = open), or `error`: the blurred AO view
+    /// minus `--truth`, box-averaged to the truth's size (too dark blue, too light orange, sky grey,
+    /// with a colour scale; PSNR and RMSE on stdout).
     #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
     pub view: RenderView,
     /// With `--view error`: the truth, a one-channel PFM of visibility (e.g. `opengl3d reference`'s)

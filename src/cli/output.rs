@@ -64,7 +64,7 @@ pub fn write_view(engine: &mut Engine, view: View, out: &Path) -> Result<()> {
             let img = engine.render_image()?;
             crate::io::write_png(out, &image::DynamicImage::ImageRgba8(img).to_rgb8())?;
         }
-        (OutFormat::Png, View::LinearDepth) => {
+        (OutFormat::Png, View::LinearDepth | View::SecondLayerDepth) => {
             let v = engine.render_values(view)?;
             // Scale by the farthest non-sky distance so the picture uses the whole grey range.
             let far = engine.camera.far;

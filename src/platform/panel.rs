@@ -259,7 +259,8 @@ impl Panel {
         egui::ComboBox::from_label(tr("panel.view"))
             .selected_text(tr(&format!("view.{}", engine.view.name())))
             .show_ui(ui, |ui| {
-                for v in View::ALL {
+                let second_layer = engine.ao_settings.uses_second_layer();
+                for v in View::ALL.into_iter().filter(|v| v.available(second_layer)) {
                     ui.selectable_value(&mut engine.view, v, tr(&format!("view.{}", v.name())));
                 }
             });

@@ -5,13 +5,12 @@
 
 use super::frame::Frame;
 use super::main_fbo::create_main_fbos;
-use super::passes::surface::{SurfaceInputs, SurfacePasses};
+use super::passes::surface::SurfacePasses;
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
 use super::passes::{shadow::ShadowPass, transparent};
 use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
-use crate::ao::method_pass::AoInputs;
 use crate::ao::upsample::UpsampleInputs;
 use crate::ao::{composite, AoMethod, AoPipeline, AoSettings, AoTargets, CompositeMode};
 use crate::gl::clip_control::ClipControl;
@@ -30,6 +29,7 @@ use glam::{Mat4, Vec3, Vec4};
 use std::cell::RefCell;
 use std::rc::Rc;
 
+mod ao_chain;
 mod guard;
 mod surface;
 
@@ -354,6 +354,13 @@ impl Engine {
         raw_values: bool,
     ) -> Result<()> {
         self.stats.borrow_mut().clear();
+        if view == View::SecondLayerDepth && !self.ao_settings.uses_second_layer() {
+            bail!(
+                "the {} view shows vbao's second depth layer: use --method vbao --layers 2 \
+                 ([ao] layers = 2)",
+                view.name()
+            );
+        }
         let f = self.frame();
         let shadow_matrix = shadow::shadow_matrix(&f);
         let ao_targets = if self.needs_ao(view) {
@@ -410,8 +417,12 @@ impl Engine {
                 self.pass("sao composite", "ao", || self.draw_ao_composite(occlusion));
             }
             if view != View::Composite {
+                let second = self.second_layer_depth();
                 let tex = match view {
                     View::LinearDepth => &targets.tex_depth,
+                    View::SecondLayerDepth => second
+                        .as_deref()
+                        .ok_or_else(|| anyhow!("the second depth layer was not drawn"))?,
                     View::AoRaw => targets.sao_texture(),
                     _ => occlusion,
                 };
@@ -467,74 +478,6 @@ impl Engine {
             .ok_or_else(|| anyhow!("the main FBO has no colour texture"))
     }
 
-    /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
-    /// `view` shows), over a widened view when the settings ask for a guard band.
-    fn run_ao(&self, f: &Frame, targets: &AoTargets, view: View) -> Result<()> {
-        if let Some(g) = self.guard_frame(view) {
-            return self.run_guarded_ao(f, targets, view, &g);
-        }
-        let depth = self
-            .fbo_main
-            .depth_texture()
-            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
-        self.restore_depth_chain(targets, depth)?;
-        if view == View::LinearDepth {
-            return Ok(());
-        }
-        let surface = self.run_surface_passes(f, depth, targets.size(), None)?;
-        self.run_method(f.camera, targets, &surface, view)?;
-        Ok(())
-    }
-
-    /// The lesson's first two passes: linear depth from `depth` and its mip chain.
-    fn restore_depth_chain(&self, targets: &AoTargets, depth: &Texture) -> Result<()> {
-        let chain = &self.ao.depth_chain;
-        self.pass("sao restore depth", "ao", || {
-            chain.restore_linear_depth(&self.gl, targets, &self.meshes, depth, self.depth_mode)
-        })?;
-        self.pass("sao down sampling", "ao", || {
-            crate::ao::depth_chain::down_sample(
-                &self.gl,
-                &chain.down_sampling,
-                targets,
-                &self.meshes,
-            )
-        });
-        Ok(())
-    }
-
-    /// The method's pass and its blur (unless the view shows the raw occlusion); whether it blurred.
-    fn run_method(
-        &self,
-        camera: &Camera,
-        targets: &AoTargets,
-        surface: &SurfaceInputs,
-        view: View,
-    ) -> Result<bool> {
-        let method = self.ao_settings.method;
-        let inputs = AoInputs {
-            gl: &self.gl,
-            meshes: &self.meshes,
-            targets,
-            camera,
-            settings: &self.ao_settings,
-            back_depth: surface.back_depth.as_deref(),
-            normals: surface.normals.as_deref(),
-            second_depth: surface.second_depth.as_deref(),
-            objects: &self.objects,
-        };
-        let (pass_name, blur_name) = match method {
-            AoMethod::SaoLesson => ("sao", "sao blur"),
-            m => (m.name(), "separable blur"),
-        };
-        self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
-        let blur = self.ao_settings.blur && view != View::AoRaw;
-        if blur {
-            self.pass(blur_name, "ao", || self.ao.blur(method, &inputs))?;
-        }
-        Ok(blur)
-    }
-
     /// The occlusion at the main size for the composite and the AO view: the engine's methods at half
     /// size are up-sampled depth-aware; the lesson's SAO keeps the course's linear filter, and
     /// full-size AO needs nothing.
@@ -554,6 +497,7 @@ impl Engine {
         targets.size() != self.size()
             && self.ao_settings.method != AoMethod::SaoLesson
             && view != View::AoRaw
+            && !view.is_depth()
     }
 
     fn upsample_inputs<'a>(&'a self, targets: &'a AoTargets) -> Result<UpsampleInputs<'a>> {

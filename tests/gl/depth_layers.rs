@@ -21,7 +21,12 @@ const H: u32 = 120;
 /// A floor; over its x < 0 half a thin plate 1.5 m up; under the plate, flush with its edge, a block
 /// 0.9 m high that the camera (straight above the edge) cannot see. R = 1 m, thickness R/2: the
 /// plate's slab ends 1 m above the floor, so only the hidden block can shade the floor at x > 0.
-fn hidden_block(dir: &std::path::Path) -> SceneDesc {
+pub fn hidden_block(dir: &std::path::Path) -> SceneDesc {
+    plate_over(dir, Vec3::new(-0.8, 0.0, -4.0), Vec3::new(0.0, 0.9, 4.0))
+}
+
+/// The same plate and floor with the hidden box from `lo` to `hi` under the plate.
+pub fn plate_over(dir: &std::path::Path, lo: Vec3, hi: Vec3) -> SceneDesc {
     let mut plate = MeshData::default();
     shapes::add_box(
         &mut plate,
@@ -29,11 +34,7 @@ fn hidden_block(dir: &std::path::Path) -> SceneDesc {
         Vec3::new(0.0, 1.52, 4.0),
     );
     let mut block = MeshData::default();
-    shapes::add_box(
-        &mut block,
-        Vec3::new(-0.8, 0.0, -4.0),
-        Vec3::new(0.0, 0.9, 4.0),
-    );
+    shapes::add_box(&mut block, lo, hi);
     let mut desc = SceneDesc::default();
     desc.objects
         .push(object(dir, "plate", &plate, Vec3::ZERO, Vec3::ONE));
@@ -187,7 +188,7 @@ fn surface_points_of(buf: &DepthBuffer, cam: &opengl3d::math::Camera) -> Vec<(us
 
 /// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
 /// no off-screen occluder matters) of an image with these pixels' world points.
-fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
+pub fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
     let strip: Vec<usize> = points
         .into_iter()
         .filter(|(_, p)| p.y.abs() < 1e-3 && p.x > 0.05 && p.x < 0.4 && p.z.abs() < 0.5)

@@ -328,6 +328,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
             back_depth: None,
             normals: None,
             second_depth: None,
+            second_back_depth: None,
             objects: &[],
         };
         sao.compute(&inputs).unwrap();

@@ -28,6 +28,7 @@ mod i18n;
 mod inputs;
 mod inputs_limits;
 mod inputs_misread;
+mod layer2_back_faces;
 mod lessons_ja;
 mod methods;
 mod numerics;

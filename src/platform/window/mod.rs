@@ -338,6 +338,14 @@ impl App {
             s.truth.state.wait();
         }
         s.truth.update(&mut s.engine);
+        if !s
+            .engine
+            .view
+            .available(s.engine.ao_settings.uses_second_layer())
+        {
+            // The second layer's view outlives the setting that drew it: show the first layer.
+            s.engine.view = View::LinearDepth;
+        }
         if let Err(e) = s.engine.render(None) {
             // Shown like a shader error and retried next frame: the window stays usable.
             if self.shader_errors.record_any(&e) {
@@ -397,7 +405,10 @@ impl App {
             KeyCode::Escape => event_loop.exit(),
             KeyCode::F1 => s.panel.visible = !s.panel.visible,
             KeyCode::Space => s.engine.ao_settings.enabled = !s.engine.ao_settings.enabled,
-            KeyCode::KeyV | KeyCode::Tab => s.engine.view = s.engine.view.next(),
+            KeyCode::KeyV | KeyCode::Tab => {
+                let second_layer = s.engine.ao_settings.uses_second_layer();
+                s.engine.view = s.engine.view.next(second_layer);
+            }
             KeyCode::KeyB => s.engine.ao_settings.blur = !s.engine.ao_settings.blur,
             KeyCode::KeyR => self.check_reload(true),
             KeyCode::KeyT => s.truth.request(&s.engine),

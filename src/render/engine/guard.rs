@@ -13,10 +13,10 @@ use anyhow::Result;
 
 impl Engine {
     /// The guard band a frame showing `view` gives the AO chain: none for the lesson's SAO (the
-    /// course renders the view only) and for the linear-depth view.
+    /// course renders the view only) and for the depth views.
     pub fn guard_frame(&self, view: View) -> Option<GuardFrame> {
         let s = &self.ao_settings;
-        if s.method == AoMethod::SaoLesson || view == View::LinearDepth {
+        if s.method == AoMethod::SaoLesson || view.is_depth() {
             return None;
         }
         let px = guard_band_pixels(s.guard_band, &self.camera, self.size(), s.radius);

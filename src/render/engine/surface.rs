@@ -25,6 +25,13 @@ impl Engine {
         self.surface.second_layer.linear_depth()
     }
 
+    /// Linear depth (m) of the nearest back faces behind the second depth layer at the AO size, from
+    /// the last frame that needed them (`vbao` with `layers = 2` and `thickness = "backface"`); rows
+    /// bottom-up, `far` where none.
+    pub fn second_layer_back_depth(&self) -> Option<Rc<Texture>> {
+        self.surface.second_layer.back_linear_depth()
+    }
+
     /// Linear depth (m) of the nearest back faces at the full output size and the current camera,
     /// whatever the AO settings: the pass `vbao` reads with `thickness = "backface"` at full AO
     /// resolution (the screen-space reference's per-pixel thickness). Rows top-down; exactly `far`
@@ -116,6 +123,11 @@ impl Engine {
                 let separation = s.layer_separation_metres();
                 passes.second_layer.draw(f, depth, separation, ao_size)
             })?);
+            if s.uses_second_layer_back_faces() {
+                out.second_back_depth = Some(self.pass("second layer back faces", "ao", || {
+                    passes.second_layer.draw_back_faces(f, depth, ao_size)
+                })?);
+            }
         }
         if s.uses_surface_normals() {
             out.normals = match normals_drawn {

@@ -40,7 +40,7 @@ pub fn restore_at_ao_size(
 }
 
 /// The targets of a depth pass over the geometry whose result is restored to the AO size (the back
-/// faces, the second depth layer): a main-size depth buffer and its linear depth at the AO size,
+/// faces, the second depth layer and its back faces): a main-size depth buffer and its linear depth at the AO size,
 /// made again when the sizes or the depth format change.
 struct LayerTargets {
     depth: FramebufferObject,
@@ -55,7 +55,7 @@ pub struct DepthLayer {
 }
 
 impl DepthLayer {
-    /// `name` labels the GL objects ("back-face", "second layer").
+    /// `name` labels the GL objects ("back-face", "second layer", ...).
     pub fn new(name: &'static str) -> DepthLayer {
         DepthLayer {
             name,
@@ -114,6 +114,12 @@ impl DepthLayer {
             .depth_texture()
             .ok_or_else(|| anyhow!("the {} FBO has no depth texture", self.name))?;
         restore_at_ao_size(f, restore, &t.linear, depth, front_depth)
+    }
+
+    /// The main-size depth buffer the last frame drew (window depth).
+    pub fn depth_texture(&self) -> Option<Rc<Texture>> {
+        let slot = self.targets.borrow();
+        slot.as_ref().and_then(|t| t.depth.depth_texture().cloned())
     }
 
     /// The linear depth at the AO size of the last frame that ran the pass.

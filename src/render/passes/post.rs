@@ -79,7 +79,7 @@ impl PostPass {
         Self::bind_output(gl, target, size);
         // 0.02: 50 m of depth spans black to white, the demo scene's range.
         let (mode, scale) = match view {
-            View::LinearDepth => (0, 0.02),
+            View::LinearDepth | View::SecondLayerDepth => (0, 0.02),
             _ => (1, 1.0),
         };
         self.debug.set_i32(loc::DEBUG_VIEW_MODE, mode);

@@ -1,7 +1,8 @@
 //! The second depth layer for `vbao` (`--layers 2`, `[ao] layers = 2`): the nearest front face at
 //! least a minimum separation behind the visible surface (Mara et al. 2016's deep G-buffer rule),
-//! linearised at the AO buffers' size. Runs only when the settings ask for it
-//! (`AoSettings::uses_second_layer`).
+//! linearised at the AO buffers' size, and with `thickness = "backface"` the nearest back face behind
+//! that layer's front. Runs only when the settings ask for it (`AoSettings::uses_second_layer`,
+//! `AoSettings::uses_second_layer_back_faces`).
 
 use super::ao_size_restore::DepthLayer;
 use crate::gl::pass_state::Cull;
@@ -9,7 +10,7 @@ use crate::gl::{Gl, PassState, ProgramObject, Texture};
 use crate::render::frame::Frame;
 use crate::res::ResDirs;
 use crate::shader_interface::{binding, loc};
-use anyhow::Result;
+use anyhow::{anyhow, Result};
 use std::rc::Rc;
 
 pub const LAYER_SHADER: &str = "ao/second_layer.frag";
@@ -21,6 +22,7 @@ pub struct SecondLayerPass {
     program: ProgramObject,
     restore: ProgramObject,
     layer: DepthLayer,
+    back: DepthLayer,
 }
 
 impl SecondLayerPass {
@@ -29,6 +31,7 @@ impl SecondLayerPass {
             program: ProgramObject::from_res(gl, res, "shadow.vert", LAYER_SHADER, &[])?,
             restore: ProgramObject::from_res(gl, res, "simple.vert", RESTORE_SHADER, &[])?,
             layer: DepthLayer::new("second layer"),
+            back: DepthLayer::new("second layer back-face"),
         })
     }
 
@@ -53,6 +56,40 @@ impl SecondLayerPass {
             cull: Cull::Back,
             ..f.scene_depth_state(true)
         });
+        self.set_uniforms(f, separation);
+        front_depth.bind(binding::INPUT);
+        f.draw_objects(&self.program, false, &f.view_projection());
+        self.layer.finish(f, &self.restore, front_depth)
+    }
+
+    /// After `draw` in the same frame: the nearest back faces behind the second layer's front,
+    /// their linear depth at `ao_size` ('far' where none), kept behind the same texels as the
+    /// layer's. The layer program with no separation and the layer as its "front" discards every
+    /// back face not behind it, so the depth test keeps the one that closes the hidden object (the
+    /// first layer's own back faces lie in front of it).
+    pub fn draw_back_faces(
+        &self,
+        f: &Frame,
+        front_depth: &Texture,
+        ao_size: (u32, u32),
+    ) -> Result<Rc<Texture>> {
+        let layer = self
+            .layer
+            .depth_texture()
+            .ok_or_else(|| anyhow!("the second layer's back faces were asked before the layer"))?;
+        self.back.begin(f, ao_size)?;
+        f.apply(PassState {
+            color_write: false,
+            cull: Cull::Front,
+            ..f.scene_depth_state(true)
+        });
+        self.set_uniforms(f, 0.0);
+        layer.bind(binding::INPUT);
+        f.draw_objects(&self.program, false, &f.view_projection());
+        self.back.finish(f, &self.restore, front_depth)
+    }
+
+    fn set_uniforms(&self, f: &Frame, separation: f32) {
         let c = f.camera;
         let reversed = if f.depth_mode.reversed() { 1.0 } else { 0.0 };
         self.program.use_program();
@@ -61,9 +98,6 @@ impl SecondLayerPass {
         self.program.set_f32(loc::LAYER_SEPARATION, separation);
         self.program
             .set_mat4(loc::VIEW_PROJECTION, &f.scene_view_projection());
-        front_depth.bind(binding::INPUT);
-        f.draw_objects(&self.program, false, &f.view_projection());
-        self.layer.finish(f, &self.restore, front_depth)
     }
 
     /// The second layer's linear depth from the last frame that ran the pass.
@@ -71,11 +105,19 @@ impl SecondLayerPass {
         self.layer.linear_depth()
     }
 
+    /// The linear depth of the second layer's back faces from the last frame that drew them.
+    pub fn back_linear_depth(&self) -> Option<Rc<Texture>> {
+        self.back.linear_depth()
+    }
+
     pub fn textures(&self) -> Vec<Rc<Texture>> {
-        self.layer.textures()
+        let mut t = self.layer.textures();
+        t.extend(self.back.textures());
+        t
     }
 
     pub fn release_targets(&self) {
         self.layer.release_targets();
+        self.back.release_targets();
     }
 }

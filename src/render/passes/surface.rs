@@ -1,7 +1,7 @@
 //! What the engine's AO methods may read besides the depth chain, each from a pass of its own over
 //! the geometry that runs only when the settings ask for it: the back faces' depth (`vbao` with
 //! `thickness = "backface"`), the surface normals (`normals = "geometric"`) and a second depth layer
-//! (`vbao` with `layers = 2`).
+//! (`vbao` with `layers = 2`; with its back faces when both are asked).
 
 use super::back_faces::BackFacePass;
 use super::normals::NormalPass;
@@ -23,6 +23,8 @@ pub struct SurfaceInputs {
     pub normals: Option<Rc<Texture>>,
     /// Linear depth of the second layer.
     pub second_depth: Option<Rc<Texture>>,
+    /// Linear depth of the second layer's back faces.
+    pub second_back_depth: Option<Rc<Texture>>,
 }
 
 impl SurfacePasses {

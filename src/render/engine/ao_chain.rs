@@ -1,0 +1,92 @@
+//! The engine's AO chain: the depth chain, the surface passes and the method with its blur, over the
+//! view or a widened one (`guard`).
+
+use super::Engine;
+use crate::ao::method_pass::AoInputs;
+use crate::ao::{AoMethod, AoTargets};
+use crate::gl::Texture;
+use crate::math::Camera;
+use crate::render::frame::Frame;
+use crate::render::passes::surface::SurfaceInputs;
+use crate::render::view::View;
+use anyhow::{anyhow, Result};
+
+impl Engine {
+    /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
+    /// `view` shows), over a widened view when the settings ask for a guard band.
+    pub(super) fn run_ao(&self, f: &Frame, targets: &AoTargets, view: View) -> Result<()> {
+        if let Some(g) = self.guard_frame(view) {
+            return self.run_guarded_ao(f, targets, view, &g);
+        }
+        let depth = self
+            .fbo_main
+            .depth_texture()
+            .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
+        self.restore_depth_chain(targets, depth)?;
+        match view {
+            View::LinearDepth => return Ok(()),
+            View::SecondLayerDepth => {
+                self.pass("second depth layer", "ao", || {
+                    let separation = self.ao_settings.layer_separation_metres();
+                    let layer = &self.surface.second_layer;
+                    layer.draw(f, depth, separation, targets.size())
+                })?;
+                return Ok(());
+            }
+            _ => {}
+        }
+        let surface = self.run_surface_passes(f, depth, targets.size(), None)?;
+        self.run_method(f.camera, targets, &surface, view)?;
+        Ok(())
+    }
+
+    /// The lesson's first two passes: linear depth from `depth` and its mip chain.
+    pub(super) fn restore_depth_chain(&self, targets: &AoTargets, depth: &Texture) -> Result<()> {
+        let chain = &self.ao.depth_chain;
+        self.pass("sao restore depth", "ao", || {
+            chain.restore_linear_depth(&self.gl, targets, &self.meshes, depth, self.depth_mode)
+        })?;
+        self.pass("sao down sampling", "ao", || {
+            crate::ao::depth_chain::down_sample(
+                &self.gl,
+                &chain.down_sampling,
+                targets,
+                &self.meshes,
+            )
+        });
+        Ok(())
+    }
+
+    /// The method's pass and its blur (unless the view shows the raw occlusion); whether it blurred.
+    pub(super) fn run_method(
+        &self,
+        camera: &Camera,
+        targets: &AoTargets,
+        surface: &SurfaceInputs,
+        view: View,
+    ) -> Result<bool> {
+        let method = self.ao_settings.method;
+        let inputs = AoInputs {
+            gl: &self.gl,
+            meshes: &self.meshes,
+            targets,
+            camera,
+            settings: &self.ao_settings,
+            back_depth: surface.back_depth.as_deref(),
+            normals: surface.normals.as_deref(),
+            second_depth: surface.second_depth.as_deref(),
+            second_back_depth: surface.second_back_depth.as_deref(),
+            objects: &self.objects,
+        };
+        let (pass_name, blur_name) = match method {
+            AoMethod::SaoLesson => ("sao", "sao blur"),
+            m => (m.name(), "separable blur"),
+        };
+        self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
+        let blur = self.ao_settings.blur && view != View::AoRaw;
+        if blur {
+            self.pass(blur_name, "ao", || self.ao.blur(method, &inputs))?;
+        }
+        Ok(blur)
+    }
+}
