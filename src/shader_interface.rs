@@ -52,6 +52,10 @@ pub mod loc {
     pub const AO_SURFACE_NORMALS: i32 = 206;
     /// ao/vbao.frag: depth layers marched per tap (2 = also `texSecondDepth`).
     pub const AO_LAYERS: i32 = 207;
+    /// ao/vbao.frag: levels of `texSlabs` the taps read (0 = each tap its own texel of `texDepth`).
+    pub const AO_SLAB_LEVELS: i32 = 208;
+    /// ao/slab_hierarchy.frag: how far (m) past its nearest front a coarse slab may reach.
+    pub const SLAB_REACH: i32 = 209;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -94,6 +98,8 @@ pub mod binding {
     pub const SECOND_LAYER: u32 = 3;
     /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
     pub const RTAO_HISTORY: u32 = 3;
+    /// ao/vbao.frag: `texSlabs`, the slab hierarchy (`ao::slab_hierarchy`).
+    pub const SLAB_HIERARCHY: u32 = 4;
 }
 
 /// Shader storage buffer bindings (`layout(std430, binding=N)`).
@@ -324,12 +330,28 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoBackFaces", AO_BACK_FACES),
             u("aoSurfaceNormals", AO_SURFACE_NORMALS),
             u("aoLayers", AO_LAYERS),
+            u("aoSlabLevels", AO_SLAB_LEVELS),
         ],
         &[
             s("texDepth", INPUT),
             s("texBackDepth", SECOND_INPUT),
             s("texNormal", SURFACE_NORMALS),
             s("texSecondDepth", SECOND_LAYER),
+            s("texSlabs", SLAB_HIERARCHY),
+        ],
+    ),
+    fullscreen(
+        "ao/slab_hierarchy.frag",
+        &[
+            u("mipLevel", SAO_MIP_LEVEL),
+            u("aoThickness", AO_THICKNESS),
+            u("aoBackFaces", AO_BACK_FACES),
+            u("slabReach", SLAB_REACH),
+        ],
+        &[
+            s("texDepth", INPUT),
+            s("texBackDepth", SECOND_INPUT),
+            s("texSlabs", THIRD_INPUT),
         ],
     ),
     fullscreen(

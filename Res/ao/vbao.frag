@@ -12,8 +12,11 @@
 layout(location=204) uniform float aoThickness; // metres behind each depth sample
 layout(location=205) uniform int aoBackFaces;   // 1: each tap's thickness from texBackDepth
 layout(location=207) uniform int aoLayers;      // 2: each tap also marches texSecondDepth
+layout(location=208) uniform int aoSlabLevels;  // >0: taps read texSlabs' level spanning their gap
 layout(binding=1) uniform sampler2D texBackDepth; // linear depth of the back faces (m), AO size
 layout(binding=3) uniform sampler2D texSecondDepth; // linear depth of the second layer (m), AO size
+// (nearest front, back) in metres of the slabs under each texel, per level (ao/slab_hierarchy.frag).
+layout(binding=4) uniform sampler2D texSlabs;
 
 const int SECTORS = 32;
 
@@ -177,25 +180,40 @@ void main()
     uint mask = 0u;
     for (int side = 0; side < 2 && mask != 0xffffffffu; ++side) {
       vec2 sideDir = side == 0 ? -dir : dir;
+      float previous = 0.0; // the previous tap's distance (pixels); the pixel itself first
       for (int j = 0; j < steps; ++j) {
         // Quadratic spacing: more taps near the pixel, where occluders subtend larger angles.
         float t = (float(j) + stepNoise) / float(steps);
-        vec2 offset = sideDir * (t * t * ssR + 1.0);
+        float dist = t * t * ssR + 1.0;
+        float gap = dist - previous;
+        previous = dist;
+        vec2 offset = sideDir * dist;
         ivec2 q = pix + ivec2(round(offset));
         if (any(lessThan(q, ivec2(0))) || any(greaterThanEqual(q, size))) {
           break; // off screen: nothing is known there, and every farther step is off too
         }
-        float zq = texelFetch(texDepth, q, 0).x;
-        if (IsSky(zq)) {
-          continue;
-        }
         // The sample's camera ray, parametrised by linear depth: X(d) = e * d.
         vec3 e = vec3(((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0) * ndcToView, -1.0);
+        float zq;
         float thickness = aoThickness;
-        if (aoBackFaces != 0) {
-          // The back face behind the tap, where there is one ('far' where none: open planes, sky).
-          float back = texelFetch(texBackDepth, q, 0).x;
-          thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
+        if (aoSlabLevels > 0) {
+          // The level whose texels are as wide as the gap to the previous tap (at most): its
+          // nearest slab stands for everything the tap would skip, put on the tap's own ray.
+          int level = clamp(int(floor(log2(max(gap, 1.0)))), 0, aoSlabLevels - 1);
+          vec2 slab = texelFetch(texSlabs, q >> level, level).xy;
+          zq = slab.x;
+          thickness = slab.y - slab.x;
+        } else {
+          zq = texelFetch(texDepth, q, 0).x;
+          if (aoBackFaces != 0) {
+            // The back face behind the tap, where there is one ('far' where none: open planes,
+            // sky).
+            float back = texelFetch(texBackDepth, q, 0).x;
+            thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
+          }
+        }
+        if (IsSky(zq)) {
+          continue;
         }
         mask |= SlabBits(slice, e, zq, thickness);
         if (aoLayers > 1) {

@@ -168,6 +168,11 @@ impl ShaderMethod {
             counts,
         })
     }
+
+    /// The occlusion program (for a method that sets uniforms of its own before `compute`).
+    pub fn program(&self) -> &ProgramObject {
+        &self.program
+    }
 }
 
 impl AoMethodPass for ShaderMethod {

@@ -11,6 +11,7 @@ pub mod method_pass;
 pub mod packed;
 pub mod pipeline;
 pub mod settings;
+pub mod slab_hierarchy;
 pub mod targets;
 pub mod upsample;
 

@@ -49,7 +49,7 @@ fn build_method(
         AoMethod::Hbao => Box::new(hbao::build(gl, res, camera)?),
         AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
         AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
-        AoMethod::Vbao => Box::new(vbao::build(gl, res, camera)?),
+        AoMethod::Vbao => Box::new(vbao::VbaoMethod::build(gl, res, camera)?),
         AoMethod::Rtao => Box::new(rtao::RtaoMethod::build(gl, res, camera)?),
     })
 }

@@ -310,6 +310,9 @@ pub struct AoSettings {
     /// Depth layers `vbao` marches (1 or 2): the visible surface, and the nearest one hidden at least
     /// `LAYER_SEPARATION_OF_RADIUS` × R behind it.
     pub layers: u32,
+    /// What `vbao`'s far taps read: their own texel, or a texel of the slab hierarchy that spans the
+    /// gap to the previous tap (`slab_hierarchy`).
+    pub slab_hierarchy: SlabHierarchy,
     /// `rtao`'s rays per pixel and frame (`--rays-per-pixel`).
     pub rays: u32,
     /// `rtao`'s frames averaged while the camera and the scene stand still (`--accumulate`; 1 = none).
@@ -374,6 +377,32 @@ impl Thickness {
     }
 }
 
+/// What each texel of a coarse level of `vbao`'s slab hierarchy keeps of the texels under it
+/// (`[ao] slab_hierarchy`): always their nearest front; as back, the nearest surface's own
+/// (`nearest`) or the farthest of all (`union`, conservative: no slab between two taps is
+/// missed, but a block holding a near board and a far wall becomes one slab from board to wall).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SlabHierarchy {
+    /// Each tap reads its own texel of the linear depth (taps skip what lies between them).
+    #[default]
+    Off,
+    Nearest,
+    Union,
+}
+
+impl SlabHierarchy {
+    /// How far (m) behind a coarse texel's nearest front its slab may reach to take in the farther
+    /// backs of the texels under it (`ao/slab_hierarchy.frag`'s `slabReach`); `None` when off.
+    pub fn reach(self) -> Option<f32> {
+        match self {
+            SlabHierarchy::Off => None,
+            SlabHierarchy::Nearest => Some(0.0),
+            SlabHierarchy::Union => Some(f32::MAX),
+        }
+    }
+}
+
 /// The second layer's minimum separation from the first, as a fraction of the radius. Small next to
 /// the slabs (R/2), so a surface hidden just behind a thin foreground object still counts; large
 /// enough that depth quantisation and coplanar surfaces never make the visible surface its own
@@ -407,6 +436,7 @@ impl Default for AoSettings {
             normals: NormalSource::Depth,
             guard_band: GuardBand::Off,
             layers: 1,
+            slab_hierarchy: SlabHierarchy::Off,
             rays: 2,
             accumulate: 1,
             stratified: false,
