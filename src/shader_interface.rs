@@ -54,8 +54,6 @@ pub mod loc {
     pub const AO_LAYERS: i32 = 207;
     /// ao/vbao.frag: levels of `texSlabs` the taps read (0 = each tap its own texel of `texDepth`).
     pub const AO_SLAB_LEVELS: i32 = 208;
-    /// ao/slab_hierarchy.frag: how far (m) past its nearest front a coarse slab may reach.
-    pub const SLAB_REACH: i32 = 209;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -346,7 +344,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("mipLevel", SAO_MIP_LEVEL),
             u("aoThickness", AO_THICKNESS),
             u("aoBackFaces", AO_BACK_FACES),
-            u("slabReach", SLAB_REACH),
         ],
         &[
             s("texDepth", INPUT),

@@ -19,6 +19,6 @@ pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
 pub use settings::{
     AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, GuardBand, NormalSource,
-    Thickness,
+    SlabHierarchy, Thickness,
 };
 pub use targets::AoTargets;

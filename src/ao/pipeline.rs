@@ -235,6 +235,13 @@ impl AoPipeline {
         }
     }
 
+    /// `vbao`'s slab hierarchy from the last frame that built one.
+    pub fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        self.methods
+            .get(&AoMethod::Vbao)
+            .and_then(|m| m.slab_hierarchy())
+    }
+
     /// Runs the method's blur.
     pub fn blur(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
         self.method(method)?.blur(inputs, &self.separable_blur)

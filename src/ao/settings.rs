@@ -310,8 +310,8 @@ pub struct AoSettings {
     /// Depth layers `vbao` marches (1 or 2): the visible surface, and the nearest one hidden at least
     /// `LAYER_SEPARATION_OF_RADIUS` × R behind it.
     pub layers: u32,
-    /// What `vbao`'s far taps read: their own texel, or a texel of the slab hierarchy that spans the
-    /// gap to the previous tap (`slab_hierarchy`).
+    /// Whether `vbao`'s taps read a texel of the slab hierarchy that spans the gap to the previous
+    /// tap instead of their own texel.
     pub slab_hierarchy: SlabHierarchy,
     /// `rtao`'s rays per pixel and frame (`--rays-per-pixel`).
     pub rays: u32,
@@ -377,30 +377,21 @@ impl Thickness {
     }
 }
 
-/// What each texel of a coarse level of `vbao`'s slab hierarchy keeps of the texels under it
-/// (`[ao] slab_hierarchy`): always their nearest front; as back, the nearest surface's own
-/// (`nearest`) or the farthest of all (`union`, conservative: no slab between two taps is
-/// missed, but a block holding a near board and a far wall becomes one slab from board to wall).
+/// Whether `vbao`'s taps read the slab hierarchy (`[ao] slab_hierarchy = "auto" | "on" | "off"`,
+/// `ao::slab_hierarchy`): each tap then stands for the gap to the previous one with the nearest slab
+/// under a texel as wide as that gap, so a thin board between two taps is not skipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SlabHierarchy {
-    /// Each tap reads its own texel of the linear depth (taps skip what lies between them).
+    /// On with `thickness = "backface"`, off with a constant thickness: on the bench's training
+    /// cameras of its three scenes (1920×1080, R = 1 m, every preset) it raised the back-face
+    /// slabs everywhere but for two cameras at `ultra` (under 0.1 dB down), and lowered the
+    /// constant thickness's thin things at `high` and `ultra` (docs/bench/vbao/slab-hierarchy.md).
     #[default]
+    Auto,
+    /// Each tap reads its own texel of the linear depth (taps skip what lies between them).
     Off,
-    Nearest,
-    Union,
-}
-
-impl SlabHierarchy {
-    /// How far (m) behind a coarse texel's nearest front its slab may reach to take in the farther
-    /// backs of the texels under it (`ao/slab_hierarchy.frag`'s `slabReach`); `None` when off.
-    pub fn reach(self) -> Option<f32> {
-        match self {
-            SlabHierarchy::Off => None,
-            SlabHierarchy::Nearest => Some(0.0),
-            SlabHierarchy::Union => Some(f32::MAX),
-        }
-    }
+    On,
 }
 
 /// The second layer's minimum separation from the first, as a fraction of the radius. Small next to
@@ -436,7 +427,7 @@ impl Default for AoSettings {
             normals: NormalSource::Depth,
             guard_band: GuardBand::Off,
             layers: 1,
-            slab_hierarchy: SlabHierarchy::Off,
+            slab_hierarchy: SlabHierarchy::Auto,
             rays: 2,
             accumulate: 1,
             stratified: false,
@@ -482,6 +473,15 @@ impl AoSettings {
     /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
     pub fn uses_back_faces(&self) -> bool {
         self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
+    }
+
+    /// Whether `vbao`'s taps read the slab hierarchy (`SlabHierarchy::Auto` decided).
+    pub fn uses_slab_hierarchy(&self) -> bool {
+        match self.slab_hierarchy {
+            SlabHierarchy::On => true,
+            SlabHierarchy::Off => false,
+            SlabHierarchy::Auto => self.thickness == Some(Thickness::Backface),
+        }
     }
 
     /// Whether a frame needs the second depth layer: `vbao` with `layers = 2`.

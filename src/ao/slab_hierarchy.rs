@@ -1,9 +1,10 @@
-//! `vbao`'s slab hierarchy (`[ao] slab_hierarchy`): an RG32F mip chain at the AO size holding, per
-//! texel, the nearest front and a back (linear metres) of the slabs under it, built by
-//! `ao/slab_hierarchy.frag` before `vbao`'s pass when the setting asks for it. A far tap reads the
-//! level whose texel is as wide as the gap to the previous tap, so a thin board between two taps
-//! still occludes (Greene, Kass and Miller, "Hierarchical Z-buffer visibility", 1993, for the idea
-//! of conservative depth pyramids).
+//! `vbao`'s slab hierarchy (`settings::SlabHierarchy`): an RGBA32F mip chain at the AO size
+//! holding, per texel, the nearest slab under it (front and back, linear metres) and the level-0
+//! texel it comes from, so that `vbao` puts it on its own camera ray. Built by
+//! `ao/slab_hierarchy.frag` before `vbao`'s pass when the settings ask for it. A far tap reads the
+//! level whose texel is about as wide as the gap to the previous tap, so a thin board between two
+//! taps still occludes (Greene, Kass and Miller, "Hierarchical Z-buffer visibility", 1993, for
+//! depth pyramids).
 
 use super::method_pass::AoInputs;
 use crate::gl::texture::max_levels;
@@ -32,18 +33,18 @@ struct Targets {
 }
 
 /// The build program and the hierarchy's texture (created on first use, at the AO size).
-pub struct SlabHierarchy {
+pub struct SlabLevels {
     pub program: ProgramObject,
     targets: RefCell<Option<Targets>>,
 }
 
-impl SlabHierarchy {
+impl SlabLevels {
     pub fn new(
         gl: &Gl,
         res: &ResDirs,
         defines: &[(&str, String)],
-    ) -> Result<SlabHierarchy, ProgramError> {
-        Ok(SlabHierarchy {
+    ) -> Result<SlabLevels, ProgramError> {
+        Ok(SlabLevels {
             program: ProgramObject::from_res(gl, res, "simple.vert", SHADER, defines)?,
             targets: RefCell::new(None),
         })
@@ -58,9 +59,8 @@ impl SlabHierarchy {
         *self.targets.get_mut() = None;
     }
 
-    /// Builds every level from the frame's linear depth (and back faces when it has them); `reach`:
-    /// how far (m) past its nearest front a coarse slab may reach (`SlabHierarchy::reach`).
-    pub fn build(&self, inputs: &AoInputs, reach: f32) -> Result<Rc<Texture>> {
+    /// Builds every level from the frame's linear depth (and back faces when it has them).
+    pub fn build(&self, inputs: &AoInputs) -> Result<Rc<Texture>> {
         let gl = inputs.gl;
         let (w, h) = inputs.targets.size();
         let stale = self
@@ -73,7 +73,7 @@ impl SlabHierarchy {
             // Nearest filtering: the shaders read it with texelFetch only.
             let tex = Rc::new(Texture::new(
                 gl,
-                TextureDesc::target("FBO(vbao slabs)", w, h, glow::RG32F)
+                TextureDesc::target("FBO(vbao slabs)", w, h, glow::RGBA32F)
                     .levels(levels_for(w, h))
                     .filter(glow::NEAREST_MIPMAP_NEAREST, glow::NEAREST),
             )?);
@@ -90,7 +90,6 @@ impl SlabHierarchy {
         p.use_program();
         p.set_f32(loc::AO_THICKNESS, s.thickness_metres());
         p.set_i32(loc::AO_BACK_FACES, inputs.back_depth.is_some() as i32);
-        p.set_f32(loc::SLAB_REACH, reach);
         inputs.targets.tex_depth.bind(binding::INPUT);
         if let Some(back) = inputs.back_depth {
             back.bind(binding::SECOND_INPUT);

@@ -1,14 +1,15 @@
 //! Visibility-bitmask AO (Therrien et al. 2023): per slice, 32 sectors of equal cosine weight, each
 //! depth sample occluding the sectors its slab (surface to `thickness` behind, within the radius)
 //! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::GtaoQuality`).
-//! With `[ao] slab_hierarchy` the taps read `ao::slab_hierarchy`'s levels instead of single texels.
+//! With the slab hierarchy (`AoSettings::uses_slab_hierarchy`) the taps read `ao::slab_hierarchy`'s
+//! levels instead of single texels.
 
 use crate::ao::blur::SeparableBlur;
 use crate::ao::method_pass::{
     method_defines, units_for_budget, AoInputs, AoMethodPass, ShaderMethod,
 };
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::ao::slab_hierarchy::SlabHierarchy;
+use crate::ao::slab_hierarchy::SlabLevels;
 use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
@@ -37,20 +38,15 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
 /// The occlusion pass and, when the settings ask for it, the slab hierarchy it reads.
 pub struct VbaoMethod {
     pass: ShaderMethod,
-    slabs: SlabHierarchy,
+    slabs: SlabLevels,
 }
 
 impl VbaoMethod {
     pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<VbaoMethod, ProgramError> {
         Ok(VbaoMethod {
             pass: ShaderMethod::build(AoMethod::Vbao, SHADER, counts, gl, res, camera)?,
-            slabs: SlabHierarchy::new(gl, res, &method_defines(camera))?,
+            slabs: SlabLevels::new(gl, res, &method_defines(camera))?,
         })
-    }
-
-    /// The slab hierarchy of the last frame that built one.
-    pub fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
-        self.slabs.texture()
     }
 }
 
@@ -68,13 +64,12 @@ impl AoMethodPass for VbaoMethod {
         self.slabs.program.set_defines(&method_defines(camera))
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
-        let levels = match inputs.settings.slab_hierarchy.reach() {
-            Some(reach) => {
-                let tex = self.slabs.build(inputs, reach)?;
-                tex.bind(binding::SLAB_HIERARCHY);
-                tex.levels() as i32
-            }
-            None => 0,
+        let levels = if inputs.settings.uses_slab_hierarchy() {
+            let tex = self.slabs.build(inputs)?;
+            tex.bind(binding::SLAB_HIERARCHY);
+            tex.levels() as i32
+        } else {
+            0
         };
         self.pass.program().set_i32(loc::AO_SLAB_LEVELS, levels);
         self.pass.compute(inputs)
@@ -90,5 +85,8 @@ impl AoMethodPass for VbaoMethod {
     fn release_targets(&mut self) {
         self.pass.release_targets();
         self.slabs.release();
+    }
+    fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        self.slabs.texture()
     }
 }
