@@ -394,6 +394,17 @@ pub enum SlabHierarchy {
     On,
 }
 
+impl SlabHierarchy {
+    pub const ALL: [SlabHierarchy; 3] = [SlabHierarchy::Auto, SlabHierarchy::Off, SlabHierarchy::On];
+    pub fn name(self) -> &'static str {
+        match self {
+            SlabHierarchy::Auto => "auto",
+            SlabHierarchy::Off => "off",
+            SlabHierarchy::On => "on",
+        }
+    }
+}
+
 /// The second layer's minimum separation from the first, as a fraction of the radius. Small next to
 /// the slabs (R/2), so a surface hidden just behind a thin foreground object still counts; large
 /// enough that depth quantisation and coplanar surfaces never make the visible surface its own
