@@ -395,7 +395,8 @@ pub enum SlabHierarchy {
 }
 
 impl SlabHierarchy {
-    pub const ALL: [SlabHierarchy; 3] = [SlabHierarchy::Auto, SlabHierarchy::Off, SlabHierarchy::On];
+    pub const ALL: [SlabHierarchy; 3] =
+        [SlabHierarchy::Auto, SlabHierarchy::Off, SlabHierarchy::On];
     pub fn name(self) -> &'static str {
         match self {
             SlabHierarchy::Auto => "auto",

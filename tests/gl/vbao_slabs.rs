@@ -48,6 +48,37 @@ fn fin_scene(dir: &std::path::Path, hierarchy: SlabHierarchy) -> SceneDesc {
     s
 }
 
+/// A plane slanted towards the camera's right and top, so that the nearest texel of a block is in
+/// its last column and row, and a box 0.4 m deep in front of it (back faces); 642x482 makes the AO
+/// buffer 321x241, odd, so a level's last texels take the odd column and row below them.
+fn slanted_scene(dir: &std::path::Path) -> SceneDesc {
+    let z = |x: f32, y: f32| -6.0 + 0.4 * x + 0.3 * y;
+    let mut plane = MeshData::default();
+    let corners =
+        [(-8.0, -6.0), (8.0, -6.0), (8.0, 6.0), (-8.0, 6.0)].map(|(x, y)| Vec3::new(x, y, z(x, y)));
+    shapes::add_quad(&mut plane, corners, Vec3::new(-0.4, -0.3, 1.0).normalize());
+    let mut block = MeshData::default();
+    shapes::add_box(
+        &mut block,
+        Vec3::new(-1.0, -1.0, -4.4),
+        Vec3::new(0.5, 0.5, -4.0),
+    );
+    let mut s = SceneDesc::default();
+    s.objects
+        .push(common::object(dir, "plane", &plane, Vec3::ZERO, Vec3::ONE));
+    s.objects
+        .push(common::object(dir, "block", &block, Vec3::ZERO, Vec3::ONE));
+    s.camera.eye = [0.0, 0.0, 0.0];
+    s.camera.target = [0.0, 0.0, -1.0];
+    s.output.width = 642;
+    s.output.height = 482;
+    s.bloom.enabled = false;
+    s.ao.method = AoMethod::Vbao;
+    s.ao.thickness = Some(Thickness::Backface);
+    s.ao.slab_hierarchy = SlabHierarchy::On;
+    s
+}
+
 /// RGBA texels of `level`, rows bottom-up.
 fn texels(tex: &opengl3d::gl::Texture, level: u32) -> Vec<[f32; 4]> {
     tex.read_f32(level, 4)
@@ -60,12 +91,16 @@ fn texels(tex: &opengl3d::gl::Texture, level: u32) -> Vec<[f32; 4]> {
 fn each_coarse_texel_holds_the_nearest_slab_under_it() {
     let ctx = common::context();
     let dir = common::temp_dir("vbao-slabs-levels");
-    let s = fin_scene(&dir, SlabHierarchy::On);
+    let s = slanted_scene(&dir);
     let mut eng = common::engine(&ctx, &s);
     eng.render_values(View::AoRaw).unwrap();
     let tex = eng.ao.slab_hierarchy().expect("the hierarchy was built");
     let (w, h) = (tex.width() as usize, tex.height() as usize);
-    assert!(tex.levels() >= 4, "{} levels", tex.levels());
+    assert!(
+        (w, h) == (321, 241) && tex.levels() >= 6,
+        "{w}x{h}, {} levels",
+        tex.levels()
+    );
     // Level 0: each texel's own depth, its back face, its own coordinates.
     let depth = eng.ao.targets().unwrap().tex_depth.read_f32(0, 1);
     let back = eng.back_face_depth().expect("back faces").read_f32(0, 1);
@@ -147,20 +182,49 @@ fn occlusion_beside_fin(ctx: &opengl3d::platform::HeadlessContext, s: &SceneDesc
     1.0 - sum / n as f32
 }
 
+/// Share of cosine-weighted directions from a floor point `a` m from a vertical fin `h` m tall
+/// that meet it within `r` m (the fin taken as a plane): directions project uniformly onto the unit
+/// disc, (x, z) to height sqrt(1 - x^2 - z^2), and the fin is met when x <= -a / r and the height
+/// there is at most h / r of the way (t = a / (-x r) <= 1 and t r y <= h). Midpoint rule on a grid.
+fn fin_occlusion(a: f32, h: f32, r: f32) -> f32 {
+    let n = 2000;
+    let (mut inside, mut hit) = (0u64, 0u64);
+    for i in 0..n {
+        for j in 0..n {
+            let x = -1.0 + (i as f64 + 0.5) * 2.0 / n as f64;
+            let z = -1.0 + (j as f64 + 0.5) * 2.0 / n as f64;
+            let rho2 = x * x + z * z;
+            if rho2 > 1.0 {
+                continue;
+            }
+            inside += 1;
+            let y = (1.0 - rho2).sqrt();
+            let ar = (a / r) as f64;
+            if x <= -ar && y * ar / -x <= (h / r) as f64 {
+                hit += 1;
+            }
+        }
+    }
+    hit as f32 / inside as f32
+}
+
 #[test]
 fn a_thin_fin_between_two_taps_occludes_with_the_hierarchy() {
     let ctx = common::context();
     let dir = common::temp_dir("vbao-slabs-fin");
     let off = occlusion_beside_fin(&ctx, &fin_scene(&dir, SlabHierarchy::Off));
     let on = occlusion_beside_fin(&ctx, &fin_scene(&dir, SlabHierarchy::On));
-    // Floor points 0.3 m from an infinitely tall wall (R = 1 m) lose the disc segment beyond it:
-    // (acos a - a sqrt(1 - a^2)) / pi with a = 0.3; a 0.5 m fin hides less.
-    let a = 0.3f32;
-    let wall = (a.acos() - a * (1.0 - a * a).sqrt()) / std::f32::consts::PI;
-    eprintln!("floor beside the fin: occlusion {off:.3} without, {on:.3} with the hierarchy (wall bound {wall:.3})");
-    assert!(
-        on > off + 0.05,
-        "the hierarchy must find the fin the taps skip: {on} vs {off}"
+    // The floor points are 0.3 m from the fin's middle, 0.29 m from its faces.
+    let truth = fin_occlusion(0.29, 0.5, 1.0);
+    eprintln!(
+        "floor beside the fin: occlusion {off:.3} without, {on:.3} with the hierarchy (exact {truth:.3})"
     );
-    assert!(on < wall, "more than an infinite wall hides: {on} > {wall}");
+    assert!(
+        off < 0.5 * truth,
+        "the taps alone should skip the fin here, or the scene tests nothing: {off} vs {truth}"
+    );
+    assert!(
+        (on - truth).abs() < 0.1 && on > off + 0.1,
+        "the hierarchy must find the fin the taps skip: {on} (without {off}, exact {truth})"
+    );
 }
