@@ -379,7 +379,7 @@ impl Thickness {
 
 /// Whether `vbao`'s taps read the slab hierarchy (`[ao] slab_hierarchy = "auto" | "on" | "off"`,
 /// `ao::slab_hierarchy`): each tap then stands for the gap to the previous one with the nearest slab
-/// under a texel as wide as that gap, so a thin board between two taps is not skipped.
+/// under a texel about half as wide as that gap, so a thin board between two taps is not skipped.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
 pub enum SlabHierarchy {

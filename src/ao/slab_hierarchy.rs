@@ -2,8 +2,8 @@
 //! holding, per texel, the nearest slab under it (front and back, linear metres) and the level-0
 //! texel it comes from, so that `vbao` puts it on its own camera ray. Built by
 //! `ao/slab_hierarchy.frag` before `vbao`'s pass when the settings ask for it. A far tap reads the
-//! level whose texel is about as wide as the gap to the previous tap, so a thin board between two
-//! taps still occludes (Greene, Kass and Miller, "Hierarchical Z-buffer visibility", 1993, for
+//! level whose texels are about half as wide as the gap to the previous tap, so a thin board
+//! between two taps still occludes (Greene, Kass and Miller, "Hierarchical Z-buffer visibility", 1993, for
 //! depth pyramids).
 
 use super::method_pass::AoInputs;
