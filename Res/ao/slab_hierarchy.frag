@@ -6,7 +6,8 @@
 // the back face behind it, or to depth + aoThickness where there is none (open planes) or back faces
 // are off. A coarser texel keeps its nearest child's slab whole. Keeping the union of the children
 // instead (nearest front to farthest back) turns a block of a near board and a far wall into one
-// slab from board to wall: it darkened every scene of the bench. The coordinates let vbao put the
+// slab from board to wall: it lost up to 8 dB on the bench's training cameras
+// (docs/bench/vbao/slab-hierarchy.md). The coordinates let vbao put the
 // slab on its own camera ray: a block's nearest depth moved onto another texel's ray lies off its
 // surface (on a receding floor, above it: the raised horizons of a min-depth chain).
 // Sky is (CAMERA_FAR, 0): never the nearest while a surface is under the texel.
@@ -20,6 +21,10 @@ layout(location=204) uniform float aoThickness;  // metres behind each depth sam
 layout(location=205) uniform int aoBackFaces;    // 1: each slab reaches texBackDepth
 
 out vec4 outSlab; // (front, back, texel x, texel y)
+
+#ifndef CAMERA_FAR
+#define CAMERA_FAR 1000.0
+#endif
 
 vec4 OwnSlab(ivec2 p) {
   float z = texelFetch(texDepth, p, 0).x;
