@@ -55,6 +55,8 @@ pub mod loc {
     /// ao/vbao.frag: 1 = read the second layer's thickness from its back faces
     /// (`texSecondBackDepth`).
     pub const AO_LAYER_BACK_FACES: i32 = 208;
+    /// ao/vbao.frag: levels of `texSlabs` the taps read (0 = each tap its own texel of `texDepth`).
+    pub const AO_SLAB_LEVELS: i32 = 209;
     /// debug_view.frag: which buffer to show, and a value scale.
     pub const DEBUG_VIEW_MODE: i32 = 210;
     pub const DEBUG_VIEW_SCALE: i32 = 211;
@@ -99,6 +101,8 @@ pub mod binding {
     pub const SECOND_LAYER_BACK: u32 = 4;
     /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
     pub const RTAO_HISTORY: u32 = 3;
+    /// ao/vbao.frag: `texSlabs`, the slab hierarchy (`ao::slab_hierarchy`).
+    pub const SLAB_HIERARCHY: u32 = 5;
 }
 
 /// Shader storage buffer bindings (`layout(std430, binding=N)`).
@@ -330,6 +334,7 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoSurfaceNormals", AO_SURFACE_NORMALS),
             u("aoLayers", AO_LAYERS),
             u("aoLayerBackFaces", AO_LAYER_BACK_FACES),
+            u("aoSlabLevels", AO_SLAB_LEVELS),
         ],
         &[
             s("texDepth", INPUT),
@@ -337,6 +342,20 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             s("texNormal", SURFACE_NORMALS),
             s("texSecondDepth", SECOND_LAYER),
             s("texSecondBackDepth", SECOND_LAYER_BACK),
+            s("texSlabs", SLAB_HIERARCHY),
+        ],
+    ),
+    fullscreen(
+        "ao/slab_hierarchy.frag",
+        &[
+            u("mipLevel", SAO_MIP_LEVEL),
+            u("aoThickness", AO_THICKNESS),
+            u("aoBackFaces", AO_BACK_FACES),
+        ],
+        &[
+            s("texDepth", INPUT),
+            s("texBackDepth", SECOND_INPUT),
+            s("texSlabs", THIRD_INPUT),
         ],
     ),
     fullscreen(

@@ -82,6 +82,10 @@ pub trait AoMethodPass {
     }
     /// Starts its running mean again at the next frame (the window, after any change of setting).
     fn restart_accumulation(&self) {}
+    /// The slab hierarchy its last frame built (`vbao` with `[ao] slab_hierarchy`).
+    fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        None
+    }
 }
 
 /// The whole number of units (steps, directions' steps, pairs) whose `taps_per_unit` depth taps come
@@ -173,6 +177,11 @@ impl ShaderMethod {
             packed: PackedOutput::default(),
             counts,
         })
+    }
+
+    /// The occlusion program (for a method that sets uniforms of its own before `compute`).
+    pub fn program(&self) -> &ProgramObject {
+        &self.program
     }
 }
 

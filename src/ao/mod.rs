@@ -11,6 +11,7 @@ pub mod method_pass;
 pub mod packed;
 pub mod pipeline;
 pub mod settings;
+pub mod slab_hierarchy;
 pub mod targets;
 pub mod upsample;
 
@@ -18,6 +19,6 @@ pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
 pub use settings::{
     AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, GuardBand, NormalSource,
-    Thickness,
+    SlabHierarchy, Thickness,
 };
 pub use targets::AoTargets;

@@ -49,7 +49,7 @@ fn build_method(
         AoMethod::Hbao => Box::new(hbao::build(gl, res, camera)?),
         AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
         AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
-        AoMethod::Vbao => Box::new(vbao::build(gl, res, camera)?),
+        AoMethod::Vbao => Box::new(vbao::VbaoMethod::build(gl, res, camera)?),
         AoMethod::Rtao => Box::new(rtao::RtaoMethod::build(gl, res, camera)?),
     })
 }
@@ -233,6 +233,13 @@ impl AoPipeline {
         for m in self.methods.values() {
             m.restart_accumulation();
         }
+    }
+
+    /// `vbao`'s slab hierarchy from the last frame that built one.
+    pub fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        self.methods
+            .get(&AoMethod::Vbao)
+            .and_then(|m| m.slab_hierarchy())
     }
 
     /// Runs the method's blur.

@@ -310,6 +310,9 @@ pub struct AoSettings {
     /// Depth layers `vbao` marches (1 or 2): the visible surface, and the nearest one hidden at least
     /// `LAYER_SEPARATION_OF_RADIUS` × R behind it.
     pub layers: u32,
+    /// Whether `vbao`'s taps read a texel of the slab hierarchy that spans the gap to the previous
+    /// tap instead of their own texel.
+    pub slab_hierarchy: SlabHierarchy,
     /// `rtao`'s rays per pixel and frame (`--rays-per-pixel`).
     pub rays: u32,
     /// `rtao`'s frames averaged while the camera and the scene stand still (`--accumulate`; 1 = none).
@@ -376,6 +379,35 @@ impl Thickness {
     }
 }
 
+/// Whether `vbao`'s taps read the slab hierarchy (`[ao] slab_hierarchy = "auto" | "on" | "off"`,
+/// `ao::slab_hierarchy`): each tap then stands for the gap to the previous one with the nearest slab
+/// under a texel about half as wide as that gap, so a thin board between two taps is not skipped.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum SlabHierarchy {
+    /// On with `thickness = "backface"`, off with a constant thickness: on the bench's training
+    /// cameras of its three scenes (1920×1080, R = 1 m, every preset) it raised the back-face
+    /// slabs everywhere but for two cameras at `ultra` (under 0.1 dB down), and lowered the
+    /// constant thickness's thin things at `high` and `ultra` (docs/bench/vbao/slab-hierarchy.md).
+    #[default]
+    Auto,
+    /// Each tap reads its own texel of the linear depth (taps skip what lies between them).
+    Off,
+    On,
+}
+
+impl SlabHierarchy {
+    pub const ALL: [SlabHierarchy; 3] =
+        [SlabHierarchy::Auto, SlabHierarchy::Off, SlabHierarchy::On];
+    pub fn name(self) -> &'static str {
+        match self {
+            SlabHierarchy::Auto => "auto",
+            SlabHierarchy::Off => "off",
+            SlabHierarchy::On => "on",
+        }
+    }
+}
+
 /// The second layer's minimum separation from the first, as a fraction of the radius. Small next to
 /// the slabs (R/2), so a surface hidden just behind a thin foreground object still counts; large
 /// enough that depth quantisation and coplanar surfaces never make the visible surface its own
@@ -409,6 +441,7 @@ impl Default for AoSettings {
             normals: NormalSource::Depth,
             guard_band: GuardBand::Off,
             layers: 1,
+            slab_hierarchy: SlabHierarchy::Auto,
             rays: 2,
             accumulate: 1,
             stratified: false,
@@ -454,6 +487,15 @@ impl AoSettings {
     /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
     pub fn uses_back_faces(&self) -> bool {
         self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
+    }
+
+    /// Whether `vbao`'s taps read the slab hierarchy (`SlabHierarchy::Auto` decided).
+    pub fn uses_slab_hierarchy(&self) -> bool {
+        match self.slab_hierarchy {
+            SlabHierarchy::On => true,
+            SlabHierarchy::Off => false,
+            SlabHierarchy::Auto => self.thickness == Some(Thickness::Backface),
+        }
     }
 
     /// Whether a frame needs the second depth layer: `vbao` with `layers = 2`.

@@ -4,7 +4,8 @@
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
 use crate::ao::{
-    AoMethod, AoResolution, CompositeMode, GtaoQuality, GuardBand, NormalSource, Thickness,
+    AoMethod, AoResolution, CompositeMode, GtaoQuality, GuardBand, NormalSource, SlabHierarchy,
+    Thickness,
 };
 use crate::i18n::Lang;
 use crate::math::DepthMode;
@@ -193,6 +194,11 @@ pub struct SceneArgs {
     /// its slabs reach its own back faces, from another).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
     pub layers: Option<u32>,
+    /// Whether `vbao`'s taps read the slab hierarchy (the nearest slab under a texel as wide as the
+    /// gap to the previous tap, so thin things between taps count): auto (on with `--thickness
+    /// backface`, the default), on, off.
+    #[arg(long, value_parser = choice(&SlabHierarchy::ALL, SlabHierarchy::name))]
+    pub slab_hierarchy: Option<SlabHierarchy>,
     /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
     #[arg(long, allow_negative_numbers = true)]
     pub rays_per_pixel: Option<u32>,

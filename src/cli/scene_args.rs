@@ -235,6 +235,9 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     if let Some(l) = args.layers {
         desc.ao.layers = l;
     }
+    if let Some(h) = args.slab_hierarchy {
+        desc.ao.slab_hierarchy = h;
+    }
     if let Some(t) = args.thickness {
         let (lo, hi) = crate::ao::settings::THICKNESS_RANGE;
         if let crate::ao::Thickness::Metres(m) = t {

@@ -46,4 +46,5 @@ mod surface_normals;
 mod tune;
 mod vbao;
 mod vbao_convergence;
+mod vbao_slabs;
 mod window_truth;

@@ -1,12 +1,21 @@
 //! Visibility-bitmask AO (Therrien et al. 2023): per slice, 32 sectors of equal cosine weight, each
 //! depth sample occluding the sectors its slab (surface to `thickness` behind, within the radius)
 //! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::GtaoQuality`).
+//! With the slab hierarchy (`AoSettings::uses_slab_hierarchy`) the taps read `ao::slab_hierarchy`'s
+//! levels instead of single texels.
 
-use crate::ao::method_pass::{units_for_budget, ShaderMethod};
+use crate::ao::blur::SeparableBlur;
+use crate::ao::method_pass::{
+    method_defines, units_for_budget, AoInputs, AoMethodPass, ShaderMethod,
+};
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, ProgramError};
+use crate::ao::slab_hierarchy::SlabLevels;
+use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
+use crate::shader_interface::{binding, loc};
+use anyhow::Result;
+use std::rc::Rc;
 
 pub const SHADER: &str = "ao/vbao.frag";
 
@@ -26,6 +35,58 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
     ]
 }
 
-pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
-    ShaderMethod::build(AoMethod::Vbao, SHADER, counts, gl, res, camera)
+/// The occlusion pass and, when the settings ask for it, the slab hierarchy it reads.
+pub struct VbaoMethod {
+    pass: ShaderMethod,
+    slabs: SlabLevels,
+}
+
+impl VbaoMethod {
+    pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<VbaoMethod, ProgramError> {
+        Ok(VbaoMethod {
+            pass: ShaderMethod::build(AoMethod::Vbao, SHADER, counts, gl, res, camera)?,
+            slabs: SlabLevels::new(gl, res, &method_defines(camera))?,
+        })
+    }
+}
+
+impl AoMethodPass for VbaoMethod {
+    fn method(&self) -> AoMethod {
+        AoMethod::Vbao
+    }
+    fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
+        let mut v = self.pass.programs_mut();
+        v.push(&mut self.slabs.program);
+        v
+    }
+    fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
+        self.pass.update_defines(camera, s)?;
+        self.slabs.program.set_defines(&method_defines(camera))
+    }
+    fn compute(&self, inputs: &AoInputs) -> Result<()> {
+        let levels = if inputs.settings.uses_slab_hierarchy() {
+            let tex = self.slabs.build(inputs)?;
+            tex.bind(binding::SLAB_HIERARCHY);
+            tex.levels() as i32
+        } else {
+            0
+        };
+        self.pass.program().set_i32(loc::AO_SLAB_LEVELS, levels);
+        self.pass.compute(inputs)
+    }
+    fn blur(&self, inputs: &AoInputs, separable: &SeparableBlur) -> Result<()> {
+        self.pass.blur(inputs, separable)
+    }
+    fn textures(&self) -> Vec<Rc<Texture>> {
+        let mut v = self.pass.textures();
+        v.extend(self.slabs.texture());
+        v
+    }
+    fn release_targets(&mut self) {
+        self.pass.release_targets();
+        self.slabs.release();
+    }
+    fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        self.slabs.texture()
+    }
 }
