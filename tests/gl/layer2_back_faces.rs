@@ -316,6 +316,7 @@ fn constant_and_back_faces(
         variant: AoVariant::Visibility,
         seed: 7,
         progress: false,
+        supersample: 1,
     };
     let (w, h) = e.size();
     let cache = temp_dir(&format!("{label}-cache"));
