@@ -47,6 +47,7 @@ fn small_params() -> RefParams {
         variant: AoVariant::Visibility,
         seed: 1,
         progress: false,
+        supersample: 1,
     }
 }
 
