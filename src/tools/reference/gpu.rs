@@ -44,7 +44,7 @@ pub fn render_reference_gpu(
     ao.intensity = 5.0; // the identity: occlusion as traced
                         // With a footprint, every sub-pixel of an image `supersample` times larger gets its share.
     let footprint = params.supersample.max(1);
-    ao.rays = params.rays.div_ceil(footprint * footprint);
+    ao.rays = params.sub_pixel().rays;
     ao.accumulate = 1;
     ao.stratified = true;
     let (out_w, out_h) = (scene.output.width, scene.output.height);

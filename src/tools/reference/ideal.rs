@@ -60,11 +60,7 @@ pub fn render_ideal_one_layer(
                 return shade_pixel(&view, x, y, (width, height), params, steps);
             }
             // The footprint's mean, as the ray-traced truth takes it (`trace.rs`).
-            let sub = RefParams {
-                rays: params.rays.max(1).div_ceil(n * n),
-                supersample: 1,
-                ..*params
-            };
+            let sub = params.sub_pixel();
             let fine = (width.saturating_mul(n), height.saturating_mul(n));
             Some(footprint_mean(n, |i, j| {
                 shade_pixel(&view, x * n + i, y * n + j, fine, &sub, steps).unwrap_or((

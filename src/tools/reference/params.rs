@@ -42,3 +42,16 @@ impl Default for RefParams {
         }
     }
 }
+
+impl RefParams {
+    /// One sub-pixel of a footprint: its share of the rays (`rays / supersample²`, rounded up),
+    /// traced at its centre.
+    pub fn sub_pixel(&self) -> RefParams {
+        let n = self.supersample.max(1);
+        RefParams {
+            rays: self.rays.max(1).div_ceil(n * n),
+            supersample: 1,
+            ..*self
+        }
+    }
+}

@@ -95,11 +95,7 @@ fn shade_footprint(
     params: &RefParams,
 ) -> PixelOut {
     let n = params.supersample;
-    let sub = RefParams {
-        rays: params.rays.max(1).div_ceil(n * n),
-        supersample: 1,
-        ..*params
-    };
+    let sub = params.sub_pixel();
     let (fine_w, fine_h) = (width.saturating_mul(n), height.saturating_mul(n));
     footprint_mean(n, |i, j| {
         shade_pixel(
