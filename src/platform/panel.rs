@@ -3,7 +3,7 @@
 //! Only the UI lives here: the window (`window/mod.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
-use crate::ao::settings::RAYS_RANGE;
+use crate::ao::settings::{SlabHierarchy, RAYS_RANGE};
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::platform::window::accumulation::WINDOW_ACCUMULATE;
@@ -181,6 +181,19 @@ impl Panel {
             } else {
                 p.thickness
             };
+            // Shows what `auto` decided; a click sets it on or off explicitly.
+            let mut hierarchy = p.uses_slab_hierarchy();
+            if ui
+                .checkbox(&mut hierarchy, tr("panel.slab_hierarchy"))
+                .on_hover_text(tr("panel.slab_hierarchy_help"))
+                .changed()
+            {
+                p.slab_hierarchy = if hierarchy {
+                    SlabHierarchy::On
+                } else {
+                    SlabHierarchy::Off
+                };
+            }
         }
 
         egui::ComboBox::from_label(tr("panel.composite"))
