@@ -81,17 +81,7 @@ fn a_second_layer_finds_the_occluder_hidden_under_a_plate() {
         }
     }
     let e = engine(&ctx, &desc);
-    let cam = ref_camera(&e);
-    let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
-    let params = RefParams {
-        radius: 1.0,
-        rays: 256,
-        variant: AoVariant::Visibility,
-        seed: 7,
-        progress: false,
-        supersample: 1,
-    };
-    let truth = load_or_render_cached(&temp_dir("layers-cache"), &scene, &cam, W, H, &params);
+    let (truth, cam) = engine_truth(&e, &desc, &temp_dir("layers-cache"));
     let mean = strip_mean(surface_points(&truth, &cam));
     let (want, one, two) = (mean(&truth.ao), mean(&visibility[0]), mean(&visibility[1]));
     // The truth: a wall 0.9 m high beside the strip shades it well below open sky.
@@ -188,6 +178,30 @@ fn surface_points_of(buf: &DepthBuffer, cam: &opengl3d::math::Camera) -> Vec<(us
 
 /// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
 /// no off-screen occluder matters) of an image with these pixels' world points.
+/// The ray-traced truth of `e`'s view of `desc` (R 1 m, 256 rays at pixel centres, cached in
+/// `cache`), and the camera it was traced from.
+pub fn engine_truth(
+    e: &opengl3d::render::Engine,
+    desc: &SceneDesc,
+    cache: &std::path::Path,
+) -> (opengl3d::tools::reference::RefImage, opengl3d::math::Camera) {
+    let cam = ref_camera(e);
+    let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
+    let params = RefParams {
+        radius: 1.0,
+        rays: 256,
+        variant: AoVariant::Visibility,
+        seed: 7,
+        progress: false,
+        supersample: 1,
+    };
+    let (w, h) = e.size();
+    (
+        load_or_render_cached(cache, &scene, &cam, w, h, &params),
+        cam,
+    )
+}
+
 pub fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
     let strip: Vec<usize> = points
         .into_iter()

@@ -4,16 +4,13 @@
 //! tracer.
 
 use crate::common::*;
-use crate::depth_layers::{hidden_block, plate_over, strip_mean};
-use crate::reference_screen::ref_camera;
+use crate::depth_layers::{engine_truth, hidden_block, plate_over, strip_mean};
 use glam::Vec3;
 use opengl3d::ao::{AoMethod, AoResolution, AoSettings, Thickness};
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::math::DepthMode;
 use opengl3d::render::View;
-use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
-use opengl3d::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
 
 const W: u32 = 64;
 const H: u32 = 48;
@@ -308,19 +305,7 @@ fn constant_and_back_faces(
         runs.push(v);
     }
     let e = engine(&ctx, desc);
-    let cam = ref_camera(&e);
-    let scene = Scene::new(desc.world_triangles(&ResDirs::default()).unwrap()).unwrap();
-    let params = RefParams {
-        radius: 1.0,
-        rays: 256,
-        variant: AoVariant::Visibility,
-        seed: 7,
-        progress: false,
-        supersample: 1,
-    };
-    let (w, h) = e.size();
-    let cache = temp_dir(&format!("{label}-cache"));
-    let truth = load_or_render_cached(&cache, &scene, &cam, w, h, &params);
+    let (truth, cam) = engine_truth(&e, desc, &temp_dir(&format!("{label}-cache")));
     let points = surface_points(&truth, &cam);
     // Floor more than R from the plate's edge and the hidden box: no second layer within reach.
     let far_floor = points
