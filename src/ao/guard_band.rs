@@ -201,13 +201,16 @@ mod tests {
             480
         );
         // 0.2 m at 6.2 m with a 60° field of view over 1080 rows: about 30 pixels; 1 m would be
-        // about 150, capped at 80 (1/24 of 1920); the smallest band is 8 pixels.
+        // about 150 (under the cap, 160 = 1/12 of 1920); the smallest band is 8 pixels.
         let small = guard_band_pixels(GuardBand::Auto, &cam, size, 0.2);
         assert!(
             (28..=32).contains(&small) && small.is_multiple_of(2),
             "{small}"
         );
-        assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 1.0), 80);
+        let one = guard_band_pixels(GuardBand::Auto, &cam, size, 1.0);
+        assert!((146..=154).contains(&one) && one.is_multiple_of(2), "{one}");
+        // 3 m would be about 450: capped at 160.
+        assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 3.0), 160);
         assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 1e-3), 8);
     }
 }

@@ -181,7 +181,7 @@ pub struct SceneArgs {
     #[arg(long, value_parser = choice(&NormalSource::ALL, NormalSource::name))]
     pub normals: Option<NormalSource>,
     /// Pixels the engine's AO covers beyond each edge of the view, so that occluders just off
-    /// screen count: auto (the radius's size at the camera's focus distance, at most 1/24 of the
+    /// screen count: auto (the radius's size at the camera's focus distance, at most 1/12 of the
     /// larger side), a number, or 0 (none, the default).
     #[arg(long, value_name = "auto|PX", value_parser = GuardBand::parse)]
     pub guard_band: Option<GuardBand>,
