@@ -167,7 +167,8 @@ pub struct SceneArgs {
     /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
     #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
     pub samples: Option<u32>,
-    /// GTAO/VBAO quality preset: low 1×4, medium 2×4, high 3×6, ultra 4×8 (slices × steps per side).
+    /// GTAO/VBAO quality preset (slices × steps per side): gtao low 1×4, medium 2×4, high 3×6, ultra
+    /// 4×8; vbao 1×4, 1×8, 1×16, 1×32.
     #[arg(long, value_parser = choice(&GtaoQuality::ALL, GtaoQuality::name))]
     pub quality: Option<GtaoQuality>,
     /// AO radius in metres.

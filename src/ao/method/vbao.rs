@@ -26,7 +26,7 @@ pub const DEFAULT_SLICES: i32 = 2;
 /// `aoCounts` = (slices, steps per side): the preset's when one is set.
 pub fn counts(s: &AoSettings) -> [i32; 2] {
     if let Some(q) = s.quality {
-        let (slices, steps) = q.slices_steps();
+        let (slices, steps) = q.vbao_slices_steps();
         return [slices as i32, steps as i32];
     }
     [

@@ -28,9 +28,12 @@ impl Setting {
             quality: None,
         }
     }
-    /// A GTAO preset; `samples` is its tap count (2 sides × slices × steps).
-    fn preset(q: crate::ao::GtaoQuality, radius: f32) -> Setting {
-        let (slices, steps) = q.slices_steps();
+    /// A `gtao` or `vbao` preset; `samples` is its tap count (2 sides × slices × steps).
+    fn preset(method: AoMethod, q: crate::ao::GtaoQuality, radius: f32) -> Setting {
+        let (slices, steps) = match method {
+            AoMethod::Vbao => q.vbao_slices_steps(),
+            _ => q.slices_steps(),
+        };
         Setting {
             samples: 2 * slices * steps,
             radius,
@@ -87,7 +90,11 @@ pub(crate) fn settings_for(
         let r: &[f32] = if radii.is_empty() { &[1.0] } else { radii };
         return r
             .iter()
-            .flat_map(|&radius| qualities.iter().map(move |&q| Setting::preset(q, radius)))
+            .flat_map(|&radius| {
+                qualities
+                    .iter()
+                    .map(move |&q| Setting::preset(method, q, radius))
+            })
             .collect();
     }
     if !samples.is_empty() || !radii.is_empty() {
@@ -109,8 +116,16 @@ pub(crate) fn settings_for(
             // Its presets too: "high" is the accurate end the report compares.
             let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
             for radius in [1.0, 0.5] {
-                v.push(Setting::preset(crate::ao::GtaoQuality::High, radius));
-                v.push(Setting::preset(crate::ao::GtaoQuality::Ultra, radius));
+                v.push(Setting::preset(
+                    method,
+                    crate::ao::GtaoQuality::High,
+                    radius,
+                ));
+                v.push(Setting::preset(
+                    method,
+                    crate::ao::GtaoQuality::Ultra,
+                    radius,
+                ));
             }
             v
         }
@@ -119,7 +134,7 @@ pub(crate) fn settings_for(
             let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
             for radius in [1.0, 0.5] {
                 for q in crate::ao::GtaoQuality::ALL {
-                    v.push(Setting::preset(q, radius));
+                    v.push(Setting::preset(method, q, radius));
                 }
             }
             v
