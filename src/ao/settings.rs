@@ -227,8 +227,8 @@ pub const GUARD_BAND_MAX_OF_SIDE: f32 = 0.25;
 /// The largest `auto` guard band, as a fraction of the output's larger side: 160 pixels at 1920×1080,
 /// half again as many pixels for the AO passes. On the bench's training cameras (three scenes, R =
 /// 1 m, back faces, geometric normals, 1920×1080 against footprint truths) raising the cap from 1/24
-/// to 1/12 gained 0.6–1.0 dB in the room and up to 0.4 on the courtyard with two layers (`ultra`
-/// and `high`), 0.1–0.5 with one, and lost at most 0.1 on thin things; 1/8 and 1/6 added at most 0.1
+/// to 1/12 gained 0.6–1.0 dB in the room and up to 0.4 on the courtyard with two layers (4×8
+/// and 3×6 slices × steps), 0.1–0.5 with one, and lost at most 0.1 on thin things; 1/8 and 1/6 added at most 0.1
 /// more (docs/bench/vbao/guard-band-cap.md). Nearby surfaces would ask for more, which the cost
 /// does not repay.
 pub const GUARD_BAND_AUTO_MAX_OF_SIDE: f32 = 1.0 / 12.0;
