@@ -27,6 +27,8 @@ const int SECTORS = 32;
 // thickness (R/2, so R/8): exact slabs of a hidden 2 cm board leave gaps between the taps that let
 // light through, R/2 makes it a wall. Chosen on the bench's training cameras
 // (docs/bench/vbao/layer2-backfaces.md).
+// (The screen-space reference applies the same floor: LAYER2_MIN_THICKNESS_OF_SET in
+// src/ao/settings.rs, which a test holds equal to this.)
 const float LAYER2_MIN_THICKNESS = 0.25;
 // With the slab hierarchy, a tap reads the level whose texels are half the gap to the previous
 // tap (rounded down to a power of two), and widens each slab to SLAB_SPACING_K spacings of the taps

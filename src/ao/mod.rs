@@ -19,6 +19,6 @@ pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
 pub use settings::{
     AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, GuardBand, NormalSource,
-    SlabHierarchy, Thickness,
+    SlabHierarchy, Thickness, LAYER2_MIN_THICKNESS_OF_SET,
 };
 pub use targets::AoTargets;

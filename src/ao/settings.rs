@@ -433,6 +433,11 @@ impl SlabHierarchy {
 /// scene's typical object thickness.
 pub const LAYER_SEPARATION_OF_RADIUS: f32 = 0.1;
 
+/// With back faces, the thinnest slab `vbao` gives the second layer, as a fraction of the set
+/// thickness (`LAYER2_MIN_THICKNESS` in `Res/ao/vbao.frag`; docs/bench/vbao/layer2-backfaces.md
+/// chose it): the screen-space reference applies the same floor.
+pub const LAYER2_MIN_THICKNESS_OF_SET: f32 = 0.25;
+
 /// `vbao`'s default thickness as a fraction of the radius, chosen on the bench's training cameras of
 /// its three scenes (docs/bench/vbao-thickness.md): thinner lets light through walls seen edge-on,
 /// thicker turns every chair leg and shelf board into a wall reaching the radius. R/2 has the best
@@ -598,6 +603,24 @@ impl AoSettings {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_second_layers_least_slab_is_the_shaders() {
+        // The screen-space reference applies the floor `vbao`'s shader applies: one value.
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/Res/ao/vbao.frag");
+        let text = std::fs::read_to_string(path).expect("Res/ao/vbao.frag");
+        let line = text
+            .lines()
+            .find(|l| l.starts_with("const float LAYER2_MIN_THICKNESS ="))
+            .expect("vbao.frag declares LAYER2_MIN_THICKNESS");
+        let value: f32 = line
+            .trim_end_matches(';')
+            .rsplit('=')
+            .next()
+            .and_then(|v| v.trim().parse().ok())
+            .expect("a number");
+        assert_eq!(value, LAYER2_MIN_THICKNESS_OF_SET);
+    }
 
     #[test]
     fn names_round_trip() {

@@ -12,7 +12,7 @@ use opengl3d::res::ResDirs;
 use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::reference::{
     load_or_render_cached, pixel_dir, render_screen_space, view_direction, AoVariant, Capture,
-    DepthBuffer, RefParams, Scene,
+    DepthBuffer, RefParams, Scene, Surface,
 };
 
 const W: u32 = 160;
@@ -176,8 +176,6 @@ fn surface_points_of(buf: &DepthBuffer, cam: &opengl3d::math::Camera) -> Vec<(us
     out
 }
 
-/// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
-/// no off-screen occluder matters) of an image with these pixels' world points.
 /// The ray-traced truth of `e`'s view of `desc` (R 1 m, 256 rays at pixel centres, cached in
 /// `cache`), and the camera it was traced from.
 pub fn engine_truth(
@@ -202,6 +200,8 @@ pub fn engine_truth(
     )
 }
 
+/// The mean over the floor pixels beside the hidden block's face (away from the view's borders, so
+/// no off-screen occluder matters) of an image with these pixels' world points.
 pub fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
     let strip: Vec<usize> = points
         .into_iter()
@@ -214,4 +214,74 @@ pub fn strip_mean(points: Vec<(usize, Vec3)>) -> impl Fn(&[f32]) -> f64 {
         strip.len()
     );
     move |v: &[f32]| strip.iter().map(|&i| v[i] as f64).sum::<f64>() / strip.len() as f64
+}
+
+#[test]
+fn the_ceilings_second_layer_reaches_its_own_back_faces() {
+    let ctx = context();
+    let dir = temp_dir("layers-ceiling-board");
+    // A 2 cm board under the plate instead of the block: with the set thickness (0.5 m) its slab is
+    // a wall down to 0.4 m; to its back face (never thinner than a quarter of that) it stays thin.
+    // Geometric normals and planar patches, where back faces are taken exactly (the triangulated
+    // surface keeps every slab at least the set thickness).
+    let desc = plate_over(&dir, Vec3::new(-0.8, 0.88, -4.0), Vec3::new(0.0, 0.9, 4.0));
+    let mut e = engine(&ctx, &desc);
+    let separation = desc.ao.layer_separation_metres();
+    let thickness = desc.ao.thickness_metres();
+    let capture = |e: &mut opengl3d::render::Engine, back_faces| {
+        let what = Capture {
+            back_faces,
+            normals: true,
+            second_layer: Some(separation),
+        };
+        DepthBuffer {
+            surface: Surface::Patches,
+            ..DepthBuffer::capture(e, 0, what).unwrap()
+        }
+        .with_thickness(thickness)
+    };
+    let set = capture(&mut e, false);
+    let exact = capture(&mut e, true);
+    assert!(set.second_back_depth.is_none());
+    let back = exact
+        .second_back_depth
+        .as_ref()
+        .expect("the second layer's back faces captured");
+    // Over the board its back face is the underside, 0.88 m up: the plate's depth along the
+    // camera ray scaled by the heights below the eye.
+    let cam = ref_camera(&e);
+    let (mut over_board, mut undersides) = (0, 0);
+    for (i, p) in surface_points_of(&exact, &cam) {
+        if p.y > 1.4 && p.x < -0.1 && p.x > -0.7 && p.z.abs() < 0.5 {
+            over_board += 1;
+            let want = exact.linear_depth[i] * (5.0 - 0.88) / (5.0 - 1.52);
+            if (back[i] - want).abs() < 0.01 * want {
+                undersides += 1;
+            }
+        }
+    }
+    assert!(over_board > 50, "{over_board} plate pixels over the board");
+    assert!(
+        undersides as f64 > 0.95 * over_board as f64,
+        "{undersides} of {over_board} plate pixels have the board's underside as the second layer's back face"
+    );
+    let params = RefParams {
+        radius: 1.0,
+        rays: 64,
+        variant: AoVariant::Visibility,
+        seed: 3,
+        progress: false,
+        supersample: 1,
+    };
+    let with_set = render_screen_space(&set, &params).unwrap();
+    let with_back = render_screen_space(&exact, &params).unwrap();
+    let (truth, truth_cam) = engine_truth(&e, &desc, &temp_dir("layers-board-cache"));
+    let mean = strip_mean(surface_points(&truth, &truth_cam));
+    let (want, a, b) = (mean(&truth.ao), mean(&with_set.ao), mean(&with_back.ao));
+    eprintln!("floor beside the board: truth {want:.3}, set thickness {a:.3}, back faces {b:.3}");
+    // The wall of the set thickness shades the floor beside the board; the board does much less.
+    assert!(
+        (b - want).abs() < 0.5 * (a - want).abs(),
+        "ceiling with the second layer's back faces {b}, with the set thickness {a}, truth {want}"
+    );
 }

@@ -51,19 +51,29 @@ impl Engine {
 
     /// Linear depth (m) of the second depth layer `separation` metres or more behind the visible
     /// surface, at the full output size and the current camera, whatever the AO settings: what
-    /// `vbao` with `layers = 2` reads at full AO resolution (the screen-space reference's). Rows
-    /// top-down; exactly `far` where nothing lies behind the pixel.
-    pub fn render_second_layer_depth(&mut self, separation: f32) -> Result<Vec<f32>> {
+    /// `vbao` with `layers = 2` reads at full AO resolution (the screen-space reference's), and with
+    /// `back_faces` the back faces that close it (what `vbao` reads with `thickness = "backface"`
+    /// as well). Rows top-down; exactly `far` where nothing lies behind the pixel.
+    pub fn render_second_layer_depths(
+        &mut self,
+        separation: f32,
+        back_faces: bool,
+    ) -> Result<(Vec<f32>, Option<Vec<f32>>)> {
         let front = self.render_front_depth()?;
         let f = self.frame();
-        let layer = self
-            .surface
-            .second_layer
-            .draw(&f, &front, separation, self.size())?;
-        let mut v = layer.read_f32(0, 1);
-        flip_rows(&mut v, self.width as usize, self.height as usize);
+        let (w, h) = (self.width as usize, self.height as usize);
+        let passes = &self.surface.second_layer;
+        let mut layer = passes.draw(&f, &front, separation, self.size())?.read_f32(0, 1);
+        flip_rows(&mut layer, w, h);
+        let back = if back_faces {
+            let mut v = passes.draw_back_faces(&f, &front, self.size())?.read_f32(0, 1);
+            flip_rows(&mut v, w, h);
+            Some(v)
+        } else {
+            None
+        };
         check_error(&self.gl, "reading the second depth layer")?;
-        Ok(v)
+        Ok((layer, back))
     }
 
     /// The surface normals (view space, unit length) at the AO size from the last frame that ran

@@ -16,7 +16,8 @@ pub struct Capture {
     pub back_faces: bool,
     /// The surface normals (`--normals geometric`).
     pub normals: bool,
-    /// The second depth layer (`vbao`'s `--layers 2`), beginning this many metres behind the first.
+    /// The second depth layer (`vbao`'s `--layers 2`), beginning this many metres behind the first;
+    /// with `back_faces`, its own back faces too (as `vbao` reads them).
     pub second_layer: Option<f32>,
 }
 
@@ -53,6 +54,12 @@ pub struct DepthBuffer {
     /// face a minimum separation behind the first surface (`vbao`'s `--layers 2`), a slab of
     /// [`Self::thickness`] like the first layer's; `f32::INFINITY` where none. `None`: one layer.
     pub second_layer: Option<Vec<f32>>,
+    /// Linear depth (m) of the back face that closes the second layer's surface, rows top-down
+    /// (`vbao` with `--thickness backface` and `--layers 2`): that slab reaches there, never
+    /// thinner than [`crate::ao::LAYER2_MIN_THICKNESS_OF_SET`] of [`Self::thickness`];
+    /// `f32::INFINITY` where none (the slab is then [`Self::thickness`] thick). `None`: every
+    /// second-layer slab is [`Self::thickness`] thick.
+    pub second_back_depth: Option<Vec<f32>>,
     /// Pixels on each side that lie outside the visible image: they can occlude, but the
     /// reference is only computed for the inner (width − 2g) × (height − 2g) pixels.
     pub guard_band: u32,
@@ -124,15 +131,23 @@ impl DepthBuffer {
                 );
             }
         }
-        if let Some(second) = &self.second_layer {
-            if second.len() != n {
-                bail!(
-                    "second layer of {} values does not match the {}x{} depth buffer",
-                    second.len(),
-                    self.width,
-                    self.height
-                );
+        for (what, layer) in [
+            ("second layer", &self.second_layer),
+            ("second layer's back-face depth", &self.second_back_depth),
+        ] {
+            if let Some(values) = layer {
+                if values.len() != n {
+                    bail!(
+                        "{what} of {} values does not match the {}x{} depth buffer",
+                        values.len(),
+                        self.width,
+                        self.height
+                    );
+                }
             }
+        }
+        if self.second_back_depth.is_some() && self.second_layer.is_none() {
+            bail!("the second layer's back faces were given without the second layer");
         }
         if let Some(normals) = &self.normals {
             if normals.len() != n {
@@ -167,14 +182,31 @@ impl DepthBuffer {
         DepthBuffer { thickness, ..self }
     }
 
-    /// The second layer as a buffer of its own (same projection, thickness and guard band; no back
-    /// faces or normals): the screen-space reference's second field of slabs.
+    /// The second layer as a buffer of its own (same projection, thickness and guard band; its own
+    /// back faces when they were captured, each slab at least `vbao`'s minimum deep; no normals):
+    /// the screen-space reference's second field of slabs.
     pub(crate) fn second_layer_buffer(&self) -> Option<DepthBuffer> {
+        let front = self.second_layer.clone()?;
+        let least = crate::ao::LAYER2_MIN_THICKNESS_OF_SET * self.thickness;
+        let back_depth = self.second_back_depth.as_ref().map(|back| {
+            front
+                .iter()
+                .zip(back)
+                .map(|(&f, &b)| {
+                    if f.is_finite() && b.is_finite() && b > f {
+                        b.max(f + least)
+                    } else {
+                        f32::INFINITY
+                    }
+                })
+                .collect()
+        });
         Some(DepthBuffer {
-            linear_depth: self.second_layer.clone()?,
-            back_depth: None,
+            linear_depth: front,
+            back_depth,
             normals: None,
             second_layer: None,
+            second_back_depth: None,
             ..self.clone()
         })
     }
@@ -191,6 +223,7 @@ impl DepthBuffer {
             back_depth: None,
             normals: None,
             second_layer: None,
+            second_back_depth: None,
             guard_band: 0,
             surface: Surface::Triangles,
         }
@@ -232,6 +265,7 @@ impl DepthBuffer {
             back_depth: None,
             normals: None,
             second_layer: None,
+            second_back_depth: None,
             guard_band: 0,
             surface: Surface::Triangles,
         };
@@ -314,7 +348,9 @@ impl DepthBuffer {
                 buf.back_depth = Some(behind(engine.render_back_face_depth()?));
             }
             if let Some(separation) = what.second_layer {
-                buf.second_layer = Some(behind(engine.render_second_layer_depth(separation)?));
+                let (layer, back) = engine.render_second_layer_depths(separation, what.back_faces)?;
+                buf.second_layer = Some(behind(layer));
+                buf.second_back_depth = back.map(behind);
             }
             Ok(buf)
         };
@@ -387,6 +423,12 @@ impl DepthBuffer {
         if let Some(second) = &self.second_layer {
             h.bytes(b"second layer");
             for d in second {
+                h.f32(*d);
+            }
+        }
+        if let Some(back) = &self.second_back_depth {
+            h.bytes(b"second layer's back faces");
+            for d in back {
                 h.f32(*d);
             }
         }

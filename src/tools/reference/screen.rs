@@ -232,6 +232,7 @@ pub(crate) mod tests {
             back_depth: None,
             normals: None,
             second_layer: None,
+            second_back_depth: None,
             guard_band: 0,
             surface: Surface::Triangles,
         }

@@ -141,7 +141,9 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          Each method is split against the ceiling with its own model of what lies behind a depth \
          sample: `vbao` against slabs of its thickness (the solid at a pixel is [z, z + T] in linear \
          depth) or, with `thickness = \"backface\"`, against slabs reaching each pixel's back \
-         face (T where it has none, as `vbao` does; with the triangles, never thinner than T); every other method against the heightfield (∞). The split table's \
+         face (T where it has none, as `vbao` does; with the triangles, never thinner than T), and with \
+         `layers = 2` the second layer's slabs reaching its own back faces, never thinner than T/4, as \
+         `vbao`'s; every other method against the heightfield (∞). The split table's \
          ceiling column says which each row used. Cached under the same folder ({} rendered in {:.0} s this run, {} read from the cache).",
         r.width,
         r.height,
