@@ -63,10 +63,14 @@ impl Engine {
         let f = self.frame();
         let (w, h) = (self.width as usize, self.height as usize);
         let passes = &self.surface.second_layer;
-        let mut layer = passes.draw(&f, &front, separation, self.size())?.read_f32(0, 1);
+        let mut layer = passes
+            .draw(&f, &front, separation, self.size())?
+            .read_f32(0, 1);
         flip_rows(&mut layer, w, h);
         let back = if back_faces {
-            let mut v = passes.draw_back_faces(&f, &front, self.size())?.read_f32(0, 1);
+            let mut v = passes
+                .draw_back_faces(&f, &front, self.size())?
+                .read_f32(0, 1);
             flip_rows(&mut v, w, h);
             Some(v)
         } else {

@@ -348,7 +348,8 @@ impl DepthBuffer {
                 buf.back_depth = Some(behind(engine.render_back_face_depth()?));
             }
             if let Some(separation) = what.second_layer {
-                let (layer, back) = engine.render_second_layer_depths(separation, what.back_faces)?;
+                let (layer, back) =
+                    engine.render_second_layer_depths(separation, what.back_faces)?;
                 buf.second_layer = Some(behind(layer));
                 buf.second_back_depth = back.map(behind);
             }
