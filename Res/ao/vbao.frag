@@ -148,6 +148,27 @@ uint SlabBits(Slice sl, vec3 e, float front, float thickness) {
   return SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
 }
 
+// The slice weight (projected normal's length times the slice's cosine-weighted measure) of the
+// slice at angle phi, as the march computes it.
+float SliceWeight(float phi, vec3 n, vec3 V) {
+  vec2 dir = vec2(cos(phi), sin(phi));
+  vec3 ortho = vec3(dir, 0.0) - dir.x * V.x * V - dir.y * V.y * V;
+  ortho *= inversesqrt(max(dot(ortho, ortho), 1e-12));
+  vec3 axis = cross(ortho, V);
+  vec3 projN = n - axis * dot(n, axis);
+  float projLen = length(projN);
+  if (projLen < 1e-6) {
+    return 0.0;
+  }
+  float g = atan(dot(projN, ortho), dot(projN, V));
+  float cosG = cos(g);
+  float sinG = sin(g);
+  float lo = SliceMeasure(-0.5 * PI, -1.0, 0.0, cosG, sinG, g);
+  return projLen * (SliceMeasure(0.5 * PI, -1.0, 0.0, cosG, sinG, g) - lo);
+}
+
+const int WEIGHT_ANGLES = 8;
+
 void main()
 {
   ivec2 pix = ivec2(gl_FragCoord.xy);
@@ -267,6 +288,15 @@ void main()
     weight += projLen * total;
     openPart += projLen * total * (1.0 - float(bitCount(mask)) / float(SECTORS));
   }
-  float visibility = weight > 0.0 ? clamp(openPart / weight, 0.0, 1.0) : 1.0;
+  // Each slice's occluded weight against the mean weight over the angle: unbiased whatever the
+  // slice count (a ratio of sums over one slice weighs the pixel's figure by its slice alone).
+  float meanWeight = 0.0;
+  for (int k = 0; k < WEIGHT_ANGLES; ++k) {
+    meanWeight += SliceWeight(PI * (float(k) + 0.5) / float(WEIGHT_ANGLES), n, V);
+  }
+  meanWeight /= float(WEIGHT_ANGLES);
+  float occludedPart = weight - openPart;
+  float visibility = meanWeight > 0.0
+      ? clamp(1.0 - occludedPart / (float(slices) * meanWeight), 0.0, 1.0) : 1.0;
   WriteOcclusion(ApplyIntensity(1.0 - visibility), z);
 }
