@@ -107,9 +107,7 @@ fn the_screen_space_ceiling_with_two_layers_sees_the_hidden_block_too() {
             second_layer,
             ..Capture::default()
         };
-        DepthBuffer::capture(e, 0, what)
-            .unwrap()
-            .with_thickness(desc.ao.thickness_metres())
+        captured(e, what, &desc)
     };
     let one = capture(&mut e, None);
     let two = capture(&mut e, Some(separation));
@@ -156,6 +154,13 @@ fn the_screen_space_ceiling_with_two_layers_sees_the_hidden_block_too() {
         "one-layer ceiling {a}: the plate's slab is out of reach"
     );
     assert!(b < a - 0.2, "two-layer ceiling {b} against one layer {a}");
+}
+
+/// The engine's depth buffer with what `what` asks for, its slabs the scene's set thickness.
+fn captured(e: &mut opengl3d::render::Engine, what: Capture, desc: &SceneDesc) -> DepthBuffer {
+    DepthBuffer::capture(e, 0, what)
+        .unwrap()
+        .with_thickness(desc.ao.thickness_metres())
 }
 
 /// World points of a captured depth buffer's pixels (rows top-down), as the reference's
@@ -227,7 +232,6 @@ fn the_ceilings_second_layer_reaches_its_own_back_faces() {
     let desc = plate_over(&dir, Vec3::new(-0.8, 0.88, -4.0), Vec3::new(0.0, 0.9, 4.0));
     let mut e = engine(&ctx, &desc);
     let separation = desc.ao.layer_separation_metres();
-    let thickness = desc.ao.thickness_metres();
     let capture = |e: &mut opengl3d::render::Engine, back_faces| {
         let what = Capture {
             back_faces,
@@ -236,9 +240,8 @@ fn the_ceilings_second_layer_reaches_its_own_back_faces() {
         };
         DepthBuffer {
             surface: Surface::Patches,
-            ..DepthBuffer::capture(e, 0, what).unwrap()
+            ..captured(e, what, &desc)
         }
-        .with_thickness(thickness)
     };
     let set = capture(&mut e, false);
     let exact = capture(&mut e, true);
