@@ -148,23 +148,45 @@ uint SlabBits(Slice sl, vec3 e, float front, float thickness) {
   return SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
 }
 
-// The slice weight (projected normal's length times the slice's cosine-weighted measure) of the
-// slice at angle phi, as the march computes it.
-float SliceWeight(float phi, vec3 n, vec3 V) {
-  vec2 dir = vec2(cos(phi), sin(phi));
-  vec3 ortho = vec3(dir, 0.0) - dir.x * V.x * V - dir.y * V.y * V;
-  ortho *= inversesqrt(max(dot(ortho, ortho), 1e-12));
-  vec3 axis = cross(ortho, V);
+// A slice at angle phi: its screen direction, the direction ortho to V in its plane, the normal
+// projected into it (length and angle g from V, measured towards ortho) and its cosine-weighted
+// measure from -pi/2 to pi/2 about the normal; projLen 0 when the normal is edge-on to the slice.
+struct SliceSetup {
+  vec2 dir;
+  vec3 ortho;
+  float projLen;
+  float g;
+  float cosG;
+  float sinG;
+  float measureLo;
+  float total;
+};
+
+SliceSetup SetUpSlice(float phi, vec3 n, vec3 V) {
+  SliceSetup st;
+  st.dir = vec2(cos(phi), sin(phi));
+  vec3 ortho = vec3(st.dir, 0.0) - st.dir.x * V.x * V - st.dir.y * V.y * V;
+  st.ortho = ortho * inversesqrt(max(dot(ortho, ortho), 1e-12));
+  vec3 axis = cross(st.ortho, V);
   vec3 projN = n - axis * dot(n, axis);
-  float projLen = length(projN);
-  if (projLen < 1e-6) {
-    return 0.0;
+  st.projLen = length(projN);
+  if (st.projLen < 1e-6) {
+    // No weight: every field defined, so a caller's product stays 0.
+    st.projLen = 0.0;
+    st.g = 0.0;
+    st.cosG = 1.0;
+    st.sinG = 0.0;
+    st.measureLo = 0.0;
+    st.total = 0.0;
+    return st;
   }
-  float g = atan(dot(projN, ortho), dot(projN, V));
-  float cosG = cos(g);
-  float sinG = sin(g);
-  float lo = SliceMeasure(-0.5 * PI, -1.0, 0.0, cosG, sinG, g);
-  return projLen * (SliceMeasure(0.5 * PI, -1.0, 0.0, cosG, sinG, g) - lo);
+  st.g = atan(dot(projN, st.ortho), dot(projN, V));
+  st.cosG = cos(st.g);
+  st.sinG = sin(st.g);
+  // The hemisphere: b from -pi/2 (cos 2b = -1, sin 2b = 0) to pi/2.
+  st.measureLo = SliceMeasure(-0.5 * PI, -1.0, 0.0, st.cosG, st.sinG, st.g);
+  st.total = SliceMeasure(0.5 * PI, -1.0, 0.0, st.cosG, st.sinG, st.g) - st.measureLo;
+  return st;
 }
 
 // Angles of the mean slice weight: the weight is a smooth function of the angle with period pi, for
@@ -201,23 +223,18 @@ void main()
   float weight = 0;
   float openPart = 0;
   for (int s = 0; s < slices; ++s) {
-    float phi = PI * (float(s) + angleNoise) / float(slices);
-    vec2 dir = vec2(cos(phi), sin(phi));
-    vec3 ortho = vec3(dir, 0.0) - dir.x * V.x * V - dir.y * V.y * V;
-    ortho *= inversesqrt(max(dot(ortho, ortho), 1e-12));
-    vec3 axis = cross(ortho, V);
-    vec3 projN = n - axis * dot(n, axis);
-    float projLen = length(projN);
-    if (projLen < 1e-6) {
+    SliceSetup st = SetUpSlice(PI * (float(s) + angleNoise) / float(slices), n, V);
+    if (st.projLen == 0.0) {
       continue;
     }
-    // Angles in the slice are measured from V towards ortho.
-    float g = atan(dot(projN, ortho), dot(projN, V));
-    float cosG = cos(g);
-    float sinG = sin(g);
-    // The hemisphere: b from -pi/2 (cos 2b = -1, sin 2b = 0) to pi/2.
-    float measureLo = SliceMeasure(-0.5 * PI, -1.0, 0.0, cosG, sinG, g);
-    float total = SliceMeasure(0.5 * PI, -1.0, 0.0, cosG, sinG, g) - measureLo;
+    vec2 dir = st.dir;
+    vec3 ortho = st.ortho;
+    float projLen = st.projLen;
+    float g = st.g;
+    float cosG = st.cosG;
+    float sinG = st.sinG;
+    float measureLo = st.measureLo;
+    float total = st.total;
     float toSector = float(SECTORS) / max(total, 1e-6);
     // The slice's tangent: the projected normal turned a quarter towards ortho.
     vec3 tSlice = cosG * ortho - sinG * V;
@@ -298,7 +315,8 @@ void main()
   // (docs/bench/vbao/steps-or-slices.md); an open surface still comes out exactly 1.
   float meanWeight = 0.0;
   for (int k = 0; k < WEIGHT_ANGLES; ++k) {
-    meanWeight += SliceWeight(PI * (float(k) + 0.5) / float(WEIGHT_ANGLES), n, V);
+    SliceSetup st = SetUpSlice(PI * (float(k) + 0.5) / float(WEIGHT_ANGLES), n, V);
+    meanWeight += st.projLen * st.total;
   }
   meanWeight /= float(WEIGHT_ANGLES);
   float occludedPart = weight - openPart;
