@@ -37,14 +37,15 @@ pub fn object(dir: &Path, name: &str, mesh: &MeshData, position: Vec3, scale: Ve
     }
 }
 
-/// A floor (y = 0) and a wall (the plane x = 0, extending to −x): a 90° crease along the Z axis.
-pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> SceneDesc {
-    let mut wall = MeshData::default();
-    shapes::add_box(
-        &mut wall,
-        Vec3::new(-1.0, 0.0, -50.0),
-        Vec3::new(0.0, 4.0, 50.0),
-    );
+/// The ground (50 m, y = 0) and `meshes` (name, mesh, untransformed) after it, seen from `eye`
+/// towards `target` at `w`×`h`, bloom off: the set-up the AO tests share.
+pub fn floor_and(
+    dir: &Path,
+    meshes: &[(&str, &MeshData)],
+    eye: Vec3,
+    target: Vec3,
+    (w, h): (u32, u32),
+) -> SceneDesc {
     let mut s = SceneDesc::default();
     s.objects.push(object(
         dir,
@@ -53,14 +54,27 @@ pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> Scen
         Vec3::ZERO,
         Vec3::ONE,
     ));
-    s.objects
-        .push(object(dir, "wall", &wall, Vec3::ZERO, Vec3::ONE));
+    for (name, mesh) in meshes {
+        s.objects
+            .push(object(dir, name, mesh, Vec3::ZERO, Vec3::ONE));
+    }
     s.camera.eye = eye.to_array();
     s.camera.target = target.to_array();
     s.output.width = w;
     s.output.height = h;
     s.bloom.enabled = false;
     s
+}
+
+/// A floor (y = 0) and a wall (the plane x = 0, extending to −x): a 90° crease along the Z axis.
+pub fn crease_scene(dir: &Path, eye: Vec3, target: Vec3, w: u32, h: u32) -> SceneDesc {
+    let mut wall = MeshData::default();
+    shapes::add_box(
+        &mut wall,
+        Vec3::new(-1.0, 0.0, -50.0),
+        Vec3::new(0.0, 4.0, 50.0),
+    );
+    floor_and(dir, &[("wall", &wall)], eye, target, (w, h))
 }
 
 pub fn engine(ctx: &HeadlessContext, scene: &SceneDesc) -> Engine {

@@ -7,7 +7,7 @@ use glam::Vec3;
 use opengl3d::ao::{AoMethod, AoResolution, CompositeMode};
 use opengl3d::math::DepthMode;
 use opengl3d::render::View;
-use opengl3d::scene::{shapes, SceneDesc};
+use opengl3d::scene::SceneDesc;
 use opengl3d::tools::reference::{pixel_dir, view_direction};
 
 const W: u32 = 64;
@@ -15,20 +15,13 @@ const H: u32 = 48;
 
 /// A floor seen obliquely: the exact view distance changes from pixel to pixel.
 fn floor_scene(dir: &std::path::Path) -> SceneDesc {
-    let mut s = SceneDesc::default();
-    s.objects.push(common::object(
+    common::floor_and(
         dir,
-        "floor",
-        &shapes::ground(50.0, 10),
-        Vec3::ZERO,
-        Vec3::ONE,
-    ));
-    s.camera.eye = [0.0, 2.0, 0.0];
-    s.camera.target = [0.0, 0.0, -4.0];
-    s.output.width = W;
-    s.output.height = H;
-    s.bloom.enabled = false;
-    s
+        &[],
+        Vec3::new(0.0, 2.0, 0.0),
+        Vec3::new(0.0, 0.0, -4.0),
+        (W, H),
+    )
 }
 
 /// The floor's exact view distance (−z_view) at the centre of pixel (x, y), row 0 at the top;

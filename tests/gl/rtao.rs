@@ -26,30 +26,14 @@ fn boxed(lo: Vec3, hi: Vec3) -> MeshData {
 
 /// A floor and the given boxes, seen by `eye` → `target`, rtao at full AO size, unblurred.
 fn scene(dir: &Path, eye: Vec3, target: Vec3, boxes: &[(&str, Vec3, Vec3)]) -> SceneDesc {
-    let mut s = SceneDesc::default();
-    s.objects.push(common::object(
-        dir,
-        "floor",
-        &shapes::ground(50.0, 10),
-        Vec3::ZERO,
-        Vec3::ONE,
-    ));
-    for (name, lo, hi) in boxes {
-        s.objects.push(common::object(
-            dir,
-            name,
-            &boxed(*lo, *hi),
-            Vec3::ZERO,
-            Vec3::ONE,
-        ));
-    }
-    s.camera.eye = eye.to_array();
-    s.camera.target = target.to_array();
+    let meshes: Vec<(&str, MeshData)> = boxes
+        .iter()
+        .map(|(name, lo, hi)| (*name, boxed(*lo, *hi)))
+        .collect();
+    let named: Vec<(&str, &MeshData)> = meshes.iter().map(|(n, m)| (*n, m)).collect();
+    let mut s = common::floor_and(dir, &named, eye, target, (W, H));
     s.camera.near = 0.1;
     s.camera.far = 40.0;
-    s.output.width = W;
-    s.output.height = H;
-    s.bloom.enabled = false;
     s.ao.method = AoMethod::Rtao;
     s.ao.resolution = AoResolution::Full;
     s.ao.blur = false;

@@ -51,23 +51,13 @@ fn scene(dir: &std::path::Path) -> SceneDesc {
         Vec3::new(0.4, 0.0, -1.51),
         Vec3::new(1.4, 1.2, -1.49),
     );
-    let mut s = SceneDesc::default();
-    s.objects.push(common::object(
+    let mut s = common::floor_and(
         dir,
-        "floor",
-        &shapes::ground(50.0, 10),
-        Vec3::ZERO,
-        Vec3::ONE,
-    ));
-    for (name, mesh) in [("wall", &wall), ("block", &block), ("plate", &plate)] {
-        s.objects
-            .push(common::object(dir, name, mesh, Vec3::ZERO, Vec3::ONE));
-    }
-    s.camera.eye = [-1.2, 2.6, 4.2];
-    s.camera.target = [-0.4, 0.5, -1.8];
-    s.output.width = W;
-    s.output.height = H;
-    s.bloom.enabled = false;
+        &[("wall", &wall), ("block", &block), ("plate", &plate)],
+        Vec3::new(-1.2, 2.6, 4.2),
+        Vec3::new(-0.4, 0.5, -1.8),
+        (W, H),
+    );
     s.ao.method = AoMethod::Vbao;
     s.ao.resolution = AoResolution::Full;
     s.ao.radius = RADIUS;

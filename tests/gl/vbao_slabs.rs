@@ -23,21 +23,13 @@ fn fin_scene(dir: &std::path::Path, hierarchy: SlabHierarchy) -> SceneDesc {
         Vec3::new(-0.01, 0.0, -6.0),
         Vec3::new(0.01, 0.5, 6.0),
     );
-    let mut s = SceneDesc::default();
-    s.objects.push(common::object(
+    let mut s = common::floor_and(
         dir,
-        "floor",
-        &shapes::ground(50.0, 10),
-        Vec3::ZERO,
-        Vec3::ONE,
-    ));
-    s.objects
-        .push(common::object(dir, "fin", &fin, Vec3::ZERO, Vec3::ONE));
-    s.camera.eye = [0.0, 4.0, 1.5];
-    s.camera.target = [0.0, 0.0, -0.5];
-    s.output.width = W;
-    s.output.height = H;
-    s.bloom.enabled = false;
+        &[("fin", &fin)],
+        Vec3::new(0.0, 4.0, 1.5),
+        Vec3::new(0.0, 0.0, -0.5),
+        (W, H),
+    );
     s.ao.method = AoMethod::Vbao;
     s.ao.radius = 1.0;
     s.ao.blur = false;
