@@ -10,7 +10,9 @@ layout(location=201) uniform vec2 ndcToView;  // NDC -> view space at 1 m
 layout(location=202) uniform ivec2 aoCounts;  // samples (or directions/slices), steps
 layout(location=203) uniform float maxRadiusPixels;
 // 1: each pixel's normal is the geometric one of the surface-normal pass (texNormal); 0: rebuilt from
-// the depth buffer (ReconstructNormal).
+// the depth buffer (ReconstructNormal). The engine also defines AO_SURFACE_NORMALS (0 or 1) from its
+// settings so that only one path is compiled: a software rasteriser runs both sides of a branch, even
+// one every pixel takes the same way. Without the define both paths stay and this uniform decides.
 layout(location=206) uniform int aoSurfaceNormals;
 layout(binding=2) uniform sampler2D texNormal; // octahedral view-space normals at the AO size
 
@@ -90,10 +92,16 @@ vec3 DecodeOctahedral(vec2 e) {
 // The normal a method uses at texel p (position c): the triangle's own when the surface-normal pass
 // ran, else the one rebuilt from depth, which bends across creases and silhouettes.
 vec3 SurfaceNormal(ivec2 p, vec3 c) {
+#if !defined(AO_SURFACE_NORMALS)
   if (aoSurfaceNormals != 0) {
     return DecodeOctahedral(texelFetch(texNormal, p, 0).xy);
   }
   return ReconstructNormal(p, c);
+#elif AO_SURFACE_NORMALS
+  return DecodeOctahedral(texelFetch(texNormal, p, 0).xy);
+#else
+  return ReconstructNormal(p, c);
+#endif
 }
 
 // A 4x4 tile of rotation angles (the "4x4 noise texture" of the seeds, as arithmetic).

@@ -22,6 +22,24 @@ layout(location=209) uniform int aoSlabLevels;  // >0: taps read texSlabs' level
 // (ao/slab_hierarchy.frag).
 layout(binding=5) uniform sampler2D texSlabs;
 
+// Which of the inputs above a frame reads, fixed at compile time by the engine from its settings
+// (ao/method/vbao.rs): a software rasteriser runs the code of every branch, taken or not, so leaving
+// the unused paths in cost the plain configuration twice its time on llvmpipe. VBAO_SLABS: 1 = the
+// taps read texSlabs, 0 = texDepth, 2 = aoSlabLevels decides; the others 0 = left out, 1 = compiled
+// (their uniform decides). Without the defines every path is compiled and the uniforms decide.
+#ifndef VBAO_SLABS
+#define VBAO_SLABS 2
+#endif
+#ifndef VBAO_BACK_FACES
+#define VBAO_BACK_FACES 1
+#endif
+#ifndef VBAO_SECOND_LAYER
+#define VBAO_SECOND_LAYER 1
+#endif
+#ifndef VBAO_SECOND_LAYER_BACK_FACES
+#define VBAO_SECOND_LAYER_BACK_FACES 1
+#endif
+
 const int SECTORS = 32;
 // The second layer's slab reaches its back face but is never thinner than this fraction of the set
 // thickness (R/2, so R/8): exact slabs of a hidden 2 cm board leave gaps between the taps that let
@@ -189,6 +207,31 @@ SliceSetup SetUpSlice(float phi, vec3 n, vec3 V) {
   return st;
 }
 
+// A tap's slab from the hierarchy: the level of texels about as wide as the gap to the previous tap
+// (pixels), whose nearest slab stands for what the tap would skip, on that slab's own ray.
+void TapFromSlabs(ivec2 q, float gap, out float zq, out float thickness, out vec2 ray) {
+  int level = clamp(int(floor(log2(max(gap, 1.0)))) + SLAB_LEVEL_BIAS, 0, aoSlabLevels - 1);
+  vec4 slab = texelFetch(texSlabs, q >> level, level);
+  zq = slab.x;
+  // Never thinner than the taps' spacing there (m): see SLAB_SPACING_K.
+  float spacing = SLAB_SPACING_K * gap * zq / AO_PROJ_SCALE;
+  thickness = max(slab.y - slab.x, min(spacing, aoThickness));
+  ray = slab.zw;
+}
+
+// A tap's slab from the texel itself: the set thickness, or down to the back face behind it where
+// the back faces are drawn and there is one ('far' where none: open planes, sky).
+void TapFromDepth(ivec2 q, out float zq, out float thickness) {
+  zq = texelFetch(texDepth, q, 0).x;
+  thickness = aoThickness;
+#if VBAO_BACK_FACES
+  if (aoBackFaces != 0) {
+    float back = texelFetch(texBackDepth, q, 0).x;
+    thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
+  }
+#endif
+}
+
 // Angles of the mean slice weight: the weight is a smooth function of the angle with period pi, for
 // which evenly spaced points converge fast. On the training cameras 4 scored within 0.1 dB (sums of
 // six) of 8 at `low` and `ultra`, 2 up to 1.3 dB off; each costs a slice's set-up (no taps).
@@ -260,32 +303,25 @@ void main()
         }
         vec2 ray = vec2(q);
         float zq;
-        float thickness = aoThickness;
+        float thickness;
+#if VBAO_SLABS == 1
+        TapFromSlabs(q, gap, zq, thickness, ray);
+#elif VBAO_SLABS == 0
+        TapFromDepth(q, zq, thickness);
+#else
         if (aoSlabLevels > 0) {
-          // The level of texels about as wide as the gap to the previous tap: its nearest slab
-          // stands for what the tap would skip, on that slab's own ray.
-          int level = clamp(int(floor(log2(max(gap, 1.0)))) + SLAB_LEVEL_BIAS, 0, aoSlabLevels - 1);
-          vec4 slab = texelFetch(texSlabs, q >> level, level);
-          zq = slab.x;
-          // Never thinner than the taps' spacing there (m): see SLAB_SPACING_K.
-          float spacing = SLAB_SPACING_K * gap * zq / AO_PROJ_SCALE;
-          thickness = max(slab.y - slab.x, min(spacing, aoThickness));
-          ray = slab.zw;
+          TapFromSlabs(q, gap, zq, thickness, ray);
         } else {
-          zq = texelFetch(texDepth, q, 0).x;
-          if (aoBackFaces != 0) {
-            // The back face behind the tap, where there is one ('far' where none: open planes,
-            // sky).
-            float back = texelFetch(texBackDepth, q, 0).x;
-            thickness = back > zq && back < CAMERA_FAR ? max(back - zq, aoThickness) : aoThickness;
-          }
+          TapFromDepth(q, zq, thickness);
         }
+#endif
         if (IsSky(zq)) {
           continue;
         }
         // The sample's camera ray, parametrised by linear depth: X(d) = e * d.
         vec3 e = vec3(((ray + 0.5) / vec2(size) * 2.0 - 1.0) * ndcToView, -1.0);
         mask |= SlabBits(slice, e, zq, thickness);
+#if VBAO_SECOND_LAYER
         if (aoLayers > 1) {
           // The nearest surface hidden behind the tap ('far' where none), reaching its own back
           // face when the back faces are drawn (the set thickness where none lies behind it), else
@@ -293,16 +329,19 @@ void main()
           float hidden = texelFetch(texSecondDepth, q, 0).x;
           if (hidden < CAMERA_FAR) {
             float thickness2 = aoThickness;
+#if VBAO_SECOND_LAYER_BACK_FACES
             if (aoLayerBackFaces != 0) {
               float back2 = texelFetch(texSecondBackDepth, q, 0).x;
               thickness2 = back2 > hidden && back2 < CAMERA_FAR
                   ? max(back2 - hidden, LAYER2_MIN_THICKNESS * aoThickness) : aoThickness;
             }
+#endif
             // On the tap's own camera ray (the hierarchy may have put the first slab on another).
             vec3 eq = vec3(((vec2(q) + 0.5) / vec2(size) * 2.0 - 1.0) * ndcToView, -1.0);
             mask |= SlabBits(slice, eq, hidden, thickness2);
           }
         }
+#endif
       }
     }
     weight += projLen * total;

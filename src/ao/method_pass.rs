@@ -114,6 +114,14 @@ pub fn method_defines(camera: &Camera) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// `common.glsl`'s compile-time choice of where the normal comes from (`AO_SURFACE_NORMALS`): one
+/// path compiled instead of both behind a uniform, which a software rasteriser would run both of.
+/// The engine draws the surface normals exactly when `uses_surface_normals` says so.
+pub fn normal_source_define(settings: &AoSettings) -> (&'static str, String) {
+    let on = settings.uses_surface_normals();
+    ("AO_SURFACE_NORMALS", u8::from(on).to_string())
+}
+
 /// Sets `common.glsl`'s uniforms for a frame.
 pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, counts: [i32; 2]) {
     let (w, h) = inputs.targets.size();
@@ -179,6 +187,21 @@ impl ShaderMethod {
         })
     }
 
+    /// Follows `camera` and `settings`, with `extra` compile-time choices of the method's own.
+    pub fn update_defines_with(
+        &mut self,
+        camera: &Camera,
+        settings: &AoSettings,
+        extra: &[(&'static str, String)],
+    ) -> Result<(), ProgramError> {
+        let defines = method_defines(camera);
+        let mut own = defines.clone();
+        own.push(normal_source_define(settings));
+        own.extend_from_slice(extra);
+        self.program.set_defines(&own)?;
+        self.blur.set_defines(&defines)
+    }
+
     /// The occlusion program (for a method that sets uniforms of its own before `compute`).
     pub fn program(&self) -> &ProgramObject {
         &self.program
@@ -192,10 +215,8 @@ impl AoMethodPass for ShaderMethod {
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         vec![&mut self.program, &mut self.blur]
     }
-    fn update_defines(&mut self, camera: &Camera, _: &AoSettings) -> Result<(), ProgramError> {
-        let defines = method_defines(camera);
-        self.program.set_defines(&defines)?;
-        self.blur.set_defines(&defines)
+    fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
+        self.update_defines_with(camera, s, &[])
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
         set_common_uniforms(

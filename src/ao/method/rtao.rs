@@ -7,7 +7,9 @@
 //! `UNBLURRED_FROM_RAYS` rays per pixel on, the mean alone.
 
 use crate::ao::blur::SeparableBlur;
-use crate::ao::method_pass::{method_defines, set_common_uniforms, AoInputs, AoMethodPass};
+use crate::ao::method_pass::{
+    method_defines, normal_source_define, set_common_uniforms, AoInputs, AoMethodPass,
+};
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoResolution, AoSettings};
 use crate::gl::{Gl, PassState, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
@@ -195,9 +197,11 @@ impl AoMethodPass for RtaoMethod {
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         vec![&mut self.program, &mut self.blur]
     }
-    fn update_defines(&mut self, camera: &Camera, _: &AoSettings) -> Result<(), ProgramError> {
+    fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
         let defines = method_defines(camera);
-        self.program.set_defines(&defines)?;
+        let mut own = defines.clone();
+        own.push(normal_source_define(s));
+        self.program.set_defines(&own)?;
         self.blur.set_defines(&defines)
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {

@@ -4,7 +4,8 @@
 
 use crate::ao::blur::SeparableBlur;
 use crate::ao::method_pass::{
-    max_radius_pixels, method_defines, set_common_uniforms, AoInputs, AoMethodPass, LOG_MAX_OFFSET,
+    max_radius_pixels, method_defines, normal_source_define, set_common_uniforms, AoInputs,
+    AoMethodPass, LOG_MAX_OFFSET,
 };
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoSettings};
@@ -56,9 +57,11 @@ impl AoMethodPass for SaoMethod {
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         vec![&mut self.program, &mut self.blur]
     }
-    fn update_defines(&mut self, camera: &Camera, _: &AoSettings) -> Result<(), ProgramError> {
+    fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
         let d = method_defines(camera);
-        self.program.set_defines(&d)?;
+        let mut own = d.clone();
+        own.push(normal_source_define(s));
+        self.program.set_defines(&own)?;
         self.blur.set_defines(&d)
     }
     fn depth_levels(&self, (w, h): (u32, u32)) -> u32 {

@@ -35,6 +35,21 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
     ]
 }
 
+/// The inputs `vbao.frag` compiles in (VBAO_*): the ones `settings` make the engine draw. Each
+/// left out is code a software rasteriser would otherwise run for every tap, taken or not.
+pub fn feature_defines(settings: &AoSettings) -> Vec<(&'static str, String)> {
+    let flag = |on: bool| u8::from(on).to_string();
+    vec![
+        ("VBAO_SLABS", flag(settings.uses_slab_hierarchy())),
+        ("VBAO_BACK_FACES", flag(settings.uses_back_faces())),
+        ("VBAO_SECOND_LAYER", flag(settings.uses_second_layer())),
+        (
+            "VBAO_SECOND_LAYER_BACK_FACES",
+            flag(settings.uses_second_layer_back_faces()),
+        ),
+    ]
+}
+
 /// The occlusion pass and, when the settings ask for it, the slab hierarchy it reads.
 pub struct VbaoMethod {
     pass: ShaderMethod,
@@ -60,7 +75,8 @@ impl AoMethodPass for VbaoMethod {
         v
     }
     fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
-        self.pass.update_defines(camera, s)?;
+        self.pass
+            .update_defines_with(camera, s, &feature_defines(s))?;
         self.slabs.program.set_defines(&method_defines(camera))
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
