@@ -537,6 +537,13 @@ impl AoSettings {
         LAYER_SEPARATION_OF_RADIUS * self.radius
     }
 
+    /// Whether a frame draws geometry of its own for the AO chain besides the main pass (the back
+    /// faces, the second layer, the surface normals): the engine then draws all of it, its front
+    /// depth included, at the AO size.
+    pub fn uses_surface_passes(&self) -> bool {
+        self.uses_back_faces() || self.uses_second_layer() || self.uses_surface_normals()
+    }
+
     /// Whether a frame needs the surface-normal pass: an engine method that reads a normal, with
     /// `normals = "geometric"` (the lesson's SAO and Crytek's sphere read none); always for `rtao`,
     /// whose rays leave the triangle's own plane.

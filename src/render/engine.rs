@@ -12,7 +12,9 @@ use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
 use crate::ao::upsample::UpsampleInputs;
-use crate::ao::{composite, AoMethod, AoPipeline, AoSettings, AoTargets, CompositeMode};
+use crate::ao::{
+    composite, AoMethod, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode,
+};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::mesh::MeshData;
 use crate::gl::readback::{flip_rows, read_rgba8};
@@ -191,8 +193,7 @@ impl Engine {
         if mode.reversed() && self.clip_control.is_none() {
             self.clip_control = Some(ClipControl::get().map_err(|e| anyhow!(e))?);
         }
-        let resolution = self.ao_settings.effective_resolution();
-        self.ao.prepare_depth_mode(mode, resolution, &self.camera)?;
+        self.prepare_restores(mode, &self.ao_settings.clone())?;
         if mode != self.depth_mode {
             (self.fbo_main, self.fbo_main_color) =
                 create_main_fbos(&self.gl, self.width, self.height, mode)?;
@@ -265,13 +266,25 @@ impl Engine {
             .collect()
     }
 
+    /// Builds the depth restores `mode` and `settings` need: the AO size's, and for the engine's
+    /// methods the one-to-one restore of the depth they draw at the AO size themselves (`guard`).
+    fn prepare_restores(&mut self, mode: DepthMode, settings: &AoSettings) -> Result<()> {
+        let camera = self.camera;
+        let resolution = settings.effective_resolution();
+        self.ao.prepare_depth_mode(mode, resolution, &camera)?;
+        if settings.method != AoMethod::SaoLesson {
+            self.ao
+                .prepare_depth_mode(mode, AoResolution::Full, &camera)?;
+        }
+        Ok(())
+    }
+
     /// Applies changed camera planes, AO method or sample counts to the shaders (compile-time
     /// constants) and the targets' level count.
     pub fn sync_shader_constants(&mut self) -> Result<()> {
         let (camera, settings) = (self.camera, self.ao_settings);
         self.ao.prepare(settings.method, &camera, &settings)?;
-        self.ao
-            .prepare_depth_mode(self.depth_mode, settings.effective_resolution(), &camera)?;
+        self.prepare_restores(self.depth_mode, &settings)?;
         self.ao.update_defines(&camera, &settings)?;
         self.configure_ao_targets()
     }

@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, GtaoQuality, GuardBand};
+use opengl3d::ao::{AoMethod, AoResolution, GtaoQuality, GuardBand, NormalSource, Thickness};
 use opengl3d::render::View;
 
 const W: u32 = 480;
@@ -24,6 +24,8 @@ fn the_inner_part_of_the_widened_depth_is_the_views_depth() {
     );
     scene.ao.method = AoMethod::Vbao;
     scene.ao.quality = Some(GtaoQuality::Low);
+    // With surface passes the engine draws its own depth at the AO size with or without a margin.
+    scene.ao.normals = NormalSource::Geometric;
     let mut eng = common::engine(&ctx, &scene);
     eng.render_values(View::AoRaw).unwrap();
     let plain = eng.ao_targets().unwrap().tex_depth.read_f32(0, 1);
@@ -105,5 +107,39 @@ fn an_occluder_just_off_screen_darkens_the_pixels_beside_the_edge() {
         "with a band: {:.3} (closed form {:.3})",
         occlusion[1],
         expected[1]
+    );
+}
+
+/// With surface passes the engine draws its own depth at the AO size: each texel is the depth at its
+/// centre, which is what an engine of the AO size restores one to one from its own main depth.
+#[test]
+fn the_depth_drawn_at_the_ao_size_is_the_depth_at_each_texel_centre() {
+    let ctx = common::context();
+    let dir = common::temp_dir("ao-size-depth");
+    let eye = Vec3::new(3.0, 2.0, 4.0);
+    let target = Vec3::new(0.0, 0.5, 0.0);
+    let mut scene = common::crease_scene(&dir, eye, target, W, H);
+    scene.ao.method = AoMethod::Vbao;
+    scene.ao.thickness = Some(Thickness::Backface);
+    let mut eng = common::engine(&ctx, &scene);
+    eng.render_values(View::AoRaw).unwrap();
+    let drawn = eng.ao_targets().unwrap().tex_depth.read_f32(0, 1);
+
+    let mut small = common::crease_scene(&dir, eye, target, W / 2, H / 2);
+    small.ao.method = AoMethod::Vbao;
+    small.ao.resolution = AoResolution::Full;
+    let mut eng = common::engine(&ctx, &small);
+    eng.render_values(View::AoRaw).unwrap();
+    let restored = eng.ao_targets().unwrap().tex_depth.read_f32(0, 1);
+    assert_eq!(drawn.len(), restored.len());
+    let differ = drawn
+        .iter()
+        .zip(&restored)
+        .filter(|(a, b)| (*a - *b).abs() > 1e-4 * a.abs().max(1.0))
+        .count();
+    assert!(
+        differ * 1000 <= drawn.len(),
+        "{differ} of {} texels differ",
+        drawn.len()
     );
 }

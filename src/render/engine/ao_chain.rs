@@ -13,10 +13,14 @@ use anyhow::{anyhow, Result};
 
 impl Engine {
     /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
-    /// `view` shows), over a widened view when the settings ask for a guard band.
+    /// `view` shows); drawn at the AO size over a widened view when the settings ask for a guard
+    /// band, or over the view when they ask for surface passes (`guard`).
     pub(super) fn run_ao(&self, f: &Frame, targets: &AoTargets, view: View) -> Result<()> {
         if let Some(g) = self.guard_frame(view) {
-            return self.run_guarded_ao(f, targets, view, &g);
+            return self.run_ao_size_chain(f, targets, view, Some(&g));
+        }
+        if !view.is_depth() && self.ao_settings.uses_surface_passes() {
+            return self.run_ao_size_chain(f, targets, view, None);
         }
         let depth = self
             .fbo_main

@@ -1,8 +1,13 @@
-//! The guard band of the engine's AO chain (`[ao] guard_band`): the depth, the normals and the back
-//! faces are rendered over a field of view widened by a margin of whole pixels on each side, at the
-//! view's pixel size and pixel centres, and the method and its blur run over the whole of it, so that
-//! occluders just off screen count. The inner part of the results is then copied into the AO targets
-//! the composite, the views and the tools read, which never see the margin.
+//! The engine's AO chain when it draws geometry of its own: the guard band (`[ao] guard_band`) and
+//! the surface passes (back faces, second layer, normals). Their depth, normals and back faces are
+//! drawn at the AO size itself, over the view or over a field of view widened by a margin of whole
+//! pixels on each side (same pixel size and centres), and the method and its blur run over all of
+//! it, so that occluders just off screen count. With a margin, the inner part of the results is then
+//! copied into the AO targets the composite, the views and the tools read, which never see it.
+//!
+//! Drawn at the AO size, each texel's front depth, back face, hidden layer and normal belong to one
+//! point of the scene, the texel's centre: the surface passes cost the AO size's pixels, not the
+//! output's (a quarter of them at half resolution).
 
 use super::Engine;
 use crate::ao::guard_band::{ao_offset, crop, guard_band_pixels, widen, GuardFrame};
@@ -26,37 +31,47 @@ impl Engine {
         widen(&self.camera, self.size(), px)
     }
 
-    /// The AO chain over the widened view: the surface-normal pass draws its depth (and normals),
-    /// the depth chain, the surface passes, the method and its blur run over it, and the inner part
-    /// goes to `targets`.
-    pub(super) fn run_guarded_ao(
+    /// The AO chain with its own geometry at the AO size: the surface-normal pass draws the depth
+    /// (and normals) over the view or the widened view `guard`, then the depth chain, the surface
+    /// passes, the method and its blur run over it; with a margin the inner part goes to `targets`.
+    pub(super) fn run_ao_size_chain(
         &self,
         f: &Frame,
         targets: &AoTargets,
         view: View,
-        g: &GuardFrame,
+        guard: Option<&GuardFrame>,
     ) -> Result<()> {
-        let wide = Frame {
-            camera: &g.camera,
-            size: g.size,
+        let resolution = self.ao_settings.effective_resolution();
+        let widened;
+        let (work, camera) = match guard {
+            Some(g) => {
+                let levels = targets.tex_depth.levels();
+                widened = self
+                    .guard_targets
+                    .get(&self.gl, g.size, levels, resolution)?;
+                (widened.as_ref(), &g.camera)
+            }
+            None => (targets, f.camera),
+        };
+        let at_ao_size = Frame {
+            camera,
+            size: work.size(),
             ..*f
         };
-        let resolution = self.ao_settings.effective_resolution();
-        let levels = targets.tex_depth.levels();
-        let work = self
-            .guard_targets
-            .get(&self.gl, g.size, levels, resolution)?;
         let passes = &self.surface;
         let normals = self.pass("surface normals", "ao", || {
-            passes.normals.draw(&wide, None, work.size())
+            passes.normals.draw(&at_ao_size, None, work.size())
         })?;
         let depth = passes.normals.depth_texture()?;
-        self.restore_depth_chain(&work, &depth)?;
-        let surface = self.run_surface_passes(&wide, &depth, work.size(), Some(normals))?;
-        let blurred = self.run_method(&g.camera, &work, &surface, view)?;
+        self.restore_depth_chain(work, &depth)?;
+        let surface = self.run_surface_passes(&at_ao_size, &depth, work.size(), Some(normals))?;
+        let blurred = self.run_method(camera, work, &surface, view)?;
+        let Some(g) = guard else {
+            return Ok(());
+        };
         let offset = ao_offset(g.pixels, resolution);
         self.pass("guard band crop", "ao", || {
-            crop(&self.gl, &work, targets, offset, blurred)
+            crop(&self.gl, work, targets, offset, blurred)
         });
         // The view's own depth chain from its cropped level 0, for the views and tools that read
         // the levels.

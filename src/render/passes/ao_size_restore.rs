@@ -1,6 +1,8 @@
-//! The step the back-face and surface-normal passes share: a full-screen program that brings a
-//! main-size input to the AO buffers' size, keeping for each AO texel the value behind the texel of its
-//! block whose front depth is nearest (the texel the depth restore keeps).
+//! The step the back-face and surface-normal passes share: a full-screen program that brings their
+//! input to the AO buffers' size, keeping for each AO texel the value behind the texel of its block
+//! whose front depth is nearest (the texel the depth restore keeps). The engine's AO chain draws
+//! these passes at the AO size itself (`render/engine/guard.rs`), a block of one texel; the tools'
+//! read-backs of the layers draw them at the main size.
 
 use crate::ao::blur::half_size_target;
 use crate::gl::{FramebufferObject, PassState, ProgramObject, Texture, TextureDesc};
