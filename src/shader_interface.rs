@@ -71,10 +71,9 @@ pub mod loc {
     /// ao/second_layer.frag: how far (m) behind the first layer the second begins.
     pub const LAYER_SEPARATION: i32 = 232;
     /// ao/rtao.frag: view → world matrix; (rays, first sample, frames in the history, sequence);
-    /// the texel centre's offset from the depth's texel per metre; nodes in the BVH.
+    /// nodes in the BVH.
     pub const RTAO_VIEW_TO_WORLD: i32 = 240;
     pub const RTAO_FRAME: i32 = 241;
-    pub const RTAO_CENTRE_ERROR: i32 = 242;
     pub const RTAO_NODE_COUNT: i32 = 243;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
@@ -366,7 +365,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("aoSurfaceNormals", AO_SURFACE_NORMALS),
             u("viewToWorld", RTAO_VIEW_TO_WORLD),
             u("rtaoFrame", RTAO_FRAME),
-            u("rtaoCentreError", RTAO_CENTRE_ERROR),
             u("rtaoNodeCount", RTAO_NODE_COUNT),
         ],
         &[

@@ -24,7 +24,12 @@ void main()
   bool sky;
   float occlusion = UpsampledOcclusion(inTexcoord, ivec2(gl_FragCoord.xy), sky);
   float visibility = clamp(1.0 - occlusion, 0.0, 1.0);
-  // Power 1 without pow(): exactly the lesson's blend.
-  float alpha = power == 1.0 ? 1.0 - visibility : 1.0 - pow(visibility, power);
+  // Power 1 without pow(): exactly the lesson's blend (a program of its own, AO_POWER_ONE: a
+  // software rasteriser evaluates both sides of a branch).
+#ifdef AO_POWER_ONE
+  float alpha = 1.0 - visibility;
+#else
+  float alpha = 1.0 - pow(visibility, power);
+#endif
   outColor = vec4(tint, sky ? 0.0 : alpha);
 }

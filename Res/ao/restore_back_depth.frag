@@ -9,7 +9,7 @@ layout(binding=0) uniform sampler2D texDepth;      // back-face depth buffer (wi
 layout(binding=1) uniform sampler2D texFrontDepth; // main depth buffer (window depth)
 
 #include "linear_depth.glsl"
-layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1 or 2
+layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1, 2 or 4
 
 out float outColor;
 

@@ -10,7 +10,7 @@ layout(binding=0) uniform sampler2D texNormal;     // main-size octahedral norma
 layout(binding=1) uniform sampler2D texFrontDepth; // main depth buffer (window depth)
 
 #include "linear_depth.glsl"
-layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1 or 2
+layout(location=231) uniform int blockSize;    // main texels per AO texel along each axis: 1, 2 or 4
 
 layout(location=0) out vec2 outNormal;
 

@@ -18,9 +18,6 @@ layout(location=240) uniform mat4 viewToWorld;
 // (rays this frame, index of the frame's first sample, frames already in the history (0: none),
 // sequence: 0 = R2 over the frames, 1 = one stratified lattice of `rays` points (the GPU reference))
 layout(location=241) uniform ivec4 rtaoFrame;
-// How far (per metre of depth) the texel centre may lie across from the point the depth was taken at:
-// a quarter texel at half resolution (the depth restore keeps one texel of each 2x2 block), 0 at full.
-layout(location=242) uniform vec2 rtaoCentreError;
 // Nodes in the BVH (0: no triangles, every ray is open).
 layout(location=243) uniform int rtaoNodeCount;
 layout(binding=3) uniform sampler2D texHistory; // (mean occlusion, depth) of the frames so far
@@ -177,9 +174,10 @@ void main()
   }
   vec3 P = TexelPos(pix);
   vec3 n = SurfaceNormal(pix, P);
-  // The reference's offset, 1e-4 of the distance (at least 1e-4 m), plus how far the texel centre
-  // can sit below the triangle's plane at half resolution.
-  float eps = 1e-4 * max(1.0, length(P)) + z * dot(abs(n.xy), rtaoCentreError);
+  // The reference's offset, 1e-4 of the distance (at least 1e-4 m): the engine draws the depth rtao
+  // reads at the AO size itself (it always reads the surface normals), so each texel's point lies
+  // on its triangle.
+  float eps = 1e-4 * max(1.0, length(P));
   vec3 origin = (viewToWorld * vec4(P + n * eps, 1.0)).xyz;
   vec3 nWorld = normalize(mat3(viewToWorld) * n);
   vec3 t, b;

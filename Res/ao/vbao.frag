@@ -83,42 +83,43 @@ float AtanRight(float y, float x) {
   return y < 0.0 ? -a : a;
 }
 
-// Bits [first, last) set.
+// Bits [first, last) set (none when last <= first).
 uint SectorBits(int first, int last) {
   int count = last - first;
-  if (count <= 0) {
-    return 0u;
-  }
-  return count >= SECTORS ? 0xffffffffu : ((1u << uint(count)) - 1u) << uint(first);
+  uint bits = count >= SECTORS ? 0xffffffffu : ((1u << uint(max(count, 0))) - 1u) << uint(first);
+  return count > 0 ? bits : 0u;
 }
 
 // One slice of one pixel: what every slab of its taps is measured against.
 struct Slice {
   vec3 origin;   // the pixel's point lifted by the bias
-  float r2;      // radius squared
-  vec3 n;        // surface normal
-  float projLen; // length of the normal projected into the slice plane
+  float outside; // |origin|^2 - radius^2: the ray-sphere test's constant
+  vec3 n;        // surface normal divided by the length of its projection into the slice plane
   vec3 tSlice;   // the slice's tangent
   float cosG, sinG, g; // angle of the projected normal from V
   float measureLo, toSector; // slice measure at -pi/2, and measure -> sectors
 };
 
+// A direction (u along the normal, v along the slice's tangent, u >= 0) as (angle from the normal,
+// cos 2b, sin 2b), what SliceMeasure takes.
+vec3 SliceAngle(float u, float v) {
+  float inv = 1.0 / max(u * u + v * v, 1e-30);
+  return vec3(AtanRight(v, u), (u * u - v * v) * inv, 2.0 * u * v * inv);
+}
+
 // Sectors of the slice occluded by the slab on the camera ray X(d) = e * d from depth 'front' to
-// 'front + thickness', clipped to the radius sphere around the origin.
+// 'front + thickness', clipped to the radius sphere around the origin. Written without early
+// returns: a software rasteriser runs every branch for a group of pixels anyway, so the cases that
+// occlude nothing are masked out at the end instead of skipped.
 uint SlabBits(Slice sl, vec3 e, float front, float thickness) {
   // Part of the ray within the radius of the origin: |e d - origin|^2 <= r^2.
   float ee = dot(e, e);
   float eo = dot(e, sl.origin);
-  float disc = eo * eo - ee * (dot(sl.origin, sl.origin) - sl.r2);
-  if (disc <= 0.0) {
-    return 0u;
-  }
-  float root = sqrt(disc);
-  float d0 = max(front, (eo - root) / ee);
-  float d1 = min(front + thickness, (eo + root) / ee);
-  if (d1 <= d0) {
-    return 0u;
-  }
+  float disc = eo * eo - ee * sl.outside;
+  float root = sqrt(max(disc, 0.0));
+  float invEE = 1.0 / ee;
+  float d0 = max(front, (eo - root) * invEE);
+  float d1 = min(front + thickness, (eo + root) * invEE);
   // Angles from the projected normal (towards ortho): the hemisphere is (-pi/2, pi/2) and
   // atan never wraps there. Measured from V instead, a floor seen at a grazing angle puts its
   // far points near -V, where the angle jumps from pi to -pi and one slab would fill the mask.
@@ -126,44 +127,27 @@ uint SlabBits(Slice sl, vec3 e, float front, float thickness) {
   vec3 b = e * d1 - sl.origin;
   // Heights use the full normal: a tap rounded to a texel lies up to half a texel off the
   // slice plane, and its height along the projected normal alone would lift a flat floor's
-  // neighbours above the tangent plane. Divided by projLen they equal the in-slice heights for
-  // points in the plane.
-  float ua = dot(a, sl.n) / sl.projLen, va = dot(a, sl.tSlice);
-  float ub = dot(b, sl.n) / sl.projLen, vb = dot(b, sl.tSlice);
-  if (ua <= 0.0 && ub <= 0.0) {
-    return 0u; // the whole slab is below the tangent plane (a segment between two points below it)
-  }
-  // Each end as (angle from the normal, cos 2b, sin 2b); an end below the plane is replaced by
-  // the point where the slab crosses it, on the side where it crosses (b = +-pi/2).
-  vec3 endA = vec3(-0.5 * PI, -1.0, 0.0);
-  vec3 endB = endA;
-  if (ua > 0.0) {
-    float r2a = ua * ua + va * va;
-    endA = vec3(AtanRight(va, ua), (ua * ua - va * va) / r2a, 2.0 * ua * va / r2a);
-  }
-  if (ub > 0.0) {
-    float r2b = ub * ub + vb * vb;
-    endB = vec3(AtanRight(vb, ub), (ub * ub - vb * vb) / r2b, 2.0 * ub * vb / r2b);
-  }
-  if (ua <= 0.0 || ub <= 0.0) {
-    float crossing = (ua * vb - ub * va) / (ua - ub);
-    vec3 edge = vec3(crossing >= 0.0 ? 0.5 * PI : -0.5 * PI, -1.0, 0.0);
-    if (ua <= 0.0) {
-      endA = edge;
-    } else {
-      endB = edge;
-    }
-  }
-  if (endA.x > endB.x) {
-    vec3 swap = endA;
-    endA = endB;
-    endB = swap;
-  }
-  float from = SliceMeasure(endA.x, endA.y, endA.z, sl.cosG, sl.sinG, sl.g);
-  float to = SliceMeasure(endB.x, endB.y, endB.z, sl.cosG, sl.sinG, sl.g);
-  int first = int(round((from - sl.measureLo) * sl.toSector));
-  int last = int(round((to - sl.measureLo) * sl.toSector));
-  return SectorBits(clamp(first, 0, SECTORS), clamp(last, 0, SECTORS));
+  // neighbours above the tangent plane. Divided by the projection's length (in sl.n) they equal
+  // the in-slice heights for points in the plane.
+  float ua = dot(a, sl.n), va = dot(a, sl.tSlice);
+  float ub = dot(b, sl.n), vb = dot(b, sl.tSlice);
+  // An end below the tangent plane is replaced by the point where the slab crosses it, on the side
+  // where it crosses (b = +-pi/2: the direction (0, +-1)); the side is the sign of the crossing's
+  // tangent coordinate (ua vb - ub va) / (ua - ub).
+  float side = (ua * vb - ub * va) * (ua - ub) >= 0.0 ? 1.0 : -1.0;
+  vec3 endA = SliceAngle(max(ua, 0.0), ua > 0.0 ? va : side);
+  vec3 endB = SliceAngle(max(ub, 0.0), ub > 0.0 ? vb : side);
+  bool swap = endA.x > endB.x;
+  vec3 lo = swap ? endB : endA;
+  vec3 hi = swap ? endA : endB;
+  float from = SliceMeasure(lo.x, lo.y, lo.z, sl.cosG, sl.sinG, sl.g);
+  float to = SliceMeasure(hi.x, hi.y, hi.z, sl.cosG, sl.sinG, sl.g);
+  int first = clamp(int(round((from - sl.measureLo) * sl.toSector)), 0, SECTORS);
+  int last = clamp(int(round((to - sl.measureLo) * sl.toSector)), 0, SECTORS);
+  // Nothing: the ray misses the sphere, the slab ends before the sphere begins (or the reverse),
+  // or the whole slab is below the tangent plane (a segment between two points below it).
+  bool occludes = disc > 0.0 && d1 > d0 && (ua > 0.0 || ub > 0.0);
+  return occludes ? SectorBits(first, last) : 0u;
 }
 
 // A slice at angle phi: its screen direction, the direction ortho to V in its plane, the normal
@@ -281,7 +265,8 @@ void main()
     float toSector = float(SECTORS) / max(total, 1e-6);
     // The slice's tangent: the projected normal turned a quarter towards ortho.
     vec3 tSlice = cosG * ortho - sinG * V;
-    Slice slice = Slice(origin, r2, n, projLen, tSlice, cosG, sinG, g, measureLo, toSector);
+    Slice slice = Slice(origin, dot(origin, origin) - r2, n / projLen, tSlice, cosG, sinG, g,
+        measureLo, toSector);
     uint mask = 0u;
     for (int side = 0; side < 2 && mask != 0xffffffffu; ++side) {
       vec2 sideDir = side == 0 ? -dir : dir;

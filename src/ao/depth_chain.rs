@@ -117,8 +117,17 @@ impl DepthChain {
         main_depth: &Texture,
         mode: DepthMode,
     ) -> anyhow::Result<()> {
-        let full =
-            targets.size() == (main_depth.width(), main_depth.height()) && targets.size() != (1, 1);
+        let main_size = (main_depth.width(), main_depth.height());
+        let full = targets.size() == main_size && targets.size() != (1, 1);
+        if !full && targets.size() != super::targets::half_size(main_size.0, main_size.1) {
+            anyhow::bail!(
+                "no linear-depth restore from {}x{} to {}x{} (the engine draws a quarter-size depth itself)",
+                main_size.0,
+                main_size.1,
+                targets.size().0,
+                targets.size().1
+            );
+        }
         let program = match (mode.reversed(), full) {
             (false, false) => Some(&self.restore),
             (true, false) => self.restore_reversed.as_ref(),

@@ -29,8 +29,8 @@ pub struct GuardFrame {
     pub size: (u32, u32),
 }
 
-/// The margin (output pixels, even so that half-size AO texels keep their 2×2 blocks) that `band`
-/// asks for with `camera`, a `size` output and AO `radius`; 0 = none.
+/// The margin (output pixels, a multiple of 4 so that half- and quarter-size AO texels keep their
+/// blocks) that `band` asks for with `camera`, a `size` output and AO `radius`; 0 = none.
 pub fn guard_band_pixels(band: GuardBand, camera: &Camera, size: (u32, u32), radius: f32) -> u32 {
     let side = size.0.max(size.1) as f32;
     let px = match band {
@@ -47,7 +47,7 @@ pub fn guard_band_pixels(band: GuardBand, camera: &Camera, size: (u32, u32), rad
             }
         }
     };
-    px + (px & 1)
+    px.next_multiple_of(4)
 }
 
 /// The camera and size that add `pixels` on each side of a `size` view of `camera` with the same
@@ -111,12 +111,9 @@ pub fn crop(gl: &Gl, guarded: &AoTargets, view: &AoTargets, offset: u32, blurred
     }
 }
 
-/// AO texels per output pixel of margin.
+/// AO texels of a margin of `pixels` output pixels.
 pub fn ao_offset(pixels: u32, resolution: AoResolution) -> u32 {
-    match resolution {
-        AoResolution::Half => pixels / 2,
-        AoResolution::Full => pixels,
-    }
+    pixels / resolution.divisor()
 }
 
 /// The AO targets of the widened view: created at the size a frame needs, kept while it stays.

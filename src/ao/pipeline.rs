@@ -83,6 +83,10 @@ impl AoPipeline {
             upsample: BilateralUpsample::new(
                 fullscreen(super::upsample::SHADER, &[])?,
                 fullscreen(super::upsample::COMPOSITE_SHADER, &[])?,
+                fullscreen(
+                    super::upsample::COMPOSITE_SHADER,
+                    &[(super::upsample::POWER_ONE_DEFINE, "1".into())],
+                )?,
             ),
         };
         p.prepare(AoMethod::SaoLesson, camera, settings)?;
@@ -176,6 +180,7 @@ impl AoPipeline {
         v.push(&mut self.composite_tint);
         v.push(&mut self.upsample.program);
         v.push(&mut self.upsample.composite_program);
+        v.push(&mut self.upsample.composite_power_one);
         for m in self.methods.values_mut() {
             v.extend(m.programs_mut());
         }

@@ -19,10 +19,8 @@ pub fn half_size(width: u32, height: u32) -> (u32, u32) {
 
 /// Size of the AO buffers for a `width`×`height` main image at `resolution`, never 0.
 pub fn ao_size(width: u32, height: u32, resolution: AoResolution) -> (u32, u32) {
-    match resolution {
-        AoResolution::Half => half_size(width, height),
-        AoResolution::Full => (width.max(1), height.max(1)),
-    }
+    let d = resolution.divisor();
+    ((width / d).max(1), (height / d).max(1))
 }
 
 /// The lesson's half-size targets (or full-size ones for `--ao-resolution full`).

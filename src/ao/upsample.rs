@@ -16,11 +16,16 @@ use std::rc::Rc;
 
 pub const SHADER: &str = "ao/upsample_bilateral.frag";
 pub const COMPOSITE_SHADER: &str = "ao/composite_bilateral.frag";
+/// The composite built for power 1 (the lesson's blend and the default): no `pow` per pixel, which a
+/// software rasteriser would evaluate even where a branch skips it.
+pub const POWER_ONE_DEFINE: &str = "AO_POWER_ONE";
 
 pub struct BilateralUpsample {
     pub program: ProgramObject,
     /// Up-samples and blends over the main colour in one pass.
     pub composite_program: ProgramObject,
+    /// The same with power 1.
+    pub composite_power_one: ProgramObject,
     /// Main-size R8 target, (re)created when the main size changes.
     target: RefCell<Option<FramebufferObject>>,
 }
@@ -35,10 +40,15 @@ pub struct UpsampleInputs<'a> {
 }
 
 impl BilateralUpsample {
-    pub fn new(program: ProgramObject, composite_program: ProgramObject) -> BilateralUpsample {
+    pub fn new(
+        program: ProgramObject,
+        composite_program: ProgramObject,
+        composite_power_one: ProgramObject,
+    ) -> BilateralUpsample {
         BilateralUpsample {
             program,
             composite_program,
+            composite_power_one,
             target: RefCell::new(None),
         }
     }
@@ -86,7 +96,11 @@ impl BilateralUpsample {
         PassState::FULLSCREEN
             .with_blend(Blend::ALPHA)
             .apply(gl, None);
-        let program = &self.composite_program;
+        let program = if power == 1.0 {
+            &self.composite_power_one
+        } else {
+            &self.composite_program
+        };
         program.use_program();
         program.set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
         program.set_vec3(loc::AO_TINT, tint);

@@ -56,6 +56,7 @@ fn full_resolution_restores_every_pixel_exactly_in_both_depth_conventions() {
             let expected_size = match resolution {
                 AoResolution::Full => (W, H),
                 AoResolution::Half => (W / 2, H / 2),
+                AoResolution::Quarter => (W / 4, H / 4),
             };
             assert_eq!(size, expected_size, "{mode:?} {resolution:?}");
             for y in 0..H {
@@ -74,6 +75,53 @@ fn full_resolution_restores_every_pixel_exactly_in_both_depth_conventions() {
         // Full: the restore's f32 arithmetic only. Half: each texel holds the nearest of 2x2.
         assert!(worst[0] < 1e-4, "{mode:?} full: {:e}", worst[0]);
         assert!(worst[1] > 10.0 * worst[0], "{mode:?} half {:e}", worst[1]);
+    }
+}
+
+/// The floor's exact view distance at the centre of texel (x, y) of a `w`×`h` image of the scene's
+/// camera, row 0 at the top.
+fn exact_depth_at(scene: &SceneDesc, x: u32, y: u32, (w, h): (u32, u32)) -> Option<f32> {
+    let cam = scene.camera.camera();
+    let d = pixel_dir(&cam, x, y, w, h)?;
+    if d.y >= -1e-6 {
+        return None;
+    }
+    let t = cam.eye.y / -d.y;
+    (t < 50.0).then(|| t * d.dot(view_direction(&cam)))
+}
+
+/// At a quarter of the size the engine draws the depth itself: each texel is the exact depth at its
+/// own centre (no nearest-of-block), in both conventions, and the composite still fills the image.
+#[test]
+fn quarter_resolution_draws_each_texels_own_depth() {
+    let ctx = common::context();
+    let dir = common::temp_dir("ao-quarter");
+    for mode in [DepthMode::D32, DepthMode::D32fReversed] {
+        let mut scene = floor_scene(&dir);
+        scene.output.depth = mode;
+        scene.ao.method = AoMethod::Vbao;
+        scene.ao.resolution = AoResolution::Quarter;
+        let mut eng = common::engine(&ctx, &scene);
+        let ao = eng.render_values(View::Ao).unwrap();
+        common::assert_finite("quarter", &ao);
+        let size = eng.ao_targets().unwrap().size();
+        assert_eq!(size, (W / 4, H / 4), "{mode:?}");
+        let depth = eng.ao_targets().unwrap().tex_depth.read_f32(0, 1);
+        let (w, h) = size;
+        let mut worst = 0.0f32;
+        let mut checked = 0;
+        for y in 0..h {
+            for x in 0..w {
+                if let Some(d) = exact_depth_at(&scene, x, y, size) {
+                    // Read-back rows are bottom-up.
+                    let got = depth[((h - 1 - y) * w + x) as usize];
+                    worst = worst.max((got - d).abs() / d);
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > (w * h / 3) as usize, "{mode:?}: only {checked} texels see the floor");
+        assert!(worst < 1e-4, "{mode:?}: worst relative depth error {worst:e}");
     }
 }
 

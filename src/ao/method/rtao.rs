@@ -11,9 +11,8 @@ use crate::ao::method_pass::{
     method_defines, normal_source_define, set_common_uniforms, AoInputs, AoMethodPass,
 };
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
-use crate::ao::settings::{AoMethod, AoResolution, AoSettings};
+use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, PassState, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
-use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::scene::bvh::{BvhStats, FlatBvh};
@@ -103,19 +102,6 @@ pub fn world_triangles(objects: &[GameObject], meshes: &crate::gl::MeshBuffer) -
         }
     }
     out
-}
-
-/// Per metre of depth, how far across (view x, y) the AO texel's centre may lie from the main texel
-/// the depth restore kept: a quarter of an AO texel at half resolution, none at full.
-fn centre_error(settings: &AoSettings, ao_size: (u32, u32), ndc_to_view: [f32; 2]) -> [f32; 2] {
-    if settings.effective_resolution() == AoResolution::Full {
-        return [0.0; 2];
-    }
-    // An AO texel spans 2 / size in NDC; a quarter of it, in view units at 1 m.
-    [
-        0.5 / ao_size.0 as f32 * ndc_to_view[0],
-        0.5 / ao_size.1 as f32 * ndc_to_view[1],
-    ]
 }
 
 impl RtaoMethod {
@@ -240,9 +226,6 @@ impl AoMethodPass for RtaoMethod {
                 s.stratified as i32,
             )
         };
-        let fov = fov_scale(inputs.camera.fov_y_deg);
-        let ndc_to_view = [size.0 as f32 / size.1 as f32 / fov, 1.0 / fov];
-        p.set_vec2(loc::RTAO_CENTRE_ERROR, centre_error(s, size, ndc_to_view));
         let bvh = self.bvh.borrow();
         let bvh = bvh.as_ref().expect("built above");
         p.set_i32(loc::RTAO_NODE_COUNT, bvh.stats.nodes as i32);
@@ -354,24 +337,5 @@ mod tests {
         // Without accumulation every frame starts again; a restart (the default) does too.
         assert_eq!(next_accumulation(a, 8, 1).1, 0);
         assert_eq!(next_accumulation(Accumulation::default(), 8, 16).1, 0);
-    }
-
-    #[test]
-    fn centre_error_is_a_quarter_texel_at_half_size_and_none_at_full() {
-        let half = AoSettings {
-            method: AoMethod::Rtao,
-            ..Default::default()
-        };
-        let e = centre_error(&half, (100, 50), [2.0, 1.0]);
-        // A texel is 2 / 100 NDC wide: a quarter is 0.005, times 2 m per NDC unit.
-        assert!(
-            (e[0] - 0.01).abs() < 1e-7 && (e[1] - 0.01).abs() < 1e-7,
-            "{e:?}"
-        );
-        let full = AoSettings {
-            resolution: AoResolution::Full,
-            ..half
-        };
-        assert_eq!(centre_error(&full, (100, 50), [2.0, 1.0]), [0.0; 2]);
     }
 }

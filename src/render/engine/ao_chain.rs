@@ -3,7 +3,7 @@
 
 use super::Engine;
 use crate::ao::method_pass::AoInputs;
-use crate::ao::{AoMethod, AoTargets};
+use crate::ao::{AoMethod, AoResolution, AoTargets};
 use crate::gl::Texture;
 use crate::math::Camera;
 use crate::render::frame::Frame;
@@ -14,12 +14,14 @@ use anyhow::{anyhow, Result};
 impl Engine {
     /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
     /// `view` shows); drawn at the AO size over a widened view when the settings ask for a guard
-    /// band, or over the view when they ask for surface passes (`guard`).
+    /// band, or over the view when they ask for surface passes or a quarter-size AO (`guard`).
     pub(super) fn run_ao(&self, f: &Frame, targets: &AoTargets, view: View) -> Result<()> {
         if let Some(g) = self.guard_frame(view) {
             return self.run_ao_size_chain(f, targets, view, Some(&g));
         }
-        if !view.is_depth() && self.ao_settings.uses_surface_passes() {
+        let s = &self.ao_settings;
+        let quarter = s.effective_resolution() == AoResolution::Quarter;
+        if quarter || !view.is_depth() && s.uses_surface_passes() {
             return self.run_ao_size_chain(f, targets, view, None);
         }
         let depth = self

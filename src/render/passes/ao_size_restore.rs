@@ -25,11 +25,9 @@ pub fn restore_at_ao_size(
     let reversed = if f.depth_mode.reversed() { 1.0 } else { 0.0 };
     let c = f.camera;
     program.set_vec3(loc::UPSAMPLE_DEPTH_PLANES, [c.near, c.far, reversed]);
-    let block = if (target.width(), target.height()) == f.size {
-        1
-    } else {
-        2
-    };
+    // Main texels per AO texel: 1 when the pass was drawn at the AO size, else the resolution's
+    // divisor (the AO size is the main size divided and rounded down).
+    let block = (f.size.0 / target.width().max(1)).max(1) as i32;
     program.set_i32(loc::BACK_DEPTH_BLOCK, block);
     target.bind();
     input.bind(binding::INPUT);
