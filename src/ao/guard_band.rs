@@ -185,13 +185,13 @@ mod tests {
     }
 
     #[test]
-    fn margins_are_even_capped_and_follow_the_radius() {
+    fn margins_are_multiples_of_four_capped_and_follow_the_radius() {
         let cam = Camera::default(); // focus distance ≈ 6.2 m
         let size = (1920, 1080);
         assert_eq!(guard_band_pixels(GuardBand::Off, &cam, size, 1.0), 0);
         assert_eq!(
             guard_band_pixels(GuardBand::Pixels(33), &cam, size, 1.0),
-            34
+            36
         );
         assert_eq!(
             guard_band_pixels(GuardBand::Pixels(5000), &cam, size, 1.0),
@@ -201,11 +201,11 @@ mod tests {
         // about 150 (under the cap, 160 = 1/12 of 1920); the smallest band is 8 pixels.
         let small = guard_band_pixels(GuardBand::Auto, &cam, size, 0.2);
         assert!(
-            (28..=32).contains(&small) && small.is_multiple_of(2),
+            (28..=32).contains(&small) && small.is_multiple_of(4),
             "{small}"
         );
         let one = guard_band_pixels(GuardBand::Auto, &cam, size, 1.0);
-        assert!((146..=154).contains(&one) && one.is_multiple_of(2), "{one}");
+        assert!((144..=156).contains(&one) && one.is_multiple_of(4), "{one}");
         // 3 m would be about 450: capped at 160.
         assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 3.0), 160);
         assert_eq!(guard_band_pixels(GuardBand::Auto, &cam, size, 1e-3), 8);
