@@ -206,7 +206,7 @@ pub enum GuardBand {
     Off,
     /// The radius's projected size at the camera's focus distance, capped (`guard_band_pixels`).
     Auto,
-    /// A fixed margin in pixels of the output image (rounded up to even at half AO resolution).
+    /// A fixed margin in pixels of the output image (rounded up to a multiple of 4, whole AO texels).
     Pixels(u32),
 }
 
