@@ -5,7 +5,7 @@
 // to the radius sphere around the pixel (the reference counts a ray as blocked by a hit within the
 // radius). The sectors have equal cosine-weighted measure in the slice, so the set bits are the
 // occluded fraction of the quantity the ray tracer measures. With two depth layers a second march
-// (half the steps) adds at each of its taps the slab of the nearest surface hidden there (the
+// (at most 8 steps, or half the first's) adds at each of its taps the slab of the nearest surface hidden there (the
 // second_layer pass), reaching that surface's own back face when the back faces are drawn for it too.
 
 #include "common.glsl"
@@ -311,11 +311,12 @@ void main()
       // The nearest surface hidden behind each tap ('far' where none), reaching its own back face
       // when the back faces are drawn (never thinner than LAYER2_MIN_THICKNESS of the set
       // thickness; the set thickness where none lies behind it), else the set thickness. A march of
-      // its own with half the steps: a software rasteriser pays for every slab of a group of pixels
-      // whether a second layer is there or not. On the bench's training cameras (quarter AO size,
-      // `high`, back faces, R = 1 m) half the steps lost 0.6 dB summed over six cameras and a
-      // quarter 2.3, for an eighth and a sixth of the AO chain's time.
-      int layerSteps = max(steps / 2, 1);
+      // its own: a software rasteriser pays for every slab of a group of pixels whether a second
+      // layer is there or not, so past 8 steps it takes half the first march's. On the bench's
+      // training cameras (quarter AO size, back faces, R = 1 m, sums over six cameras) half the
+      // steps lost 3.1 dB at `low` and 1.6 at `medium`, but 0.6 at `high` for about a tenth of the
+      // AO chain's time.
+      int layerSteps = max(steps / 2, min(steps, 8));
       for (int j = 0; j < layerSteps && aoLayers > 1; ++j) {
         float t = (float(j) + stepNoise) / float(layerSteps);
         ivec2 q = pix + ivec2(round(sideDir * (t * ssR + 1.0)));

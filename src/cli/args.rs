@@ -174,7 +174,8 @@ pub struct SceneArgs {
     /// AO radius in metres.
     #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f32>,
-    /// Size the engine's AO methods run at: half (the course's) or full (`sao-lesson` stays at half).
+    /// Size the engine's AO methods run at: half (the course's), full, or quarter (a sixteenth of the
+    /// pixels, for large outputs); `sao-lesson` stays at half.
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
     /// Where the engine's AO methods take each pixel's normal: geometric (the triangle's own, from a
