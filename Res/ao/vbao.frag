@@ -4,9 +4,10 @@
 // Each depth sample is a slab from its surface to aoThickness behind it along its camera ray, clipped
 // to the radius sphere around the pixel (the reference counts a ray as blocked by a hit within the
 // radius). The sectors have equal cosine-weighted measure in the slice, so the set bits are the
-// occluded fraction of the quantity the ray tracer measures. With two depth layers a second march
-// (the first's steps up to 8; beyond, half of them but never fewer than 8) adds at each of its taps the slab of the nearest surface hidden there (the
-// second_layer pass), reaching that surface's own back face when the back faces are drawn for it too.
+// occluded fraction of the quantity the ray tracer measures. With two depth layers a second march (the
+// first's steps up to 8; beyond, half of them but never fewer than 8) adds at each of its taps the
+// slab of the nearest surface hidden there (the second_layer pass), reaching that surface's own back
+// face when the back faces are drawn for it too.
 
 #include "common.glsl"
 
