@@ -120,8 +120,14 @@ fn quarter_resolution_draws_each_texels_own_depth() {
                 }
             }
         }
-        assert!(checked > (w * h / 3) as usize, "{mode:?}: only {checked} texels see the floor");
-        assert!(worst < 1e-4, "{mode:?}: worst relative depth error {worst:e}");
+        assert!(
+            checked > (w * h / 3) as usize,
+            "{mode:?}: only {checked} texels see the floor"
+        );
+        assert!(
+            worst < 1e-4,
+            "{mode:?}: worst relative depth error {worst:e}"
+        );
     }
 }
 
