@@ -10,6 +10,7 @@ pub mod method;
 pub mod method_pass;
 pub mod packed;
 pub mod pipeline;
+pub mod resolution;
 pub mod settings;
 pub mod slab_hierarchy;
 pub mod targets;
