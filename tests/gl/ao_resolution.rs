@@ -27,13 +27,7 @@ fn floor_scene(dir: &std::path::Path) -> SceneDesc {
 /// The floor's exact view distance (−z_view) at the centre of pixel (x, y), row 0 at the top;
 /// `None` where the ray misses the floor.
 fn exact_depth(scene: &SceneDesc, x: u32, y: u32) -> Option<f32> {
-    let cam = scene.camera.camera();
-    let d = pixel_dir(&cam, x, y, W, H)?;
-    if d.y >= -1e-6 {
-        return None;
-    }
-    let t = cam.eye.y / -d.y;
-    (t < 50.0).then(|| t * d.dot(view_direction(&cam)))
+    exact_depth_at(scene, x, y, (W, H))
 }
 
 #[test]

@@ -29,21 +29,36 @@ impl Engine {
             .depth_texture()
             .ok_or_else(|| anyhow!("the main FBO has no depth texture"))?;
         self.restore_depth_chain(targets, depth)?;
-        match view {
-            View::LinearDepth => return Ok(()),
-            View::SecondLayerDepth => {
-                self.pass("second depth layer", "ao", || {
-                    let separation = self.ao_settings.layer_separation_metres();
-                    let layer = &self.surface.second_layer;
-                    layer.draw(f, depth, separation, targets.size())
-                })?;
-                return Ok(());
-            }
-            _ => {}
+        if self.finish_depth_view(f, depth, targets.size(), view)? {
+            return Ok(());
         }
         let surface = self.run_surface_passes(f, depth, targets.size(), None)?;
         self.run_method(f.camera, targets, &surface, view)?;
         Ok(())
+    }
+
+    /// What a depth view needs once the depth chain ran from `depth` (window depth at `f`'s size):
+    /// nothing more for the linear depth, the second layer at `size` for its view. `true` when `view`
+    /// is a depth view, whose chain ends there.
+    pub(super) fn finish_depth_view(
+        &self,
+        f: &Frame,
+        depth: &Texture,
+        size: (u32, u32),
+        view: View,
+    ) -> Result<bool> {
+        match view {
+            View::LinearDepth => Ok(true),
+            View::SecondLayerDepth => {
+                self.pass("second depth layer", "ao", || {
+                    let separation = self.ao_settings.layer_separation_metres();
+                    let layer = &self.surface.second_layer;
+                    layer.draw(f, depth, separation, size)
+                })?;
+                Ok(true)
+            }
+            _ => Ok(false),
+        }
     }
 
     /// The lesson's first two passes: linear depth from `depth` and its mip chain.

@@ -64,17 +64,8 @@ impl Engine {
         })?;
         let depth = passes.normals.depth_texture()?;
         self.restore_depth_chain(work, &depth)?;
-        match view {
-            View::LinearDepth => return Ok(()),
-            View::SecondLayerDepth => {
-                self.pass("second depth layer", "ao", || {
-                    let separation = self.ao_settings.layer_separation_metres();
-                    let layer = &self.surface.second_layer;
-                    layer.draw(&at_ao_size, &depth, separation, work.size())
-                })?;
-                return Ok(());
-            }
-            _ => {}
+        if self.finish_depth_view(&at_ao_size, &depth, work.size(), view)? {
+            return Ok(());
         }
         let surface = self.run_surface_passes(&at_ao_size, &depth, work.size(), Some(normals))?;
         let blurred = self.run_method(camera, work, &surface, view)?;
