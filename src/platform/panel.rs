@@ -3,7 +3,9 @@
 //! Only the UI lives here: the window (`window/mod.rs`) feeds it events, paints it after the engine's
 //! frame and acts on what it returns (rebuilding shaders whose compile-time constants changed).
 
-use crate::ao::settings::{SlabHierarchy, RAYS_RANGE};
+use crate::ao::method::vbao::feature_defines;
+use crate::ao::method_pass::normal_source_define;
+use crate::ao::settings::{AoSettings, SlabHierarchy, RAYS_RANGE};
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::platform::window::accumulation::WINDOW_ACCUMULATE;
@@ -117,6 +119,7 @@ impl Panel {
         ui.small(tr("panel.hide_hint"));
         let p = &mut engine.ao_settings;
         ui.checkbox(&mut p.enabled, tr("panel.ao_on"));
+        let compiled = compiled_choices(p);
 
         let before = p.method;
         egui::ComboBox::from_label(tr("panel.method"))
@@ -195,6 +198,9 @@ impl Panel {
                 };
             }
         }
+
+        // The shaders compile only the paths these choices use.
+        actions.sync_shader_constants |= compiled_choices(p) != compiled;
 
         egui::ComboBox::from_label(tr("panel.composite"))
             .selected_text(composite_name(p.composite))
@@ -484,4 +490,12 @@ mod tests {
             assert!(!j.is_ascii(), "{key}: {j} is not Japanese");
         }
     }
+}
+
+/// The settings the AO shaders are compiled for (`vbao`'s inputs, the normal source): a change needs
+/// `sync_shader_constants`.
+fn compiled_choices(s: &AoSettings) -> Vec<(&'static str, String)> {
+    let mut v = feature_defines(s);
+    v.push(normal_source_define(s));
+    v
 }
