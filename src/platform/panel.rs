@@ -441,6 +441,14 @@ fn error_overlay(ui: &mut egui::Ui, shader_errors: &[String], lang: Lang) {
         });
 }
 
+/// The settings the AO shaders are compiled for (`vbao`'s inputs, the normal source): a change needs
+/// `sync_shader_constants`.
+fn compiled_choices(s: &AoSettings) -> Vec<(&'static str, String)> {
+    let mut v = feature_defines(s);
+    v.push(normal_source_define(s));
+    v
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -490,12 +498,4 @@ mod tests {
             assert!(!j.is_ascii(), "{key}: {j} is not Japanese");
         }
     }
-}
-
-/// The settings the AO shaders are compiled for (`vbao`'s inputs, the normal source): a change needs
-/// `sync_shader_constants`.
-fn compiled_choices(s: &AoSettings) -> Vec<(&'static str, String)> {
-    let mut v = feature_defines(s);
-    v.push(normal_source_define(s));
-    v
 }
