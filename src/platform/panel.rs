@@ -453,6 +453,33 @@ fn compiled_choices(s: &AoSettings) -> Vec<(&'static str, String)> {
 mod tests {
     use super::*;
 
+    #[test]
+    fn the_options_the_shaders_are_compiled_for_ask_for_a_rebuild_and_the_others_do_not() {
+        let vbao = AoSettings {
+            method: AoMethod::Vbao,
+            ..Default::default()
+        };
+        let changed = |s: AoSettings| compiled_choices(&s) != compiled_choices(&vbao);
+        assert!(changed(AoSettings {
+            thickness: Some(Thickness::Backface),
+            ..vbao
+        }));
+        assert!(changed(AoSettings {
+            normals: NormalSource::Geometric,
+            ..vbao
+        }));
+        assert!(changed(AoSettings { layers: 2, ..vbao }));
+        assert!(changed(AoSettings {
+            slab_hierarchy: SlabHierarchy::On,
+            ..vbao
+        }));
+        assert!(!changed(AoSettings {
+            intensity: 2.0,
+            radius: 0.5,
+            ..vbao
+        }));
+    }
+
     /// The keys of a locale file (`key: "value"` lines).
     fn keys(text: &str) -> Vec<&str> {
         text.lines()
