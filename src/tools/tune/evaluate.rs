@@ -86,14 +86,17 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
         references::trace_references(sd, bvh, &[radius], &perf, &mut count, (&mut done, total));
     }
 
-    let plans: Vec<Vec<(AoMethod, AoSettings, Vec<space::Axis>)>> = loaded
+    type Plan = (AoMethod, AoSettings, Vec<AoSettings>, Vec<space::Axis>);
+    let plans: Vec<Vec<Plan>> = loaded
         .iter()
         .map(|(_, sd, _)| {
             cfg.methods
                 .iter()
                 .map(|&m| {
                     let start = start_of(sd, m);
-                    (m, start, space::axes(m, &start, cfg.budget.is_some()))
+                    let budgeted = cfg.budget.is_some();
+                    let starts = space::starts(m, &start, budgeted);
+                    (m, start, starts, space::axes(m, &start, budgeted))
                 })
                 .collect()
         })
@@ -103,7 +106,7 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
     let steps: usize = plans
         .iter()
         .flatten()
-        .map(|(_, _, axes)| search::max_evaluations(axes, cfg.passes) + 2)
+        .map(|(_, _, starts, axes)| search::max_evaluations(starts.len(), axes, cfg.passes) + 2)
         .sum();
     let pb = progress::bar(
         steps as u64,
@@ -116,7 +119,7 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
     for ((path, sd, _), plan) in loaded.iter().zip(plans) {
         let mut engine = Engine::new(&ctx.gl, res.clone(), &sd.desc, perf.width, perf.height)?;
         let lesson = start_of(sd, AoMethod::SaoLesson);
-        for (method, start, axes) in plan {
+        for (method, start, starts, axes) in plan {
             pb.set_message(format!("{} {}", sd.name, method.name()));
             // Each configuration's AO time over the lesson chain's, timed just before it (the
             // ratio survives the load of other programs better than either time alone).
@@ -140,7 +143,7 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
                 }
                 mean_psnr(&mut engine, sd, ao, &perf, true).map(Some)
             };
-            let found = search::search(&start, &axes, cfg.passes, score)
+            let found = search::search(&starts, &axes, cfg.passes, score)
                 .with_context(|| format!("{} {}", sd.name, method.name()))?;
             let train_default = match found.start_score {
                 Some(s) => s,
@@ -161,7 +164,7 @@ pub fn run(res: &ResDirs, cfg: &TuneConfig) -> Result<Vec<MethodResult>> {
                 }),
                 _ => None,
             };
-            position += (search::max_evaluations(&axes, cfg.passes) + 2) as u64;
+            position += (search::max_evaluations(starts.len(), &axes, cfg.passes) + 2) as u64;
             pb.set_position(position);
             results.push(MethodResult {
                 scene: sd.name.clone(),

@@ -22,24 +22,32 @@ pub struct Found {
     pub over_budget: usize,
 }
 
-/// The most configurations `search` can score with `axes` and `passes` (for the progress bar):
-/// the start, then each pass every value but the current one of every key.
-pub fn max_evaluations(axes: &[Axis], passes: u32) -> usize {
-    1 + passes as usize
-        * axes
-            .iter()
-            .map(|a| a.values.len().saturating_sub(1))
-            .sum::<usize>()
+/// The most configurations `search` can score with `starts` starts, `axes` and `passes` (for the
+/// progress bar): per start, the start, then each pass every value but the current one of every key.
+pub fn max_evaluations(starts: usize, axes: &[Axis], passes: u32) -> usize {
+    starts
+        * (1 + passes as usize
+            * axes
+                .iter()
+                .map(|a| a.values.len().saturating_sub(1))
+                .sum::<usize>())
 }
 
-/// Coordinate descent from `start` over `axes`, at most `passes` passes; `score` is called once
-/// per distinct configuration. `Err` when no configuration scored is within the budget.
+/// Coordinate descent over `axes` from each of `starts` in turn (at most `passes` passes each),
+/// keeping the best it reaches; `score` is called once per distinct configuration, whichever descent
+/// meets it. One axis at a time cannot reach a corner where several keys must change together (a
+/// second layer pays off only with the back faces, and both fit a budget only at a smaller size),
+/// so a caller may give more than one start. `start_score` is the first start's. `Err` when there is
+/// no start, or no configuration scored is within the budget.
 pub fn search(
-    start: &AoSettings,
+    starts: &[AoSettings],
     axes: &[Axis],
     passes: u32,
     mut score: impl FnMut(&AoSettings) -> Result<Score>,
 ) -> Result<Found> {
+    let Some(first) = starts.first() else {
+        bail!("no configuration to start from");
+    };
     let mut seen: BTreeMap<String, Score> = BTreeMap::new();
     let mut over_budget = 0;
     let mut eval = |ao: &AoSettings| -> Result<Score> {
@@ -58,36 +66,45 @@ pub fn search(
         seen.insert(key, s);
         Ok(s)
     };
-    let start_score = eval(start)?;
-    let mut best = *start;
-    let mut best_score = start_score.unwrap_or(f64::NEG_INFINITY);
-    for _ in 0..passes {
-        let mut changed = false;
-        for axis in axes {
-            for choice in &axis.values {
-                let candidate = choice.apply(&best);
-                if candidate == best {
-                    continue;
-                }
-                if let Some(s) = eval(&candidate)? {
-                    if s > best_score {
-                        best = candidate;
-                        best_score = s;
-                        changed = true;
+    let start_score = eval(first)?;
+    let mut overall = *first;
+    let mut overall_score = f64::NEG_INFINITY;
+    for start in starts {
+        let mut best = *start;
+        let mut best_score = eval(start)?.unwrap_or(f64::NEG_INFINITY);
+        for _ in 0..passes {
+            let mut changed = false;
+            for axis in axes {
+                for choice in &axis.values {
+                    let candidate = choice.apply(&best);
+                    if candidate == best {
+                        continue;
+                    }
+                    if let Some(s) = eval(&candidate)? {
+                        if s > best_score {
+                            best = candidate;
+                            best_score = s;
+                            changed = true;
+                        }
                     }
                 }
             }
+            if !changed {
+                break;
+            }
         }
-        if !changed {
-            break;
+        // Strictly better only: a tie keeps the earlier start's result.
+        if best_score > overall_score {
+            overall = best;
+            overall_score = best_score;
         }
     }
-    if !best_score.is_finite() {
+    if !overall_score.is_finite() {
         bail!("{}", rust_i18n::t!("tune.nothing_in_budget"));
     }
     Ok(Found {
-        best,
-        best_score,
+        best: overall,
+        best_score: overall_score,
         start_score,
         evaluated: seen.len(),
         over_budget,
@@ -119,7 +136,7 @@ mod tests {
         let start = lesson();
         let space = axes(AoMethod::SaoLesson, &start, false);
         let mut calls = 0;
-        let found = search(&start, &space, 3, |ao| {
+        let found = search(&[start], &space, 3, |ao| {
             calls += 1;
             Ok(Some(peak(ao)))
         })
@@ -131,9 +148,9 @@ mod tests {
         );
         assert!(found.best_score >= found.start_score.unwrap());
         assert_eq!(found.evaluated, calls, "each configuration scored once");
-        assert!(calls <= max_evaluations(&space, 3));
+        assert!(calls <= max_evaluations(1, &space, 3));
         // A score the start already maximises leaves it unchanged.
-        let found = search(&start, &space, 2, |ao| {
+        let found = search(&[start], &space, 2, |ao| {
             Ok(Some(-(ao.bias - 0.012).abs() as f64))
         })
         .unwrap();
@@ -152,11 +169,38 @@ mod tests {
             let t = ao.thickness_metres();
             Ok((t <= 0.4).then_some(t as f64))
         };
-        let found = search(&start, &space, 2, score).unwrap();
+        let found = search(&[start], &space, 2, score).unwrap();
         assert_eq!(found.start_score, None);
         assert_eq!(found.best.thickness, Some(Thickness::Metres(0.375)));
         assert!(found.over_budget > 0);
-        assert!(search(&start, &space, 2, |_| Ok(None)).is_err());
+        assert!(search(&[start], &space, 2, |_| Ok(None)).is_err());
+        assert!(search(&[], &space, 2, |_| Ok(Some(0.0))).is_err());
         assert_ne!(Choice::Bias(0.0), Choice::Bias(0.1));
+    }
+
+    /// A score that pays only when bias and intensity change together: one axis at a time from the
+    /// lesson's table never leaves it, a second start at the corner finds it and is kept.
+    #[test]
+    fn a_second_start_reaches_a_corner_one_axis_at_a_time_cannot() {
+        let start = lesson();
+        let space = axes(AoMethod::SaoLesson, &start, false);
+        let corner = |ao: &AoSettings| {
+            let both = ao.bias == 0.05 && ao.intensity == 8.0;
+            Ok(Some(if both { 1.0 } else { -(ao.bias as f64) }))
+        };
+        let alone = search(&[start], &space, 3, corner).unwrap();
+        assert_ne!((alone.best.bias, alone.best.intensity), (0.05, 8.0));
+        let seed = AoSettings {
+            bias: 0.05,
+            intensity: 8.0,
+            ..start
+        };
+        let both = search(&[start, seed], &space, 3, corner).unwrap();
+        assert_eq!((both.best.bias, both.best.intensity), (0.05, 8.0));
+        assert_eq!(both.best_score, 1.0);
+        assert_eq!(
+            both.start_score, alone.start_score,
+            "the first start's score"
+        );
     }
 }

@@ -72,6 +72,37 @@ const SAMPLES: [u32; 6] = [4, 8, 11, 16, 24, 32];
 /// rtao's rays per pixel and frame.
 const RAYS: [u32; 4] = [1, 2, 4, 8];
 
+/// Where the descents start: the scene's own table; with a budget, for the engine's methods, also
+/// the configuration that reads the most of what the depth buffer can know for its cost: a quarter
+/// of the size, a guard band, the geometric normals (not for Crytek's sphere, which reads none), and
+/// for `vbao` the back faces, two layers and `medium`. From the scene's table one key at a time, the
+/// second layer is not worth its pass without the back faces, nor both at half size within a budget
+/// of about the lesson's cost; from this start the descent trades them away where they do not pay.
+pub fn starts(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<AoSettings> {
+    let engine_method = !matches!(method, AoMethod::SaoLesson | AoMethod::Rtao);
+    if !budgeted || !engine_method {
+        return vec![*start];
+    }
+    let mut knows_most = AoSettings {
+        resolution: AoResolution::Quarter,
+        guard_band: GuardBand::Auto,
+        ..*start
+    };
+    if method != AoMethod::Crytek {
+        knows_most.normals = NormalSource::Geometric;
+    }
+    if method == AoMethod::Vbao {
+        knows_most.thickness = Some(Thickness::Backface);
+        knows_most.layers = 2;
+        knows_most.quality = Some(GtaoQuality::Medium);
+    }
+    if knows_most == *start {
+        vec![*start]
+    } else {
+        vec![*start, knows_most]
+    }
+}
+
 /// The keys `method`'s shaders read, from `start` (the scene's `[ao]` with the method set): the
 /// free keys always, the costly ones only when `budgeted`. Costly keys come first, so that the
 /// free ones are tuned for the chosen taps.
@@ -210,8 +241,35 @@ fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
 
 #[cfg(test)]
 mod tests {
-    use crate::ao::{AoMethod, AoSettings, GtaoQuality, Thickness};
-    use crate::tools::tune::space::{axes, cost_signature, Choice};
+    use crate::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality, NormalSource, Thickness};
+    use crate::tools::tune::space::{axes, cost_signature, starts, Choice};
+
+    #[test]
+    fn a_budget_adds_the_start_that_knows_most_for_the_engines_methods_only() {
+        let vbao = AoSettings {
+            method: AoMethod::Vbao,
+            ..AoSettings::default()
+        };
+        assert_eq!(starts(AoMethod::Vbao, &vbao, false), vec![vbao]);
+        let both = starts(AoMethod::Vbao, &vbao, true);
+        assert_eq!(both.len(), 2);
+        assert_eq!(both[0], vbao);
+        let rich = both[1];
+        assert_eq!(rich.resolution, AoResolution::Quarter);
+        assert_eq!(rich.thickness, Some(Thickness::Backface));
+        assert_eq!((rich.layers, rich.normals), (2, NormalSource::Geometric));
+        let lesson = AoSettings::default();
+        assert_eq!(starts(AoMethod::SaoLesson, &lesson, true), vec![lesson]);
+        let crytek = AoSettings {
+            method: AoMethod::Crytek,
+            ..AoSettings::default()
+        };
+        let c = starts(AoMethod::Crytek, &crytek, true);
+        assert_eq!(
+            c[1].normals, crytek.normals,
+            "Crytek's sphere reads no normal"
+        );
+    }
 
     #[test]
     fn every_axis_starts_at_the_scene_value_and_costly_keys_need_a_budget() {
