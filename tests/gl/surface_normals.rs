@@ -125,11 +125,16 @@ fn the_pass_runs_only_when_a_method_reads_normals_and_shows_in_the_stats() {
             normals.name()
         );
     }
-    // With a guard band the pass draws the widened view's depth, whatever the normals.
+    // With a guard band the pass draws the widened view's depth, whatever the normals; the stats
+    // name it for what the method reads.
     eng.ao_settings.method = AoMethod::Vbao;
     eng.ao_settings.normals = NormalSource::Depth;
     eng.ao_settings.guard_band = GuardBand::Auto;
     eng.sync_shader_constants().unwrap();
     eng.render_values(View::AoRaw).unwrap();
-    assert!(has_pass(&eng), "the guard band's depth comes from the pass");
+    assert!(!has_pass(&eng), "no normals are read");
+    assert!(
+        eng.last_stats().iter().any(|s| s.name == "surface depth"),
+        "the guard band's depth comes from the pass"
+    );
 }

@@ -59,7 +59,13 @@ impl Engine {
             ..*f
         };
         let passes = &self.surface;
-        let normals = self.pass("surface normals", "ao", || {
+        // One pass draws the depth and the normals; the stats name it for what the method reads.
+        let name = if self.ao_settings.uses_surface_normals() {
+            "surface normals"
+        } else {
+            "surface depth"
+        };
+        let normals = self.pass(name, "ao", || {
             passes.normals.draw(&at_ao_size, None, work.size())
         })?;
         let depth = passes.normals.depth_texture()?;
