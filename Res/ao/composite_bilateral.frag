@@ -2,8 +2,9 @@
 
 // The composite of the engine's half-size AO, up-sampling as it blends: the occlusion of
 // bilateral_upsample.glsl, then the tinted blend of composite_tint.frag (the lesson's blend is tint 0,
-// power 1: colour x (1 - occlusion)). Drawn into the main colour without its depth attachment, since
-// it reads the main depth buffer. Sky pixels are left alone (alpha 0): the sky pass draws them after.
+// power 1: colour x (1 - occlusion)). Drawn over the main framebuffer with a depth test that lets only
+// pixels with a surface through (depth writes off; this shader reads that depth buffer too). Sky
+// pixels never get here; should one, it is left alone (alpha 0): the sky pass draws it after.
 
 layout(location=1) in vec2 inTexcoord;
 

@@ -6,7 +6,7 @@
 //! The lesson's `sao-lesson` keeps the course's linear filter.
 
 use super::blur::half_size_target;
-use crate::gl::pass_state::Blend;
+use crate::gl::pass_state::{Blend, Depth};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::shader_interface::{binding, loc};
@@ -80,22 +80,39 @@ impl BilateralUpsample {
             .ok_or_else(|| anyhow::anyhow!("the up-sampling target has no colour texture"))
     }
 
-    /// Blends the up-sampled occlusion over `main_color` (the main colour without its depth
-    /// attachment: the shader reads the main depth, and a texture attached to the framebuffer being
-    /// drawn must not be sampled): colour moves toward `tint` by 1 − visibility^`power`; the lesson's
-    /// blend is tint 0, power 1. Sky pixels are left alone.
+    /// Blends the up-sampled occlusion over `main`'s colour: colour moves toward `tint` by
+    /// 1 − visibility^`power`; the lesson's blend is tint 0, power 1.
+    ///
+    /// Only pixels with a surface are shaded: the quad lies at the sky's depth and passes where the
+    /// stored depth is nearer, so the depth test drops sky pixels before the shader runs (about a
+    /// third of this pass on a scene of models under open sky). The shader also reads that depth
+    /// buffer while it is attached; depth writes are off, and OpenGL 4.5 (section 9.3.1, rendering
+    /// feedback loops) leaves a draw's results undefined only where texels it reads are also
+    /// written.
     pub fn composite(
         &self,
         gl: &Gl,
         meshes: &MeshBuffer,
         inputs: &UpsampleInputs,
-        main_color: &FramebufferObject,
+        main: &FramebufferObject,
         tint: [f32; 3],
         power: f32,
     ) {
-        PassState::FULLSCREEN
-            .with_blend(Blend::ALPHA)
-            .apply(gl, None);
+        let sky = inputs.mode.clear_value();
+        let quad_farther = if inputs.mode.reversed() {
+            glow::LESS
+        } else {
+            glow::GREATER
+        };
+        PassState {
+            depth: Depth::Test {
+                func: quad_farther,
+                write: false,
+            },
+            depth_range: (sky, sky),
+            ..PassState::FULLSCREEN.with_blend(Blend::ALPHA)
+        }
+        .apply(gl, None);
         let program = if power == 1.0 {
             &self.composite_power_one
         } else {
@@ -105,9 +122,10 @@ impl BilateralUpsample {
         program.set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
         program.set_vec3(loc::AO_TINT, tint);
         program.set_f32(loc::AO_TINT_POWER, power);
-        main_color.bind();
+        main.bind();
         bind_inputs(inputs);
         meshes.draw_plane_xy();
+        PassState::FULLSCREEN.apply(gl, None);
     }
 
     pub fn textures(&self) -> Vec<Rc<Texture>> {

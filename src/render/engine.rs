@@ -4,7 +4,7 @@
 //! output a frame does not use are skipped.
 
 use super::frame::Frame;
-use super::main_fbo::create_main_fbos;
+use super::main_fbo::create_main_fbo;
 use super::passes::surface::SurfacePasses;
 use super::passes::{bloom::BloomPass, opaque::LitPass, post::PostPass, shadow, sky::SkyPass};
 use super::passes::{shadow::ShadowPass, transparent};
@@ -59,8 +59,6 @@ pub struct Engine {
     width: u32,
     height: u32,
     pub fbo_main: FramebufferObject,
-    /// The main colour alone, for passes that read the main depth while they draw.
-    fbo_main_color: FramebufferObject,
     /// Main depth buffer convention (`[output] depth`, `--depth`).
     depth_mode: DepthMode,
     /// Loaded once reversed-Z is first used; from then on every pass states its clip range.
@@ -131,7 +129,7 @@ impl Engine {
                 .get(&o.name)
                 .ok_or_else(|| anyhow!("mesh {} missing after loading", o.name))?;
         }
-        let main_fbos = create_main_fbos(gl, width, height, DepthMode::D32)?;
+        let fbo_main = create_main_fbo(gl, width, height, DepthMode::D32)?;
         let mut engine = Engine {
             gl: gl.clone(),
             meshes,
@@ -151,8 +149,7 @@ impl Engine {
             ao,
             width,
             height,
-            fbo_main: main_fbos.0,
-            fbo_main_color: main_fbos.1,
+            fbo_main,
             depth_mode: DepthMode::D32,
             clip_control: None,
             fbo_output: None,
@@ -195,8 +192,7 @@ impl Engine {
         }
         self.prepare_restores(mode, &self.ao_settings.clone())?;
         if mode != self.depth_mode {
-            (self.fbo_main, self.fbo_main_color) =
-                create_main_fbos(&self.gl, self.width, self.height, mode)?;
+            self.fbo_main = create_main_fbo(&self.gl, self.width, self.height, mode)?;
             self.depth_mode = mode;
         }
         Ok(())
@@ -207,8 +203,7 @@ impl Engine {
         if width == 0 || height == 0 || (width, height) == (self.width, self.height) {
             return Ok(());
         }
-        (self.fbo_main, self.fbo_main_color) =
-            create_main_fbos(&self.gl, width, height, self.depth_mode)?;
+        self.fbo_main = create_main_fbo(&self.gl, width, height, self.depth_mode)?;
         self.bloom_pass.resize(&self.gl, (width, height))?;
         self.fbo_output = None;
         self.fbo_values = None;
@@ -535,11 +530,10 @@ impl Engine {
             [0.0; 3]
         };
         let inputs = self.upsample_inputs(targets)?;
-        let main_color = &self.fbo_main_color;
-        let (gl, meshes) = (&self.gl, &self.meshes);
+        let (gl, meshes, main) = (&self.gl, &self.meshes, &self.fbo_main);
         self.ao
             .upsample
-            .composite(gl, meshes, &inputs, main_color, tint, s.power);
+            .composite(gl, meshes, &inputs, main, tint, s.power);
         Ok(())
     }
 
