@@ -23,6 +23,11 @@ pub fn lesson_blur(gl: &Gl, program: &ProgramObject, targets: &AoTargets, meshes
     meshes.draw_plane_xy();
 }
 
+/// Texels each pass of the engine's separable blurs reads on either side of its own
+/// (`blur_separable.frag`, `blur_packed.frag`): what AO beyond the texels it must produce a blur
+/// needs.
+pub const BLUR_REACH: u32 = 4;
+
 fn set_axis(gl: &Gl, program: &ProgramObject, axis: [i32; 2]) {
     let location = glow::NativeUniformLocation(loc::BLUR_AXIS as u32);
     // SAFETY: an ivec2 uniform at a location the interface test checks.
@@ -57,8 +62,15 @@ impl SeparableBlur {
             .collect()
     }
 
-    /// `texSAO` → intermediate (horizontal) → `texSAOBlur` (vertical).
-    pub fn run(&self, gl: &Gl, targets: &AoTargets, meshes: &MeshBuffer) -> Result<()> {
+    /// `texSAO` → intermediate (horizontal) → `texSAOBlur` (vertical), within `region` when given
+    /// (`AoInputs::region`).
+    pub fn run(
+        &self,
+        gl: &Gl,
+        targets: &AoTargets,
+        meshes: &MeshBuffer,
+        region: Option<[i32; 4]>,
+    ) -> Result<()> {
         let size = targets.size();
         let mut tmp = self.tmp.borrow_mut();
         if tmp.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
@@ -66,7 +78,7 @@ impl SeparableBlur {
             *tmp = Some(half_size_target(gl, "FBO(ao blur tmp)", size, glow::R8)?);
         }
         let fbo_tmp = tmp.as_ref().expect("created above");
-        PassState::FULLSCREEN.apply(gl, None);
+        PassState::FULLSCREEN.with_scissor(region).apply(gl, None);
         self.program.use_program();
         targets.tex_depth.bind(binding::SECOND_INPUT);
         set_axis(gl, &self.program, [1, 0]);
@@ -84,7 +96,8 @@ impl SeparableBlur {
     }
 }
 
-/// The packed blur: `packed` (RG32F: occlusion, depth) → `tmp` (RG32F) → the targets' blur target.
+/// The packed blur: `packed` (RG32F: occlusion, depth) → `tmp` (RG32F) → the targets' blur target,
+/// within `region` when given (`AoInputs::region`).
 pub fn packed_blur(
     gl: &Gl,
     program: &ProgramObject,
@@ -92,8 +105,9 @@ pub fn packed_blur(
     tmp: &FramebufferObject,
     targets: &AoTargets,
     meshes: &MeshBuffer,
+    region: Option<[i32; 4]>,
 ) {
-    PassState::FULLSCREEN.apply(gl, None);
+    PassState::FULLSCREEN.with_scissor(region).apply(gl, None);
     program.use_program();
     set_axis(gl, program, [1, 0]);
     tmp.bind();
@@ -116,4 +130,24 @@ pub fn half_size_target(
 ) -> Result<FramebufferObject> {
     let tex = Rc::new(Texture::new(gl, TextureDesc::target(name, w, h, format))?);
     FramebufferObject::new(gl, Some(tex), None, 0, 0)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn blur_reach_is_the_shaders_loop() {
+        let r = BLUR_REACH;
+        let loop_header = format!("for (int r = -{r}; r <= {r}; ++r)");
+        for shader in ["blur_separable.frag", "blur_packed.frag"] {
+            let path = format!("{}/Res/ao/{shader}", env!("CARGO_MANIFEST_DIR"));
+            let text = std::fs::read_to_string(&path).unwrap();
+            assert!(
+                text.contains(&loop_header),
+                "{shader} has no `{loop_header}`"
+            );
+            assert!(text.contains("axis * r"), "{shader}: taps one texel apart");
+        }
+    }
 }

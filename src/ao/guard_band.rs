@@ -1,6 +1,7 @@
 //! The size of a guard band (`[ao] guard_band`, `--guard-band`) and the widened camera that covers it:
 //! the same pixel size and pixel centres as the view, a margin of whole pixels on each side.
 
+use super::blur::BLUR_REACH;
 use super::settings::{
     AoResolution, GuardBand, GUARD_BAND_AUTO_MAX_OF_SIDE, GUARD_BAND_MAX_OF_SIDE,
 };
@@ -111,6 +112,18 @@ pub fn crop(gl: &Gl, guarded: &AoTargets, view: &AoTargets, offset: u32, blurred
     }
 }
 
+/// The texels of the guarded targets (`guarded`, AO size) the frame reads: the view's (`view` texels
+/// from `offset` on each axis) and the blur's reach around them, as (x, y, width, height). The method
+/// and its blur draw only there (`AoInputs::region`): the rest of the margin is read as depth,
+/// never as occlusion.
+pub fn read_region(guarded: (u32, u32), view: (u32, u32), offset: u32) -> [i32; 4] {
+    let reach = BLUR_REACH;
+    let lo = offset.saturating_sub(reach);
+    let x1 = (offset + view.0 + reach).min(guarded.0);
+    let y1 = (offset + view.1 + reach).min(guarded.1);
+    [lo as i32, lo as i32, (x1 - lo) as i32, (y1 - lo) as i32]
+}
+
 /// AO texels of a margin of `pixels` output pixels.
 pub fn ao_offset(pixels: u32, resolution: AoResolution) -> u32 {
     pixels / resolution.divisor()
@@ -172,6 +185,14 @@ impl GuardTargets {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_read_region_is_the_view_and_the_blur_reach_within_the_targets() {
+        // A 40-texel margin: the view and 4 texels around it.
+        assert_eq!(read_region((560, 350), (480, 270), 40), [36, 36, 488, 278]);
+        // A margin narrower than the reach: clamped to the targets.
+        assert_eq!(read_region((482, 272), (480, 270), 1), [0, 0, 482, 272]);
+    }
 
     #[test]
     fn the_widened_view_keeps_the_pixel_size_and_centres() {

@@ -34,9 +34,18 @@ pub struct AoInputs<'a> {
     pub second_back_depth: Option<&'a Texture>,
     /// The scene's objects (`rtao` traces their triangles).
     pub objects: &'a [GameObject],
+    /// The texels of `targets` the frame reads (x, y, width, height), where the method and its blur
+    /// draw: inside a guard band, the view and the blur's reach around it
+    /// (`guard_band::read_region`). `None`: all of them.
+    pub region: Option<[i32; 4]>,
 }
 
 impl AoInputs<'_> {
+    /// The full-screen state of a method's pass, drawing only `region`.
+    pub fn pass_state(&self) -> PassState {
+        PassState::FULLSCREEN.with_scissor(self.region)
+    }
+
     /// Binds the surface normals (when the frame has them) where `common.glsl` reads them.
     pub fn bind_normals(&self) {
         if let Some(n) = self.normals {
@@ -64,7 +73,7 @@ pub trait AoMethodPass {
     fn compute(&self, inputs: &AoInputs) -> Result<()>;
     /// Blurs the occlusion into `inputs.targets.fbo_blur`; the shared separable blur by default.
     fn blur(&self, inputs: &AoInputs, separable: &SeparableBlur) -> Result<()> {
-        separable.run(inputs.gl, inputs.targets, inputs.meshes)
+        separable.run(inputs.gl, inputs.targets, inputs.meshes, inputs.region)
     }
     /// Size-dependent textures it owns now.
     fn textures(&self) -> Vec<Rc<Texture>> {
@@ -225,7 +234,7 @@ impl AoMethodPass for ShaderMethod {
             inputs,
             (self.counts)(inputs.settings),
         );
-        PassState::FULLSCREEN.apply(inputs.gl, None);
+        inputs.pass_state().apply(inputs.gl, None);
         self.program.use_program();
         self.packed.bind_for_method(inputs.gl, inputs.targets)?;
         inputs.targets.tex_depth.bind(binding::INPUT);
@@ -243,8 +252,7 @@ impl AoMethodPass for ShaderMethod {
         Ok(())
     }
     fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        self.packed
-            .blur(inputs.gl, inputs.targets, inputs.meshes, &self.blur)
+        self.packed.blur(inputs, &self.blur)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         self.packed.textures()

@@ -58,6 +58,8 @@ pub struct PassState {
     pub color_write: bool,
     /// `glPolygonOffset(factor, units)` for filled polygons (shadow-map acne).
     pub polygon_offset: Option<(f32, f32)>,
+    /// Only this rectangle of the target is drawn (`glScissor`: x, y, width, height in pixels).
+    pub scissor: Option<[i32; 4]>,
 }
 
 impl PassState {
@@ -70,6 +72,7 @@ impl PassState {
         blend: None,
         color_write: true,
         polygon_offset: None,
+        scissor: None,
     };
 
     pub fn with_blend(self, blend: Blend) -> PassState {
@@ -79,8 +82,12 @@ impl PassState {
         }
     }
 
-    /// Sets every piece of state this type names (and turns scissor, sRGB writes and dithering off,
-    /// which no pass uses).
+    pub fn with_scissor(self, scissor: Option<[i32; 4]>) -> PassState {
+        PassState { scissor, ..self }
+    }
+
+    /// Sets every piece of state this type names (and turns sRGB writes and dithering off, which no
+    /// pass uses).
     pub fn apply(&self, gl: &glow::Context, clip_control: Option<&ClipControl>) {
         if let Some(cc) = clip_control {
             cc.set(self.clip_zero_to_one);
@@ -127,7 +134,13 @@ impl PassState {
                 }
                 None => gl.disable(glow::POLYGON_OFFSET_FILL),
             }
-            gl.disable(glow::SCISSOR_TEST);
+            match self.scissor {
+                Some([x, y, w, h]) => {
+                    gl.enable(glow::SCISSOR_TEST);
+                    gl.scissor(x, y, w, h);
+                }
+                None => gl.disable(glow::SCISSOR_TEST),
+            }
             gl.disable(glow::FRAMEBUFFER_SRGB);
             gl.disable(glow::DITHER);
         }

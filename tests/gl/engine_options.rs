@@ -330,6 +330,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
             second_depth: None,
             second_back_depth: None,
             objects: &[],
+            region: None,
         };
         sao.compute(&inputs).unwrap();
         let occ = targets.sao_texture().read_f32(0, 1);
@@ -443,7 +444,7 @@ fn packed_blur_equals_the_separable_blur(method: opengl3d::ao::AoMethod) {
     // The same raw occlusion through the plain blur (occlusion and depth from two textures).
     eng.ao
         .separable_blur
-        .run(eng.gl(), eng.ao_targets().unwrap(), &eng.meshes)
+        .run(eng.gl(), eng.ao_targets().unwrap(), &eng.meshes, None)
         .unwrap();
     let plain = eng
         .ao_targets()

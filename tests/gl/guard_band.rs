@@ -139,3 +139,106 @@ fn assert_depths_agree(a: &[f32], b: &[f32]) {
         a.len()
     );
 }
+
+/// With a margin the method and its blur draw only the view and the blur's reach around it
+/// (`guard_band::read_region`): the blurred view is the same, texel for texel, as when they draw
+/// everything, and the rest of the margin is left undrawn.
+#[test]
+fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
+    use opengl3d::ao::blur::{SeparableBlur, BLUR_REACH};
+    use opengl3d::ao::guard_band::read_region;
+    use opengl3d::ao::method::sao::SaoMethod;
+    use opengl3d::ao::method_pass::{method_defines, AoInputs, AoMethodPass};
+    use opengl3d::ao::{AoSettings, AoTargets};
+    use opengl3d::gl::{MeshBuffer, ProgramObject};
+    use opengl3d::math::Camera;
+    use opengl3d::res::ResDirs;
+
+    let ctx = common::context();
+    let (w, h) = (96u32, 64u32);
+    let (guarded, offset) = ((w / 2, h / 2), 6u32);
+    let view = (guarded.0 - 2 * offset, guarded.1 - 2 * offset);
+    let cam = Camera::default();
+    let settings = AoSettings {
+        method: AoMethod::Sao,
+        radius: 1.0,
+        intensity: 4.0,
+        blur: true,
+        ..Default::default()
+    };
+    let meshes = MeshBuffer::new(&ctx.gl).unwrap();
+    let res = ResDirs::default();
+    let sao = SaoMethod::build(&ctx.gl, &res, &cam).unwrap();
+    let unused_blur = SeparableBlur::new(
+        ProgramObject::from_res(
+            &ctx.gl,
+            &res,
+            "simple.vert",
+            "ao/blur_separable.frag",
+            &method_defines(&cam),
+        )
+        .unwrap(),
+    );
+    // A bumpy surface 2–4 m away: occlusion that varies from texel to texel, which the blur mixes.
+    let depth_at = |x: f32, y: f32| 3.0 + 0.6 * (x * 0.7).sin() * (y * 0.5).cos();
+    let blurred = |region: Option<[i32; 4]>| {
+        let targets = AoTargets::new(&ctx.gl, w, h, 3).unwrap();
+        for l in 0..3 {
+            let (lw, lh) = targets.tex_depth.size_at(l);
+            let s = (1u32 << l) as f32;
+            let v: Vec<f32> = (0..lw * lh)
+                .map(|i| depth_at(((i % lw) as f32 + 0.5) * s, ((i / lw) as f32 + 0.5) * s))
+                .collect();
+            targets.tex_depth.upload_f32(l, 1, &v).unwrap();
+        }
+        let inputs = AoInputs {
+            gl: &ctx.gl,
+            meshes: &meshes,
+            targets: &targets,
+            camera: &cam,
+            settings: &settings,
+            back_depth: None,
+            normals: None,
+            second_depth: None,
+            second_back_depth: None,
+            objects: &[],
+            region,
+        };
+        sao.compute(&inputs).unwrap();
+        // The engine's SAO blurs with its own packed blur; the shared one is not read.
+        sao.blur(&inputs, &unused_blur).unwrap();
+        targets.result_texture(true).read_f32(0, 1)
+    };
+    let region = read_region(guarded, view, offset);
+    assert_eq!(
+        region,
+        [
+            (offset - BLUR_REACH) as i32,
+            (offset - BLUR_REACH) as i32,
+            (view.0 + 2 * BLUR_REACH) as i32,
+            (view.1 + 2 * BLUR_REACH) as i32
+        ]
+    );
+    let all = blurred(None);
+    let part = blurred(Some(region));
+    let gw = guarded.0 as usize;
+    let at = |v: &[f32], x: u32, y: u32| v[y as usize * gw + x as usize];
+    let (mut varied, mut undrawn) = (0, 0);
+    for y in 0..guarded.1 {
+        for x in 0..guarded.0 {
+            let in_view =
+                (offset..offset + view.0).contains(&x) && (offset..offset + view.1).contains(&y);
+            if in_view {
+                assert_eq!(at(&all, x, y), at(&part, x, y), "view texel ({x}, {y})");
+                varied += (at(&all, x, y) != at(&all, offset, offset)) as usize;
+            } else if at(&all, x, y) != at(&part, x, y) {
+                undrawn += 1;
+            }
+        }
+    }
+    assert!(
+        varied > 100,
+        "the blurred view is not flat ({varied} texels differ from one)"
+    );
+    assert!(undrawn > 0, "the margin beyond the blur's reach was drawn");
+}

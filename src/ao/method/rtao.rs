@@ -12,7 +12,7 @@ use crate::ao::method_pass::{
 };
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, PassState, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
+use crate::gl::{Gl, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::scene::bvh::{BvhStats, FlatBvh};
@@ -229,7 +229,7 @@ impl AoMethodPass for RtaoMethod {
         let bvh = self.bvh.borrow();
         let bvh = bvh.as_ref().expect("built above");
         p.set_i32(loc::RTAO_NODE_COUNT, bvh.stats.nodes as i32);
-        PassState::FULLSCREEN.apply(inputs.gl, None);
+        inputs.pass_state().apply(inputs.gl, None);
         p.use_program();
         self.packed.bind_for_method(inputs.gl, inputs.targets)?;
         inputs.targets.tex_depth.bind(binding::INPUT);
@@ -267,9 +267,7 @@ impl AoMethodPass for RtaoMethod {
     fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
         let rays_so_far = self.accumulated_frames() * inputs.settings.rays.max(1);
         if rays_so_far < UNBLURRED_FROM_RAYS {
-            return self
-                .packed
-                .blur(inputs.gl, inputs.targets, inputs.meshes, &self.blur);
+            return self.packed.blur(inputs, &self.blur);
         }
         let t = inputs.targets;
         let (w, h) = t.size();

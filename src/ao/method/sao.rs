@@ -10,7 +10,7 @@ use crate::ao::method_pass::{
 use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::texture::max_levels;
-use crate::gl::{Gl, PassState, ProgramError, ProgramObject, Texture};
+use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::shader_interface::binding;
@@ -69,7 +69,7 @@ impl AoMethodPass for SaoMethod {
     }
     fn compute(&self, i: &AoInputs) -> Result<()> {
         set_common_uniforms(i.gl, &self.program, i, counts(i.settings));
-        PassState::FULLSCREEN.apply(i.gl, None);
+        i.pass_state().apply(i.gl, None);
         self.program.use_program();
         self.packed.bind_for_method(i.gl, i.targets)?;
         i.targets.tex_depth.bind(binding::INPUT);
@@ -78,7 +78,7 @@ impl AoMethodPass for SaoMethod {
         Ok(())
     }
     fn blur(&self, i: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        self.packed.blur(i.gl, i.targets, i.meshes, &self.blur)
+        self.packed.blur(i, &self.blur)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         self.packed.textures()

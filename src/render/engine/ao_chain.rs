@@ -4,7 +4,7 @@
 use super::Engine;
 use crate::ao::method_pass::AoInputs;
 use crate::ao::{AoMethod, AoResolution, AoTargets};
-use crate::gl::Texture;
+use crate::gl::{PassState, Texture};
 use crate::math::Camera;
 use crate::render::frame::Frame;
 use crate::render::passes::surface::SurfaceInputs;
@@ -33,7 +33,7 @@ impl Engine {
             return Ok(());
         }
         let surface = self.run_surface_passes(f, depth, targets.size(), None)?;
-        self.run_method(f.camera, targets, &surface, view)?;
+        self.run_method(f.camera, targets, &surface, view, None)?;
         Ok(())
     }
 
@@ -78,13 +78,15 @@ impl Engine {
         Ok(())
     }
 
-    /// The method's pass and its blur (unless the view shows the raw occlusion); whether it blurred.
+    /// The method's pass and its blur (unless the view shows the raw occlusion), drawing only
+    /// `region` of `targets` when given (`AoInputs::region`); whether it blurred.
     pub(super) fn run_method(
         &self,
         camera: &Camera,
         targets: &AoTargets,
         surface: &SurfaceInputs,
         view: View,
+        region: Option<[i32; 4]>,
     ) -> Result<bool> {
         let method = self.ao_settings.method;
         let inputs = AoInputs {
@@ -98,6 +100,7 @@ impl Engine {
             second_depth: surface.second_depth.as_deref(),
             second_back_depth: surface.second_back_depth.as_deref(),
             objects: &self.objects,
+            region,
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),
@@ -108,6 +111,8 @@ impl Engine {
         if blur {
             self.pass(blur_name, "ao", || self.ao.blur(method, &inputs))?;
         }
+        // No scissor beyond the chain.
+        PassState::FULLSCREEN.apply(&self.gl, None);
         Ok(blur)
     }
 }

@@ -1,16 +1,17 @@
 //! The engine's AO chain when it draws geometry of its own: the guard band (`[ao] guard_band`) and
 //! the surface passes (back faces, second layer, normals). Their depth, normals and back faces are
 //! drawn at the AO size itself, over the view or over a field of view widened by a margin of whole
-//! pixels on each side (same pixel size and centres), and the method and its blur run over all of
-//! it, so that occluders just off screen count. With a margin, the inner part of the results is then
-//! copied into the AO targets the composite, the views and the tools read, which never see it.
+//! pixels on each side (same pixel size and centres), so that occluders just off screen count. The
+//! method and its blur then draw the view and the blur's reach around it (the margin is read as
+//! depth only), and the inner part of the results is copied into the AO targets the composite, the
+//! views and the tools read, which never see the margin.
 //!
 //! Drawn at the AO size, each texel's front depth, back face, hidden layer and normal belong to one
 //! point of the scene, the texel's centre: the surface passes cost the AO size's pixels, not the
 //! output's (a quarter of them at half resolution).
 
 use super::Engine;
-use crate::ao::guard_band::{ao_offset, crop, guard_band_pixels, widen, GuardFrame};
+use crate::ao::guard_band::{ao_offset, crop, guard_band_pixels, read_region, widen, GuardFrame};
 use crate::ao::{AoMethod, AoTargets};
 use crate::render::frame::Frame;
 use crate::render::view::View;
@@ -74,11 +75,13 @@ impl Engine {
             return Ok(());
         }
         let surface = self.run_surface_passes(&at_ao_size, &depth, work.size(), Some(normals))?;
-        let blurred = self.run_method(camera, work, &surface, view)?;
-        let Some(g) = guard else {
+        let offset = guard.map(|g| ao_offset(g.pixels, resolution));
+        // With a margin, AO only where the view's AO and its blur read it.
+        let region = offset.map(|o| read_region(work.size(), targets.size(), o));
+        let blurred = self.run_method(camera, work, &surface, view, region)?;
+        let Some(offset) = offset else {
             return Ok(());
         };
-        let offset = ao_offset(g.pixels, resolution);
         self.pass("guard band crop", "ao", || {
             crop(&self.gl, work, targets, offset, blurred)
         });
