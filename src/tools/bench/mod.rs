@@ -79,7 +79,7 @@ pub struct BenchArgs {
     #[arg(long)]
     pub ceilings: bool,
     /// Rays per pixel of the screen-space references (the error split; test cameras only; 1 to
-    /// 65536; default 64).
+    /// 65536; default: --ref-rays, so that they trace the ray-traced reference's own rays).
     #[arg(long, allow_negative_numbers = true,
           value_parser = clap::value_parser!(u32).range(1..=limits::MAX_REF_RAYS as i64))]
     pub screen_rays: Option<u32>,

@@ -79,6 +79,12 @@ pub enum Surface {
     /// there to its back face exactly (the set thickness where it has none): what the buffer
     /// knows, rebuilt with no connectivity rule and no minimum thickness.
     Patches,
+    /// Each pixel's footprint at its own depth, solid from there to its back face: the second
+    /// layer's patches, which have no normal of their own. Normals rebuilt from a second layer's
+    /// depth (a patchwork of whatever lies hidden, every pixel a silhouette) tilt its patches until
+    /// a corner reaches half the centre's depth, in front of the first surface that hides it; a
+    /// flat footprint is the slab `vbao` takes at a tap of that layer.
+    FlatPatches,
 }
 
 impl Surface {
@@ -183,7 +189,8 @@ impl DepthBuffer {
     }
 
     /// The second layer as a buffer of its own (same projection, thickness and guard band; its own
-    /// back faces when they were captured, each slab at least `vbao`'s minimum deep; no normals):
+    /// back faces when they were captured, each slab at least `vbao`'s minimum deep; no normals, so
+    /// flat patches where the first layer has patches):
     /// the screen-space reference's second field of slabs.
     pub(crate) fn second_layer_buffer(&self) -> Option<DepthBuffer> {
         let front = self.second_layer.clone()?;
@@ -207,6 +214,10 @@ impl DepthBuffer {
             normals: None,
             second_layer: None,
             second_back_depth: None,
+            surface: match self.surface {
+                Surface::Triangles => Surface::Triangles,
+                Surface::Patches | Surface::FlatPatches => Surface::FlatPatches,
+            },
             ..self.clone()
         })
     }
@@ -433,8 +444,10 @@ impl DepthBuffer {
                 h.f32(*d);
             }
         }
-        if self.surface == Surface::Patches {
-            h.bytes(b"planar patches");
+        match self.surface {
+            Surface::Triangles => {}
+            Surface::Patches => h.bytes(b"planar patches"),
+            Surface::FlatPatches => h.bytes(b"flat patches"),
         }
         if let Some(normals) = &self.normals {
             h.bytes(b"surface normals");

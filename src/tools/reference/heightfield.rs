@@ -81,7 +81,8 @@ impl Heightfield {
             .filter(|d| d.is_finite() && **d > 0.0)
             .fold(0.0f64, |m, d| m.max(*d as f64));
         let thickness = buf.thickness as f64;
-        let patched = buf.surface == Surface::Patches;
+        let patched = matches!(buf.surface, Surface::Patches | Surface::FlatPatches);
+        let flat = buf.surface == Surface::FlatPatches;
         let back = buf
             .back_depth
             .as_ref()
@@ -131,6 +132,7 @@ impl Heightfield {
                 &f.inv,
                 |i, j| f.point(i, j),
                 |i, j, p| f.normal(i, j, p),
+                flat,
             );
             field.patches = Some(patches);
         }

@@ -26,13 +26,15 @@ pub(crate) const MAX_CORNER_CHANGE: f64 = 0.9;
 impl Patches {
     /// `inv`: inverse depth per pixel (0 for sky, rows top-down); `sx`, `sy`: view-space x/−z and
     /// y/−z at the image edges; `point(i, j)`: the pixel centre in view space; `normal(i, j, p)`:
-    /// its unit normal facing the camera.
+    /// its unit normal facing the camera; `flat`: every footprint at its centre's depth instead
+    /// (the normals are not read).
     pub(crate) fn new(
         (w, h): (usize, usize),
         (sx, sy): (f64, f64),
         inv: &[f64],
         point: impl Fn(usize, usize) -> Option<DVec3>,
         normal: impl Fn(usize, usize, DVec3) -> DVec3,
+        flat: bool,
     ) -> Patches {
         let mut planes = vec![[0.0; 3]; w * h];
         for j in 0..h {
@@ -42,6 +44,10 @@ impl Patches {
                     continue; // sky: inverse depth 0, never solid
                 };
                 let centre = inv[k];
+                if flat {
+                    planes[k] = [centre, 0.0, 0.0];
+                    continue;
+                }
                 let n = normal(i, j, p);
                 // Points e(x)·d on the plane: n·(e d − p) = 0, so 1/d = n·e(x) / n·p, and e(x) moves
                 // by (2 sx / w, −2 sy / h, 0) per pixel.
@@ -112,7 +118,7 @@ mod tests {
                 -d,
             ))
         };
-        let patches = Patches::new((w, h), (sx, sy), &inv, point, |_, _, _| n);
+        let patches = Patches::new((w, h), (sx, sy), &inv, point, |_, _, _| n, false);
         for (i, j) in [(0, 0), (3, 2), (6, 4)] {
             for (x, y) in [(i + 1, j), (i, j + 1), (i + 1, j + 1)] {
                 let want = 1.0 / depth(x as f64, y as f64);
@@ -129,7 +135,7 @@ mod tests {
         let inv = vec![0.25; 4];
         let point = |i: usize, j: usize| Some(DVec3::new(i as f64 * 0.1, j as f64 * 0.1, -4.0));
         let edge_on = |_: usize, _: usize, p: DVec3| p.cross(DVec3::Y).normalize();
-        let patches = Patches::new((2, 2), (1.0, 1.0), &inv, point, edge_on);
+        let patches = Patches::new((2, 2), (1.0, 1.0), &inv, point, edge_on, false);
         for corner in [(-0.5, -0.5), (0.5, 0.5), (-0.5, 0.5), (0.5, -0.5)] {
             let v = patches.inv_at(0, 0, corner);
             let (lo, hi) = (

@@ -59,7 +59,7 @@ use super::params::{AoVariant, RefParams};
 use super::sampling;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-const SCREEN_ALGORITHM_VERSION: u32 = 5;
+const SCREEN_ALGORITHM_VERSION: u32 = 6;
 
 /// Renders the screen-space reference of `depth` with the ray-traced reference's parameters
 /// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`], the size of the
@@ -236,6 +236,58 @@ pub(crate) mod tests {
             guard_band: 0,
             surface: Surface::Triangles,
         }
+    }
+
+    /// A wall facing the camera at 3 m hides a patchwork (columns at 3.3 m and 8 m): normals rebuilt
+    /// from it tilt the hidden patches until their corners reach in front of the wall. The second
+    /// layer's patches are flat, so nothing lies in front of the wall and its pixels stay open.
+    #[test]
+    fn the_second_layers_patches_never_reach_in_front_of_the_surface_that_hides_them() {
+        let (w, h) = (24u32, 16u32);
+        let mut buf = buffer(w, h, |_, _| 3.0).with_thickness(0.5);
+        buf.surface = Surface::Patches;
+        buf.normals = Some(vec![[0.0, 0.0, 1.0]; (w * h) as usize]);
+        buf.second_layer = Some(
+            (0..w * h)
+                .map(|k| if (k % w) % 2 == 0 { 3.3 } else { 8.0 })
+                .collect(),
+        );
+        let second = buf.second_layer_buffer().unwrap();
+        assert_eq!(second.surface, Surface::FlatPatches);
+        let params = RefParams {
+            radius: 1.0,
+            rays: 64,
+            ..Default::default()
+        };
+        let img = render_screen_space(&buf, &params).unwrap();
+        for y in 4..h - 4 {
+            for x in 4..w - 4 {
+                let a = img.ao[(y * w + x) as usize];
+                assert_eq!(a, 1.0, "pixel ({x}, {y}) is occluded: {a}");
+            }
+        }
+        // With the hidden layer's normals rebuilt from its depth, its patches did occlude.
+        let tilted = Heightfield::new(&DepthBuffer {
+            surface: Surface::Patches,
+            ..second
+        });
+        let first = Heightfield::new(&buf);
+        let layers = Layers {
+            first: &first,
+            second: Some(&tilted),
+        };
+        let blocked = (4..h - 4)
+            .flat_map(|y| (4..w - 4).map(move |x| (x, y)))
+            .filter(|&(x, y)| {
+                let (start, _) = ray_start(&first, x as usize, y as usize, &params).unwrap();
+                let start = start.unwrap();
+                (0..64).any(|i| {
+                    let uv = sampling::lattice_point(i, 64, (0.3, 0.7));
+                    start.blocked(&layers, uv, 1.0)
+                })
+            })
+            .count();
+        assert!(blocked > 0, "tilted hidden patches blocked nothing");
     }
 
     #[test]

@@ -315,7 +315,7 @@ fn mean_test(row: &Row, pick: impl Fn(&super::report::CameraError) -> f64) -> f6
 /// carries little noise and the reference at 64 rays a block carries σ ≈ 0.03.
 fn depth_buffer_psnr_without_noise(row: &Row) -> f64 {
     mean_test(row, |c| {
-        let mse = c.depth_buffer_error.rmse.powi(2) - c.ceiling_noise_rms.powi(2);
+        let mse = c.depth_buffer_error.rmse.powi(2) - c.ceiling_own_noise_rms.powi(2);
         -10.0 * mse.max(1e-10).log10()
     })
 }
@@ -381,18 +381,19 @@ fn split_section(s: &mut String, r: &Report) -> fmt::Result {
         s,
         "\nThe depth-buffer columns depend only on the camera, the radius and the ceiling's thickness. \
          **Does the split add up?** For each test camera, **parts PSNR** = 10·log10(1 / (RMSE_db² + \
-         RMSE_s² − 2σ²)), the PSNR the method would have if its error against the ray-traced reference \
-         were the depth buffer's error and its sampling error added in squares (uncorrelated), where \
-         σ² (**ceiling noise**, shown as the RMS σ) is the mean squared standard error of the \
-         screen-space reference: its Monte Carlo noise is in both parts but not in the total, so it is \
-         taken out twice (the ray-traced reference's noise is in the total and the depth-buffer part \
-         alike); **gap** = \
+         RMSE_s² − 2σ_own²)), the PSNR the method would have if its error against the ray-traced \
+         reference were the depth buffer's error and its sampling error added in squares \
+         (uncorrelated). **Ceiling noise** σ (RMS) is the screen-space reference's standard error. \
+         Where it traces the ray-traced reference's own rays (`--screen-rays` equal to `--ref-rays`, \
+         the default) its noise is the truth's: in the sampling part and the total alike, not in the \
+         depth-buffer part, and σ_own = 0. Where it draws rays of its own, σ_own = σ: its noise is in \
+         both parts but not in the total, so it is taken out twice; **gap** = \
          method PSNR − parts PSNR (mean over the test cameras; in brackets the largest |gap| of one \
          camera). A positive gap means the two parts partly cancel (the method under-darkens where the \
          depth buffer over-darkens), a negative one that they add up more than in squares. **Adds up**: \
          every test camera's |gap| ≤ {ADDS_UP_DB} dB ({adds_up} of {} rows). **Ceiling above method**: the \
          screen-space reference, its own noise taken out (**without its noise**: 10·log10(1 / \
-         (RMSE_db² − σ²)) per test camera), scores a higher PSNR against the ray-traced one than the \
+         (RMSE_db² − σ_own²)) per test camera), scores a higher PSNR against the ray-traced one than the \
          method does ({ceiling} of {} rows).\n",
         r.rows.len(),
         r.rows.len()

@@ -20,6 +20,8 @@ pub struct Protocol {
     pub height: u32,
     pub ref_scale: u32,
     pub ref_rays: u32,
+    /// Not given, the ray-traced reference's: the ceilings then trace its own rays
+    /// (`references::ceiling_shares_truth_rays`), and the error split holds no noise of their own.
     pub screen_rays: u32,
     pub warmup: u32,
     pub frames: u32,
@@ -33,7 +35,7 @@ pub const FULL: Protocol = Protocol {
     height: 1080,
     ref_scale: 6,
     ref_rays: 256,
-    screen_rays: 64,
+    screen_rays: 256,
     warmup: 2,
     frames: 7,
     ceilings: true,
@@ -46,7 +48,7 @@ pub const QUICK: Protocol = Protocol {
     height: 360,
     ref_scale: 4,
     ref_rays: 256,
-    screen_rays: 64,
+    screen_rays: 256,
     warmup: 1,
     frames: 5,
     ceilings: false,
@@ -79,7 +81,9 @@ pub fn resolve(given: &Given, base: &Protocol) -> (Protocol, Vec<String>) {
         height: given.height.unwrap_or(base.height),
         ref_scale: given.ref_scale.unwrap_or(base.ref_scale),
         ref_rays: given.ref_rays.unwrap_or(base.ref_rays),
-        screen_rays: given.screen_rays.unwrap_or(base.screen_rays),
+        screen_rays: given
+            .screen_rays
+            .unwrap_or(given.ref_rays.unwrap_or(base.ref_rays)),
         warmup: given.warmup.unwrap_or(base.warmup),
         frames: given.frames.unwrap_or(base.frames),
         ceilings: given.ceilings || base.ceilings,

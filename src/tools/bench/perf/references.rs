@@ -71,6 +71,20 @@ fn params(radius: f32, cfg: &PerfConfig, progress: bool) -> RefParams {
     }
 }
 
+/// Whether each pixel of the block-averaged screen-space references traces the rays the
+/// ray-traced reference traces for the same sub-pixel (`screen_box.rs`): the same seed, and the
+/// same share of the rays per sub-pixel.
+pub fn ceiling_shares_truth_rays(cfg: &PerfConfig) -> bool {
+    shares_rays(cfg.ref_rays, cfg.screen_rays, cfg.ref_scale)
+}
+
+/// Whether `screen_rays` per block of `scale`² pixels give each pixel the share of `ref_rays` the
+/// truth's footprint mean gives each sub-pixel.
+fn shares_rays(ref_rays: u32, screen_rays: u32, scale: u32) -> bool {
+    let per_pixel = |rays: u32| rays.max(1).div_ceil(scale.max(1).pow(2));
+    per_pixel(screen_rays) == per_pixel(ref_rays)
+}
+
 /// The screen-space references' parameters: the depth buffer's pixel centres at the reference's
 /// size.
 fn screen_params(radius: f32, rays: u32, progress: bool) -> RefParams {
@@ -349,6 +363,16 @@ pub fn screen_references(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_ceiling_shares_the_truths_rays_at_the_same_share_per_pixel() {
+        // 256 rays over 6×6 sub-pixels: 8 each; 280 rounds to 8 too, 250 to 7.
+        assert!(shares_rays(256, 256, 6));
+        assert!(shares_rays(256, 280, 6));
+        assert!(!shares_rays(256, 250, 6));
+        assert!(!shares_rays(256, 64, 6));
+        assert!(shares_rays(64, 64, 1));
+    }
 
     #[test]
     fn each_method_is_split_against_its_own_thickness_model() {

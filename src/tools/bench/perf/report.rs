@@ -23,7 +23,12 @@ pub struct CameraError {
     /// RMS over the pixels of the screen-space reference's standard error: its Monte Carlo noise,
     /// which both parts contain and the total does not (test cameras; 0 on training cameras).
     pub ceiling_noise_rms: f64,
-    /// 10·log10(1 / (RMSE_depth_buffer² + RMSE_sampling² − 2·ceiling_noise_rms²)): the raw PSNR the
+    /// The part of that noise the ray-traced reference does not share: `ceiling_noise_rms`, or 0 when
+    /// the screen-space reference traced the ray-traced one's own rays (`--screen-rays` equal to
+    /// `--ref-rays`), where its noise is the truth's: in the sampling part and the total alike, and
+    /// not in the depth-buffer part.
+    pub ceiling_own_noise_rms: f64,
+    /// 10·log10(1 / (RMSE_depth_buffer² + RMSE_sampling² − 2·ceiling_own_noise_rms²)): the raw PSNR the
     /// method would have if the two parts' errors added up in squares (test cameras; 0 errors give
     /// the cap).
     pub parts_psnr: f64,

@@ -53,7 +53,8 @@ pub fn run_setting(
     engine.sync_shader_constants()?;
 
     let fit = fit_on_training_cameras(sd, s, &views);
-    let cameras = camera_errors(sd, screen, s, ceiling, &views, &fit, cfg.flip)?;
+    let shared = super::references::ceiling_shares_truth_rays(cfg);
+    let cameras = camera_errors(sd, screen, (s, ceiling, shared), &views, &fit, cfg.flip)?;
     let test: Vec<&CameraError> = cameras.iter().filter(|c| !c.train).collect();
     let raw = mean_metrics(&test, |c| c.raw);
     let mean_of = |f: &dyn Fn(&CameraError) -> f64| {
@@ -242,8 +243,7 @@ fn fit_on_training_cameras(sd: &SceneData, s: &Setting, views: &[Vec<f32>]) -> F
 fn camera_errors(
     sd: &SceneData,
     screen: &ScreenMap,
-    s: &Setting,
-    ceiling: Ceiling,
+    (s, ceiling, shared_rays): (&Setting, Ceiling, bool),
     views: &[Vec<f32>],
     fit: &Fit,
     flip: bool,
@@ -292,11 +292,14 @@ fn camera_errors(
             }
         };
         // What the method's MSE would be if its error were the two parts' errors added in squares
-        // (uncorrelated). The screen-space reference's Monte Carlo noise is in both parts and not
-        // in the total, so its variance is taken out twice; the ray-traced reference's noise is in
-        // the total and in the depth-buffer part alike.
+        // (uncorrelated). Drawn on rays of its own, the screen-space reference's Monte Carlo noise
+        // is in both parts and not in the total, so its variance is taken out twice (the ray-traced
+        // reference's noise is in the total and in the depth-buffer part alike). On the truth's own
+        // rays its noise is the truth's: in the sampling part and the total, not in the
+        // depth-buffer part, and nothing is taken out.
+        let ceiling_own_noise_rms = if shared_rays { 0.0 } else { ceiling_noise_rms };
         let parts_mse = depth_buffer_error.rmse.powi(2) + sampling_error.rmse.powi(2)
-            - 2.0 * ceiling_noise_rms.powi(2);
+            - 2.0 * ceiling_own_noise_rms.powi(2);
         let parts_psnr = metrics::psnr_from_mse(parts_mse.max(0.0));
         cameras.push(CameraError {
             scene: sd.name.clone(),
@@ -307,6 +310,7 @@ fn camera_errors(
             depth_buffer_error,
             sampling_error,
             ceiling_noise_rms,
+            ceiling_own_noise_rms,
             parts_psnr,
         });
     }
