@@ -134,6 +134,21 @@ impl Heightfield {
                 |i, j, p| f.normal(i, j, p),
                 flat,
             );
+            // The back's inverse depth over the front's at each pixel (as `blocked_by_patches`
+            // scales the front to its back): the measured back face, else the set thickness.
+            let back_ratio = |k: usize| -> f64 {
+                let front = f.inv[k];
+                match &f.back {
+                    Some(b) if b.measured[k] => b.inv[k] / front,
+                    _ if f.thickness.is_finite() => 1.0 / (1.0 + f.thickness * front),
+                    _ => 0.0,
+                }
+            };
+            let patches = if flat {
+                patches
+            } else {
+                patches.with_convex_edges(back_ratio)
+            };
             field.patches = Some(patches);
         }
         field
@@ -419,9 +434,13 @@ impl Heightfield {
     /// footprint and is tested against that pixel's slab, from its plane to its back face (the
     /// back plane: the front's depths scaled by the pixel's back-to-front ratio), or the thickness.
     fn blocked_by_patches(&self, seg: &GridSegment, patches: &Patches) -> bool {
+        // Footprint edges, and the centre lines between a footprint's quadrants (each may take a
+        // neighbour's plane at a convex edge: `Patches::with_convex_edges`).
         let families = [
             EdgeFamily::new(seg.ax - 0.5, seg.dx, seg.s0),
             EdgeFamily::new(seg.ay - 0.5, seg.dy, seg.s0),
+            EdgeFamily::new(seg.ax, seg.dx, seg.s0),
+            EdgeFamily::new(seg.ay, seg.dy, seg.s0),
         ];
         let mut prev = seg.s0;
         let mut piece = |s: f64| -> bool {
@@ -435,16 +454,32 @@ impl Heightfield {
                 return false; // sky
             }
             let (ga, gb) = (self.grid_at(seg, a), self.grid_at(seg, b));
-            let (fa, fb) = (patches.inv_at(i, j, ga), patches.inv_at(i, j, gb));
-            let back = self
+            let q = super::patches::quadrant(i, j, (mx, my));
+            let (own_a, theirs_a) = patches.planes_in_quadrant(i, j, q, ga);
+            let (own_b, theirs_b) = patches.planes_in_quadrant(i, j, q, gb);
+            let ratio = self
                 .back
                 .as_ref()
                 .filter(|back| back.measured[k])
-                .map(|back| {
-                    let ratio = back.inv[k] / self.inv[k];
-                    (fa * ratio, fb * ratio)
-                });
-            self.piece_through(seg, (a, fa), (b, fb), back)
+                .map(|back| back.inv[k] / self.inv[k]);
+            let through = |(a, fa): (f64, f64), (b, fb): (f64, f64)| {
+                let back = ratio.map(|r| (fa * r, fb * r));
+                self.piece_through(seg, (a, fa), (b, fb), back)
+            };
+            let (Some(ta), Some(tb)) = (theirs_a, theirs_b) else {
+                return through((a, own_a), (b, own_b));
+            };
+            // The farther of two affine functions: affine on each side of where they cross.
+            let (da, db) = (own_a - ta, own_b - tb);
+            if da * db >= 0.0 {
+                let use_own = da + db <= 0.0;
+                let (fa, fb) = if use_own { (own_a, own_b) } else { (ta, tb) };
+                return through((a, fa), (b, fb));
+            }
+            let u = da / (da - db);
+            let s = a + (b - a) * u;
+            let f = own_a + (own_b - own_a) * u;
+            through((a, own_a.min(ta)), (s, f)) || through((s, f), (b, own_b.min(tb)))
         };
         Self::any_crossing(seg, families, &mut piece) || piece(seg.s1)
     }

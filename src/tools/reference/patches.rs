@@ -13,7 +13,22 @@ use glam::DVec3;
 /// Each pixel's plane as inverse depth: `[at the centre, per pixel along x, per pixel along y]`.
 pub(crate) struct Patches {
     planes: Vec<[f64; 3]>,
+    /// Per pixel and quadrant of its footprint (`quadrant`), whose plane covers it: `OWN`, or the
+    /// horizontal (`ACROSS_X`) or vertical (`ACROSS_Y`) neighbour's on that side (`convex_edges`).
+    covers: Vec<[u8; 4]>,
     w: usize,
+    h: usize,
+}
+
+const OWN: u8 = 0;
+const ACROSS_X: u8 = 1;
+const ACROSS_Y: u8 = 2;
+
+/// Quadrant of pixel (i, j)'s footprint holding grid point (x, y): bit 0 right of the centre,
+/// bit 1 below it.
+#[inline]
+pub(crate) fn quadrant(i: usize, j: usize, (x, y): (f64, f64)) -> usize {
+    (x >= i as f64) as usize | ((y >= j as f64) as usize) << 1
 }
 
 /// The largest change of inverse depth from a pixel's centre to a corner, as a fraction of the
@@ -75,11 +90,110 @@ impl Patches {
                 planes[k] = [centre, gx, gy];
             }
         }
-        Patches { planes, w }
+        Patches {
+            planes,
+            covers: vec![[OWN; 4]; w * h],
+            w,
+            h,
+        }
     }
 
-    /// Inverse depth of pixel (i, j)'s plane at grid point (x, y) (pixel centres at integers).
+    /// Convex edges: where a pixel's plane, carried over the half of its footprint towards a
+    /// neighbour, comes nearer than that neighbour's plane while the neighbour's lies within this
+    /// pixel's slab (in front of its back, `back_ratio(k)`: the back's inverse depth over the front's,
+    /// 0 for none), the pixel's centre lies on a face that ends inside its footprint and the
+    /// neighbour's face goes on there (the top of a wall seen from above, spread over the pixel
+    /// below it, would stand in front of the wall's face and block its upward rays). There the
+    /// surface is the farther of the two planes, as at a convex edge between two faces; it never
+    /// comes nearer than the pixel's own. A neighbour outside the slab is a silhouette and leaves
+    /// the pixel's own plane alone (a thin board in front of a far wall stays whole).
+    pub(crate) fn with_convex_edges(mut self, back_ratio: impl Fn(usize) -> f64) -> Patches {
+        let (w, h) = (self.w, self.h);
+        let mut covers = vec![[OWN; 4]; w * h];
+        for j in 0..h {
+            for i in 0..w {
+                let k = j * w + i;
+                if self.planes[k][0] <= 0.0 {
+                    continue; // sky
+                }
+                let ratio = back_ratio(k);
+                // Whether the neighbour at (ni, nj), met at the grid point b, is a face this
+                // pixel's plane should give way to there.
+                let gives_way = |ni: isize, nj: isize, b: (f64, f64)| -> bool {
+                    if ni < 0 || nj < 0 || ni >= w as isize || nj >= h as isize {
+                        return false;
+                    }
+                    let (ni, nj) = (ni as usize, nj as usize);
+                    if self.planes[nj * w + ni][0] <= 0.0 {
+                        return false; // sky
+                    }
+                    let own = self.inv_of(k, i, j, b);
+                    let theirs = self.inv_of(nj * w + ni, ni, nj, b);
+                    own > theirs && theirs >= own * ratio
+                };
+                for q in 0..4 {
+                    let sx: isize = if q & 1 == 1 { 1 } else { -1 };
+                    let sy: isize = if q & 2 == 2 { 1 } else { -1 };
+                    let (fi, fj) = (i as f64, j as f64);
+                    let across_x = gives_way(i as isize + sx, j as isize, (fi + 0.5 * sx as f64, fj));
+                    let across_y = gives_way(i as isize, j as isize + sy, (fi, fj + 0.5 * sy as f64));
+                    let corner = (fi + 0.5 * sx as f64, fj + 0.5 * sy as f64);
+                    let x_plane = || {
+                        let ni = (i as isize + sx) as usize;
+                        self.inv_of(j * w + ni, ni, j, corner)
+                    };
+                    let y_plane = || {
+                        let nj = (j as isize + sy) as usize;
+                        self.inv_of(nj * w + i, i, nj, corner)
+                    };
+                    covers[k][q] = match (across_x, across_y) {
+                        (true, true) if x_plane() < y_plane() => ACROSS_X,
+                        (_, true) => ACROSS_Y,
+                        (true, false) => ACROSS_X,
+                        (false, false) => OWN,
+                    };
+                }
+            }
+        }
+        self.covers = covers;
+        self
+    }
+
     #[inline]
+    fn inv_of(&self, k: usize, i: usize, j: usize, (x, y): (f64, f64)) -> f64 {
+        let [c, gx, gy] = self.planes[k];
+        c + gx * (x - i as f64) + gy * (y - j as f64)
+    }
+
+    /// Inverse depths at grid point (x, y) of pixel (i, j)'s own plane and, where quadrant `q` of
+    /// its footprint (`quadrant`) meets a convex edge, of the neighbour's plane there: the surface
+    /// in that quadrant is the farther of the two (the smaller inverse depth).
+    #[inline]
+    pub(crate) fn planes_in_quadrant(
+        &self,
+        i: usize,
+        j: usize,
+        q: usize,
+        p: (f64, f64),
+    ) -> (f64, Option<f64>) {
+        let k = j * self.w + i;
+        let own = self.inv_of(k, i, j, p);
+        let theirs = match self.covers[k][q] {
+            ACROSS_X => {
+                let ni = if q & 1 == 1 { i + 1 } else { i - 1 };
+                Some(self.inv_of(j * self.w + ni, ni, j, p))
+            }
+            ACROSS_Y => {
+                let nj = if q & 2 == 2 { j + 1 } else { j - 1 };
+                Some(self.inv_of(nj * self.w + i, i, nj, p))
+            }
+            _ => None,
+        };
+        (own, theirs)
+    }
+
+    /// Inverse depth of pixel (i, j)'s own plane at grid point (x, y) (pixel centres at integers).
+    #[cfg(test)]
     pub(crate) fn inv_at(&self, i: usize, j: usize, (x, y): (f64, f64)) -> f64 {
         let [c, gx, gy] = self.planes[j * self.w + i];
         c + gx * (x - i as f64) + gy * (y - j as f64)

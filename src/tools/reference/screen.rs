@@ -59,7 +59,7 @@ use super::params::{AoVariant, RefParams};
 use super::sampling;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-const SCREEN_ALGORITHM_VERSION: u32 = 6;
+const SCREEN_ALGORITHM_VERSION: u32 = 8;
 
 /// Renders the screen-space reference of `depth` with the ray-traced reference's parameters
 /// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`], the size of the

@@ -137,7 +137,11 @@ pub fn markdown(r: &Report, cfg: &PerfConfig) -> Result<String, fmt::Error> {
          off-screen occluders: the same for every method with the same thickness model at a camera and radius); **sampling \
          error** = the method (raw) against the screen-space reference (what its samples, mips, \
          blur and intensity lose). Both on the ray-traced reference's non-sky pixels, means over \
-         the test cameras, without FLIP; both include the two references' Monte Carlo noise. \
+         the test cameras, without FLIP. At the ray-traced reference's rays per block (the default) \
+         each of its pixels traces the rays that reference traces for the same sub-pixel, so the \
+         two share their Monte Carlo noise, which the depth-buffer error then does not hold; at \
+         other counts both errors hold both references' noise. The second layer's patches are \
+         flat (it has no normals of its own). \
          Each method is split against the ceiling with its own model of what lies behind a depth \
          sample: `vbao` against slabs of its thickness (the solid at a pixel is [z, z + T] in linear \
          depth) or, with `thickness = \"backface\"`, against slabs reaching each pixel's back \
