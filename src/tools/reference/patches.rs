@@ -135,8 +135,10 @@ impl Patches {
                     let sx: isize = if q & 1 == 1 { 1 } else { -1 };
                     let sy: isize = if q & 2 == 2 { 1 } else { -1 };
                     let (fi, fj) = (i as f64, j as f64);
-                    let across_x = gives_way(i as isize + sx, j as isize, (fi + 0.5 * sx as f64, fj));
-                    let across_y = gives_way(i as isize, j as isize + sy, (fi, fj + 0.5 * sy as f64));
+                    let across_x =
+                        gives_way(i as isize + sx, j as isize, (fi + 0.5 * sx as f64, fj));
+                    let across_y =
+                        gives_way(i as isize, j as isize + sy, (fi, fj + 0.5 * sy as f64));
                     let corner = (fi + 0.5 * sx as f64, fj + 0.5 * sy as f64);
                     let x_plane = || {
                         let ni = (i as isize + sx) as usize;

@@ -290,6 +290,76 @@ pub(crate) mod tests {
         assert!(blocked > 0, "tilted hidden patches blocked nothing");
     }
 
+    /// A box seen from above and in front: its front face (z = −3, facing the camera) meets its top
+    /// (y = −0.5, from z = −3 to −4) in a convex edge, with a far wall behind. A pixel whose centre
+    /// lies on the top spreads the top's plane over its footprint, and below the edge that plane
+    /// comes in front of the front face; the front face's pixels must stay open (every ray leaves
+    /// towards +z, where nothing is).
+    #[test]
+    fn a_convex_edge_does_not_shade_the_face_below_it() {
+        let (w, h) = (32u32, 48u32);
+        let probe = Heightfield::new(&buffer(w, h, |_, _| 1.0));
+        let (y_top, front, back) = (-0.5f64, 3.0f64, 4.0f64);
+        let hit = |x: u32, y: u32| -> (f32, [f32; 3], f32) {
+            let e = probe.point(x as usize, y as usize).unwrap(); // depth 1: the view ray
+            if e.y * front < y_top {
+                return (front as f32, [0.0, 0.0, 1.0], back as f32);
+            }
+            let d = y_top / e.y;
+            if e.y < 0.0 && d <= back {
+                return (d as f32, [0.0, 1.0, 0.0], back as f32);
+            }
+            (10.0, [0.0, 0.0, 1.0], f32::INFINITY)
+        };
+        let mut buf = buffer(w, h, |x, y| hit(x, y).0).with_thickness(0.5);
+        buf.surface = Surface::Patches;
+        buf.normals = Some(
+            (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| hit(x, y).1)
+                .collect(),
+        );
+        buf.back_depth = Some(
+            (0..h)
+                .flat_map(|y| (0..w).map(move |x| (x, y)))
+                .map(|(x, y)| hit(x, y).2)
+                .collect(),
+        );
+        let x = w / 2;
+        let first_front = (0..h).find(|&y| hit(x, y).0 == front as f32).unwrap();
+        let top = first_front - 1;
+        assert_eq!(hit(x, top).1, [0.0, 1.0, 0.0], "the row above is the top");
+        // The top pixel's own plane at the edge it shares with the row below lies in front of the
+        // front face there: without the convex edge it would stand in front of that face.
+        let field = Heightfield::new(&buf);
+        let p = field.point(x as usize, top as usize).unwrap();
+        let n = field.normal(x as usize, top as usize, p);
+        let along = |d: f64| {
+            // Depth of the top's plane on the ray half a pixel below the top pixel's centre.
+            let e = probe.point(x as usize, top as usize).unwrap();
+            let e2 = probe.point(x as usize, first_front as usize).unwrap();
+            let mid = 0.5 * (e + e2);
+            n.dot(p) / n.dot(mid) * d
+        };
+        assert!(
+            along(1.0) < front - 0.01,
+            "the top's plane does not come forward: {}",
+            along(1.0)
+        );
+        let params = RefParams {
+            radius: 1.0,
+            rays: 64,
+            ..Default::default()
+        };
+        let img = render_screen_space(&buf, &params).unwrap();
+        for y in first_front..first_front + 3 {
+            for x in 4..w - 4 {
+                let a = img.ao[(y * w + x) as usize];
+                assert_eq!(a, 1.0, "front-face pixel ({x}, {y}) is occluded: {a}");
+            }
+        }
+    }
+
     #[test]
     fn edge_families_cross_every_integer_in_order() {
         let mut f = EdgeFamily::new(0.25, 3.0, 0.0);
