@@ -66,16 +66,20 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
         assert_eq!(vbao.ceiling_thickness, Some(thickness));
         assert_ne!(gtao.depth_buffer_error.rmse, vbao.depth_buffer_error.rmse);
         for row in pair {
-            // parts PSNR is 10·log10(1 / (RMSE_db² + RMSE_s² − 2σ²)) of each test camera, with σ²
-            // the screen-space reference's mean squared standard error (8 rays: at most 1/32 per
-            // pixel), averaged.
+            // parts PSNR is 10·log10(1 / (RMSE_db² + RMSE_s² − 2σ_own²)) of each test camera,
+            // averaged. σ² is the screen-space reference's mean squared standard error (8 rays: at
+            // most 1/32 per pixel); at the truth's own rays (8 and 8 here) it shares the truth's
+            // noise and σ_own = 0.
             let test: Vec<_> = row.cameras.iter().filter(|c| !c.train).collect();
             assert!(!test.is_empty());
             let mut mean = 0.0;
             for c in &test {
                 assert!(c.ceiling_noise_rms > 0.0 && c.ceiling_noise_rms <= (0.25f64 / 8.0).sqrt());
-                let mse = c.depth_buffer_error.rmse.powi(2) + c.sampling_error.rmse.powi(2)
-                    - 2.0 * c.ceiling_noise_rms.powi(2);
+                assert_eq!(
+                    c.ceiling_own_noise_rms, 0.0,
+                    "the ceiling traced the truth's rays"
+                );
+                let mse = c.depth_buffer_error.rmse.powi(2) + c.sampling_error.rmse.powi(2);
                 assert!(mse > 0.0, "{mse}");
                 let want = -10.0 * mse.log10();
                 assert!(
@@ -97,7 +101,7 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
     let vbao_row = format!("| room | vbao | n8 r0.5 | {thickness} m |");
     assert!(md.contains(&vbao_row), "{vbao_row} not in {md}");
     assert!(md.contains("| demo | gtao | n8 r0.5 | ∞ |"), "{md}");
-    assert!(md.contains("adds up") && md.contains("10·log10(1 / (RMSE_db² + RMSE_s² − 2σ²))"));
+    assert!(md.contains("adds up") && md.contains("10·log10(1 / (RMSE_db² + RMSE_s² − 2σ_own²))"));
     // The per-camera table is one per scene (their cameras differ).
     assert!(
         md.contains("| demo | setting |") && md.contains("| room | setting |"),
