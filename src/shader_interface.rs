@@ -498,30 +498,3 @@ pub fn check_program(
     }
     problems
 }
-
-#[cfg(test)]
-mod tests {
-    use crate::ao::method::vbao::feature_defines;
-    use crate::ao::method_pass::normal_source_define;
-    use crate::ao::upsample::POWER_ONE_DEFINE;
-    use crate::ao::AoSettings;
-
-    /// The compile-time choices Rust sets are the names the shaders test: a misspelt one would
-    /// leave every path compiled (slower, with the same image) without any error.
-    #[test]
-    fn every_define_rust_sets_is_tested_by_its_shader() {
-        let settings = AoSettings::default();
-        let vbao = include_str!("../Res/ao/vbao.frag");
-        for (name, _) in feature_defines(&settings) {
-            assert!(
-                vbao.contains(&format!("#if {name}")),
-                "vbao.frag never tests {name}"
-            );
-        }
-        let (normals, _) = normal_source_define(&settings);
-        let common = include_str!("../Res/ao/common.glsl");
-        assert!(common.contains(&format!("defined({normals})")), "{normals}");
-        let composite = include_str!("../Res/ao/composite_bilateral.frag");
-        assert!(composite.contains(&format!("#ifdef {POWER_ONE_DEFINE}")));
-    }
-}

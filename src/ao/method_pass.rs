@@ -252,7 +252,13 @@ impl AoMethodPass for ShaderMethod {
         Ok(())
     }
     fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        self.packed.blur(inputs, &self.blur)
+        self.packed.blur(
+            inputs.gl,
+            inputs.targets,
+            inputs.meshes,
+            &self.blur,
+            inputs.region,
+        )
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         self.packed.textures()

@@ -4,9 +4,8 @@
 //! is one fetch instead of two (McGuire packs the blur key beside the AO value the same way).
 
 use super::blur::{half_size_target, packed_blur};
-use super::method_pass::AoInputs;
 use super::targets::AoTargets;
-use crate::gl::{FramebufferObject, Gl, ProgramObject, Texture};
+use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramObject, Texture};
 use anyhow::{bail, Result};
 use glow::HasContext;
 use std::cell::RefCell;
@@ -90,8 +89,15 @@ impl PackedOutput {
     }
 
     /// The packed blur into the shared blur target (`program`: `ao/blur_packed.frag`).
-    pub fn blur(&self, inputs: &AoInputs, program: &ProgramObject) -> Result<()> {
-        let shared_targets = inputs.targets;
+    /// Within `region` when given (`AoInputs::region`).
+    pub fn blur(
+        &self,
+        gl: &Gl,
+        shared_targets: &AoTargets,
+        meshes: &MeshBuffer,
+        program: &ProgramObject,
+        region: Option<[i32; 4]>,
+    ) -> Result<()> {
         let targets = self.targets.borrow();
         let Some(t) = targets
             .as_ref()
@@ -99,7 +105,6 @@ impl PackedOutput {
         else {
             bail!("the AO blur ran before the method's pass");
         };
-        let (gl, meshes, region) = (inputs.gl, inputs.meshes, inputs.region);
         packed_blur(
             gl,
             program,

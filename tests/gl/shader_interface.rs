@@ -68,3 +68,26 @@ fn a_wrong_location_or_an_unknown_uniform_is_reported() {
         "{problems:?}"
     );
 }
+
+/// The compile-time choices Rust sets are the names the shaders test: a misspelt one would leave
+/// every path compiled (slower, with the same image) without any error.
+#[test]
+fn every_define_rust_sets_is_tested_by_its_shader() {
+    use opengl3d::ao::method::vbao::feature_defines;
+    use opengl3d::ao::method_pass::normal_source_define;
+    use opengl3d::ao::upsample::POWER_ONE_DEFINE;
+    use opengl3d::ao::AoSettings;
+    let settings = AoSettings::default();
+    let vbao = include_str!("../../Res/ao/vbao.frag");
+    for (name, _) in feature_defines(&settings) {
+        assert!(
+            vbao.contains(&format!("#if {name}")),
+            "vbao.frag never tests {name}"
+        );
+    }
+    let (normals, _) = normal_source_define(&settings);
+    let common = include_str!("../../Res/ao/common.glsl");
+    assert!(common.contains(&format!("defined({normals})")), "{normals}");
+    let composite = include_str!("../../Res/ao/composite_bilateral.frag");
+    assert!(composite.contains(&format!("#ifdef {POWER_ONE_DEFINE}")));
+}

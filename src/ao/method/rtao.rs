@@ -267,7 +267,10 @@ impl AoMethodPass for RtaoMethod {
     fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
         let rays_so_far = self.accumulated_frames() * inputs.settings.rays.max(1);
         if rays_so_far < UNBLURRED_FROM_RAYS {
-            return self.packed.blur(inputs, &self.blur);
+            let (gl, targets, meshes) = (inputs.gl, inputs.targets, inputs.meshes);
+            return self
+                .packed
+                .blur(gl, targets, meshes, &self.blur, inputs.region);
         }
         let t = inputs.targets;
         let (w, h) = t.size();

@@ -78,7 +78,8 @@ impl AoMethodPass for SaoMethod {
         Ok(())
     }
     fn blur(&self, i: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        self.packed.blur(i, &self.blur)
+        self.packed
+            .blur(i.gl, i.targets, i.meshes, &self.blur, i.region)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         self.packed.textures()
