@@ -131,7 +131,7 @@ impl Patches {
                     let theirs = self.inv_of(nj * w + ni, ni, nj, b);
                     own > theirs && theirs >= own * ratio
                 };
-                for q in 0..4 {
+                for (q, cover) in covers[k].iter_mut().enumerate() {
                     let sx: isize = if q & 1 == 1 { 1 } else { -1 };
                     let sy: isize = if q & 2 == 2 { 1 } else { -1 };
                     let (fi, fj) = (i as f64, j as f64);
@@ -148,7 +148,7 @@ impl Patches {
                         let nj = (j as isize + sy) as usize;
                         self.inv_of(nj * w + i, i, nj, corner)
                     };
-                    covers[k][q] = match (across_x, across_y) {
+                    *cover = match (across_x, across_y) {
                         (true, true) if x_plane() < y_plane() => ACROSS_X,
                         (_, true) => ACROSS_Y,
                         (true, false) => ACROSS_X,
