@@ -33,15 +33,7 @@ pub fn blend_geometry_only(
     sky_depth: f32,
     farther_func: u32,
 ) {
-    PassState {
-        depth: Depth::Test {
-            func: farther_func,
-            write: false,
-        },
-        depth_range: (sky_depth, sky_depth),
-        ..PassState::FULLSCREEN.with_blend(Blend::ALPHA)
-    }
-    .apply(gl, None);
+    surface_pixels_only(sky_depth, farther_func).apply(gl, None);
     draw_swizzled(simple, occlusion, main, meshes);
     PassState::FULLSCREEN.apply(gl, None);
 }
@@ -80,4 +72,18 @@ pub fn tinted(
     program.use_program();
     occlusion.bind(binding::INPUT);
     meshes.draw_plane_xy();
+}
+
+/// A blended full-screen quad that reaches only the pixels where a surface was drawn: the quad lies at
+/// the sky's depth (`sky_depth`) and `farther_func` passes where it is farther than the stored depth,
+/// so early depth testing drops the sky before the shader runs. Depth writes off.
+pub fn surface_pixels_only(sky_depth: f32, farther_func: u32) -> PassState {
+    PassState {
+        depth: Depth::Test {
+            func: farther_func,
+            write: false,
+        },
+        depth_range: (sky_depth, sky_depth),
+        ..PassState::FULLSCREEN.with_blend(Blend::ALPHA)
+    }
 }

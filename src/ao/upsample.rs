@@ -6,7 +6,6 @@
 //! The lesson's `sao-lesson` keeps the course's linear filter.
 
 use super::blur::half_size_target;
-use crate::gl::pass_state::{Blend, Depth};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::shader_interface::{binding, loc};
@@ -104,15 +103,7 @@ impl BilateralUpsample {
         } else {
             glow::GREATER
         };
-        PassState {
-            depth: Depth::Test {
-                func: quad_farther,
-                write: false,
-            },
-            depth_range: (sky, sky),
-            ..PassState::FULLSCREEN.with_blend(Blend::ALPHA)
-        }
-        .apply(gl, None);
+        super::composite::surface_pixels_only(sky, quad_farther).apply(gl, None);
         let program = if power == 1.0 {
             &self.composite_power_one
         } else {
