@@ -101,12 +101,15 @@ impl Patches {
     /// Convex edges: where a pixel's plane, carried over the half of its footprint towards a
     /// neighbour, comes nearer than that neighbour's plane while the neighbour's lies within this
     /// pixel's slab (in front of its back, `back_ratio(k)`: the back's inverse depth over the front's,
-    /// 0 for none), the pixel's centre lies on a face that ends inside its footprint and the
-    /// neighbour's face goes on there (the top of a wall seen from above, spread over the pixel
-    /// below it, would stand in front of the wall's face and block its upward rays). There the
-    /// surface is the farther of the two planes, as at a convex edge between two faces; it never
-    /// comes nearer than the pixel's own. A neighbour outside the slab is a silhouette and leaves
-    /// the pixel's own plane alone (a thin board in front of a far wall stays whole).
+    /// 0 for none) or the neighbour's plane comes nearer than this pixel's centre (the two planes
+    /// cross between the centre and the edge), the pixel's centre lies on a face that ends inside
+    /// its footprint and the neighbour's face goes on there (the top of a wall seen from above,
+    /// spread over the pixel below it, would stand in front of the wall's face and block its upward
+    /// rays; seen nearly edge-on, the top's plane reaches far towards the eye, beyond the slab).
+    /// There the surface is the farther of the two planes, as at a convex edge between two faces;
+    /// it never comes nearer than the pixel's own. A neighbour behind the slab whose plane stays
+    /// behind the centre is a silhouette and leaves the pixel's own plane alone (a thin board in
+    /// front of a far wall stays whole).
     pub(crate) fn with_convex_edges(mut self, back_ratio: impl Fn(usize) -> f64) -> Patches {
         let (w, h) = (self.w, self.h);
         let mut covers = vec![[OWN; 4]; w * h];
@@ -129,7 +132,11 @@ impl Patches {
                     }
                     let own = self.inv_of(k, i, j, b);
                     let theirs = self.inv_of(nj * w + ni, ni, nj, b);
-                    own > theirs && theirs >= own * ratio
+                    // Nearer at the edge, and either the neighbour lies in this slab there or its
+                    // plane comes nearer than this one at this centre (the two cross in between).
+                    let crosses =
+                        self.inv_of(nj * w + ni, ni, nj, (i as f64, j as f64)) > self.planes[k][0];
+                    own > theirs && (theirs >= own * ratio || crosses)
                 };
                 for (q, cover) in covers[k].iter_mut().enumerate() {
                     let sx: isize = if q & 1 == 1 { 1 } else { -1 };

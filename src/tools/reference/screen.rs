@@ -59,7 +59,7 @@ use super::params::{AoVariant, RefParams};
 use super::sampling;
 
 /// Bump when the output for the same inputs changes, so stale cached images are not reused.
-const SCREEN_ALGORITHM_VERSION: u32 = 8;
+const SCREEN_ALGORITHM_VERSION: u32 = 9;
 
 /// Renders the screen-space reference of `depth` with the ray-traced reference's parameters
 /// (visibility only: `Obscurance` is an error). Output layout as [`RefImage`], the size of the
@@ -297,9 +297,34 @@ pub(crate) mod tests {
     /// towards +z, where nothing is).
     #[test]
     fn a_convex_edge_does_not_shade_the_face_below_it() {
+        convex_edge_leaves_the_front_face_open(|_| -0.5);
+    }
+
+    /// The same box with its top seen nearly edge-on (the capital of a pillar level with the eye):
+    /// one row of pixels holds the top, its centre 0.9 m behind the edge, which lies 0.15 of a
+    /// pixel below it. The front face's pixel below is nearer than that centre and outside the top
+    /// pixel's slab at the edge they share, yet the top's plane spread over the lower half of the
+    /// footprint reaches a metre towards the eye, in front of the front face (0.56 without the
+    /// crossing rule of `Patches::with_convex_edges`).
+    #[test]
+    fn a_convex_edge_seen_edge_on_does_not_shade_the_face_below_it() {
+        // The top at the height of the view ray 0.15 of a pixel below the first row under the
+        // horizon, at the front face's depth.
+        convex_edge_leaves_the_front_face_open(|probe| {
+            let r = (0..probe.h)
+                .find(|&y| probe.point(0, y).unwrap().y < 0.0)
+                .unwrap();
+            let (a, b) = (probe.point(0, r).unwrap(), probe.point(0, r + 1).unwrap());
+            3.0 * (0.85 * a.y + 0.15 * b.y)
+        });
+    }
+
+    /// A box whose front face (z = −3) meets its top (y = `y_top(probe)`, to z = −4) in a convex
+    /// edge, a far wall behind; `probe`'s pixel centres lie at depth 1 on their view rays.
+    fn convex_edge_leaves_the_front_face_open(y_top: impl Fn(&Heightfield) -> f64) {
         let (w, h) = (32u32, 48u32);
         let probe = Heightfield::new(&buffer(w, h, |_, _| 1.0));
-        let (y_top, front, back) = (-0.5f64, 3.0f64, 4.0f64);
+        let (y_top, front, back) = (y_top(&probe), 3.0f64, 4.0f64);
         let hit = |x: u32, y: u32| -> (f32, [f32; 3], f32) {
             let e = probe.point(x as usize, y as usize).unwrap(); // depth 1: the view ray
             if e.y * front < y_top {
