@@ -1,7 +1,8 @@
 //! The surface-normal pass for the engine's AO methods (`[ao] normals = "geometric"`, the default):
 //! the scene drawn once more with `ao/surface_normal.vert/frag`, each pixel keeping the geometric
 //! normal of the triangle it sees (octahedral, view space, two 16-bit floats), then brought to the AO
-//! buffers' size by `ao/restore_normal.frag`. Runs only when the settings ask for it
+//! buffers' size by `ao/restore_normal.frag` (drawn at that size, as the engine's AO chain draws it,
+//! the pass's own target serves as it is). Runs only when the settings ask for it
 //! (`AoSettings::uses_surface_normals`).
 
 use super::ao_size_restore::restore_at_ao_size;
@@ -24,8 +25,8 @@ const NORMAL_FORMAT: u32 = glow::RG16F;
 struct Targets {
     /// Main-size normals, with a depth buffer of their own.
     main: FramebufferObject,
-    /// Normals at the AO size.
-    restored: FramebufferObject,
+    /// Normals at the AO size; `None` when that is the main size (the main target serves).
+    restored: Option<FramebufferObject>,
     key: ((u32, u32), (u32, u32), u32),
 }
 
@@ -74,12 +75,16 @@ impl NormalPass {
             )?);
             *slot = Some(Targets {
                 main: FramebufferObject::new(f.gl, Some(color), Some(depth), 0, 0)?,
-                restored: half_size_target(
-                    f.gl,
-                    "FBO(surface normals, AO size)",
-                    ao_size,
-                    NORMAL_FORMAT,
-                )?,
+                restored: if ao_size == f.size {
+                    None
+                } else {
+                    Some(half_size_target(
+                        f.gl,
+                        "FBO(surface normals, AO size)",
+                        ao_size,
+                        NORMAL_FORMAT,
+                    )?)
+                },
                 key,
             });
         }
@@ -103,11 +108,15 @@ impl NormalPass {
             .main
             .color_texture()
             .ok_or_else(|| anyhow!("the surface-normal FBO has no colour texture"))?;
+        let Some(restored) = &t.restored else {
+            // Drawn at the AO size (a block of one texel): the restore would be a plain copy.
+            return Ok(normals.clone());
+        };
         let own_depth = t.main.depth_texture();
         let front = front_depth
             .or(own_depth.map(|d| d.as_ref()))
             .ok_or_else(|| anyhow!("the surface-normal FBO has no depth texture"))?;
-        restore_at_ao_size(f, &self.restore, &t.restored, normals, front)
+        restore_at_ao_size(f, &self.restore, restored, normals, front)
     }
 
     /// The depth buffer of the last frame that ran the pass (the widened view's, with a guard band).
@@ -121,8 +130,13 @@ impl NormalPass {
     /// The normals at the AO size of the last frame that ran the pass.
     pub fn restored(&self) -> Option<Rc<Texture>> {
         let slot = self.targets.borrow();
-        slot.as_ref()
-            .and_then(|t| t.restored.color_texture().cloned())
+        slot.as_ref().and_then(|t| {
+            t.restored
+                .as_ref()
+                .unwrap_or(&t.main)
+                .color_texture()
+                .cloned()
+        })
     }
 
     pub fn textures(&self) -> Vec<Rc<Texture>> {
@@ -134,7 +148,7 @@ impl NormalPass {
             .color_texture()
             .into_iter()
             .chain(t.main.depth_texture())
-            .chain(t.restored.color_texture())
+            .chain(t.restored.as_ref().and_then(|r| r.color_texture()))
             .cloned()
             .collect()
     }
