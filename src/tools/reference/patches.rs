@@ -134,9 +134,10 @@ impl Patches {
                     let theirs = self.inv_of(nj * w + ni, ni, nj, b);
                     // Nearer at the edge, and either the neighbour lies in this slab there or its
                     // plane comes nearer than this one at this centre (the two cross in between).
-                    let crosses =
-                        self.inv_of(nj * w + ni, ni, nj, (i as f64, j as f64)) > self.planes[k][0];
-                    own > theirs && (theirs >= own * ratio || crosses)
+                    let crosses = || {
+                        self.inv_of(nj * w + ni, ni, nj, (i as f64, j as f64)) > self.planes[k][0]
+                    };
+                    own > theirs && (theirs >= own * ratio || crosses())
                 };
                 for (q, cover) in covers[k].iter_mut().enumerate() {
                     let sx: isize = if q & 1 == 1 { 1 } else { -1 };
