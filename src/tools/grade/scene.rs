@@ -130,7 +130,8 @@ impl SynthScene {
     }
 }
 
-fn floor() -> Aabb {
+/// The floor every SAO scene stands on (its top is y = 0).
+pub fn floor() -> Aabb {
     Aabb::new([-60.0, -1.0, -60.0], [60.0, 0.0, 60.0])
 }
 

@@ -75,6 +75,30 @@ pub const SAO_UNEVEN_QUADS: f64 = 0.05;
 /// spread by this fraction of its mean (project 0.072, listing 0.077, rewrite 0.067; the disc left
 /// stretched, without `aspectFix`, 0.21; `ndcToView.yx` 1.08).
 pub const SAO_ANISOTROPY: f64 = 0.15;
+/// SAO at `--level lesson`: how much darker than the reference the pixels of quads straddling a
+/// silhouette may be on average (the lesson's `onEdge` guard leaves them open: reference 0; no
+/// guard 0.398, the listing 0.435; no texel-centre snap 0.023).
+pub const SAO_EDGE_DARKER: f64 = 0.1;
+/// SAO at `--level lesson`: how much darker than the reference the band within 2 texels of a depth
+/// edge may be on average (taps rebuilt off their texel's centre darken it: no snap 0.233 against
+/// 0.119; no edge guard 0.127).
+pub const SAO_EDGE_BAND: f64 = 0.05;
+/// SAO: when every open probe is occluded above this, the bias has the wrong sign (`vn + BIAS`: 1.00
+/// on every open probe; no division by the sample count 0.04 at most).
+pub const SAO_OPEN_ALL_DARK: f64 = 0.5;
+/// SAO at `--level lesson`: how much occlusion the open floor seen from 0.4 m above may show beyond
+/// the reference's, far away (texel-centre snap) and near (mip bias).
+/// Reference 0 in both bands; no mip bias 0.015 near; no snap and no edge guard together 0.44 far.
+pub const SAO_LOW_FLOOR: f64 = 0.01;
+/// SAO at `--level lesson`: the fraction of telling 2×2 quads whose smoothing may differ from the
+/// reference's (evened out across a depth step, left apart, or halved).
+/// Reference 0; the listing 0.016 smeared; no 2 cm test 0.47 and the tests swapped 0.42 smeared;
+/// both derivatives first 0.49 halved; the sign flipped 0.81 left apart.
+pub const SAO_PATTERN_FRACTION: f64 = 0.05;
+/// SAO: a quad counts as occluded (its unsmoothed pixels differ) above this mean occlusion.
+pub const SAO_QUAD_OCCLUDED: f64 = 0.02;
+/// SAO: a pair counts as left apart when its pixels differ by this many times `SAO_QUAD_SPREAD`.
+pub const SAO_QUAD_APART: f64 = 4.0;
 /// SAO: with the intensity raised a hundredfold, the median output where the project's is 1 must
 /// reach this (the course clamps with min(1.0, …), so fully occluded is 1): the listings give 1.00;
 /// an output clamped to 0.5 gives 0.50.
@@ -107,9 +131,10 @@ pub const BLUR_SKY_ABS: f64 = 0.02;
 /// band 9 texels wide inside the texture, which is what clamped reads see (listing and rewrite:
 /// 0.000; reads left unclamped 0.48; clamped to `textureSize(…).yx - 1` 0.52).
 pub const BLUR_BORDER_ABS: f64 = 0.05;
-/// Blur: RMSE against the reference on a real SAO buffer (listing 0.032 with its wider
-/// weights, rewrite 0.000; no edge weight 0.072, no normalisation 0.112).
-pub const BLUR_RMSE: f64 = 0.07;
+/// Blur: RMSE on a real SAO buffer against the closer of the project's blur and the same with the
+/// course's table (project's file, listing and rewrite 0.000 against one of them, 0.032 against the
+/// other; no edge weight 0.057, no normalisation 0.110, the edge distance doubled 0.029).
+pub const BLUR_RMSE: f64 = 0.01;
 /// sao.frag at lesson 6: the normal's y may differ from the checkpoint's by this much at a pixel...
 pub const CHECKPOINT_NORMAL_ABS: f64 = 0.02;
 /// ...and at lesson 7 the last tap's level ÷ 3 by this (levels are 1/3 apart: any other level is a

@@ -94,11 +94,14 @@ void main()
   occlusion = min(1.0, occlusion / samplingCount * INTENSITY);
 
   // 水平または垂直に近い面のオクルージョンを平均化する。
+  // 正誤 22: 偏微分は分岐の外で計算する
+  float dOccX = dFdx(occlusion);
   if (abs(dFdx(positionVS.z)) < 0.02) {
-    occlusion -= dFdx(occlusion) * ((iuv.x & 1) - 0.5);
+    occlusion -= dOccX * ((iuv.x & 1) - 0.5);
   }
+  float dOccY = dFdy(occlusion);
   if (abs(dFdy(positionVS.z)) < 0.02) {
-    occlusion -= dFdy(occlusion) * ((iuv.y & 1) - 0.5);
+    occlusion -= dOccY * ((iuv.y & 1) - 0.5);
   }
 
   outColor = occlusion;

@@ -6,8 +6,10 @@
 //! within its reach of the border, the output must equal the shader's own beside an equally
 //! occluded band inside the texture), taps across a small depth step must weigh what the lesson's
 //! edge weight gives (measured from the shader's own output, whatever its Gaussian weights), and
-//! the RMSE against the project's `sao_blur.frag` is bounded
-//! (loosely: the lesson's listing has wider weights). The buffers are wider than high, so x and y
+//! the RMSE is bounded against the closer of two references: the project's `sao_blur.frag` and the
+//! same blur with the course's table (`course_blur`: McGuire and Mara's `SAO_blur.pix` adds 0.3 to
+//! the weight of every tap but the centre, and the course folded that into its table, so both are
+//! the reference's behaviour). The buffers are wider than high, so x and y
 //! cannot be swapped unseen.
 
 use crate::ao::AoSettings;
@@ -258,6 +260,11 @@ fn impulse_fault(s: &[f32], r: &[f32], w: usize) -> Option<Text> {
 /// of the synthetic panel (`b`, whose input occlusion is `occ_b`).
 struct Runs {
     depth_a: Vec<f32>,
+    occ_a: Vec<f32>,
+    /// White noise blurred over the same depth (every tap's weight shows), both sides.
+    noise_a: Vec<f32>,
+    reference_n: Vec<f32>,
+    raw_n: Vec<f32>,
     reference_a: Vec<f32>,
     raw_a: Vec<f32>,
     occ_b: Vec<f32>,
@@ -286,6 +293,9 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     )?;
     let reference_a = run_blur(&rig.reference, &rig.meshes, &depth_a, &occ_a)?;
     let raw_a = run_blur(&rig.student, &rig.meshes, &depth_a, &occ_a)?;
+    let noise_a: Vec<f32> = (0..w * h).map(|i| noise(i % w, i / w)).collect();
+    let reference_n = run_blur(&rig.reference, &rig.meshes, &depth_a, &noise_a)?;
+    let raw_n = run_blur(&rig.student, &rig.meshes, &depth_a, &noise_a)?;
     let (depth_b, occ_b) = blur_panel(w, h, far);
     let reference_b = run_blur(&rig.reference, &rig.meshes, &depth_b, &occ_b)?;
     let raw_b = run_blur(&rig.student, &rig.meshes, &depth_b, &occ_b)?;
@@ -300,6 +310,10 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     let raw_f = run_blur(&rig.student, &rig.meshes, &depth_f, &occ_f)?;
     Ok(Runs {
         depth_a,
+        occ_a,
+        noise_a,
+        reference_n,
+        raw_n,
         reference_a,
         raw_a,
         occ_b,
@@ -313,12 +327,70 @@ fn render(rig: &Rig, params: &AoSettings, far: f32) -> Result<Runs> {
     })
 }
 
+/// The course's Gaussian table, centre first: McGuire and Mara's weights with the 0.3 that
+/// `SAO_blur.pix` adds to every tap but the centre folded in.
+const COURSE_GAUSSIAN: [f64; 5] = [0.153170, 0.444893, 0.422649, 0.392902, 0.362970];
+
+/// The lesson's blur with the course's table, on the CPU: `occ` blurred over `depth` (w × h, sky at
+/// `far` kept as it is), 9×9 taps 2 texels apart, clamped to the texture, each weighted by the
+/// product of the table's entries and by max(0, 1 − |Δdepth| / 0.15).
+pub fn course_blur(occ: &[f32], depth: &[f32], w: usize, h: usize, far: f32) -> Vec<f32> {
+    let (radius, scale, edge_distance) = (4isize, 2isize, 0.15f64);
+    let mut out = occ.to_vec();
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            let d = depth[i] as f64;
+            if depth[i] >= far {
+                continue;
+            }
+            let g = &COURSE_GAUSSIAN;
+            let (mut sum, mut total) = (occ[i] as f64 * g[0] * g[0], g[0] * g[0]);
+            for ty in -radius..=radius {
+                for tx in -radius..=radius {
+                    if tx == 0 && ty == 0 {
+                        continue;
+                    }
+                    let sx = (x as isize + tx * scale).clamp(0, w as isize - 1) as usize;
+                    let sy = (y as isize + ty * scale).clamp(0, h as isize - 1) as usize;
+                    let j = sy * w + sx;
+                    let edge = (1.0 - (depth[j] as f64 - d).abs() / edge_distance).max(0.0);
+                    let weight = g[tx.unsigned_abs()] * g[ty.unsigned_abs()] * edge;
+                    sum += occ[j] as f64 * weight;
+                    total += weight;
+                }
+            }
+            out[i] = (sum / total) as f32;
+        }
+    }
+    out
+}
+
+/// The RMSE of `s` against `r` over the pixels of `mask`, and the largest difference with its
+/// index.
+fn rmse_against(s: &[f32], r: &[f32], mask: &[bool]) -> (f64, (f64, usize)) {
+    let (mut sq, mut cnt, mut worst) = (0.0f64, 0usize, (0.0f64, 0usize));
+    for i in (0..s.len()).filter(|i| mask[*i]) {
+        let d = (s[i] - r[i]) as f64;
+        sq += d * d;
+        cnt += 1;
+        if d.abs() > worst.0.abs() {
+            worst = (d, i);
+        }
+    }
+    ((sq / cnt.max(1) as f64).sqrt(), worst)
+}
+
 /// Grades the student's blur pass of `rig`.
 pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     let (w, h) = (BLUR_SIZE.0 as usize, BLUR_SIZE.1 as usize);
     let far = sao_scenes(BLUR_SIZE)[0].camera.far;
     let Runs {
         depth_a,
+        occ_a,
+        noise_a,
+        reference_n,
+        raw_n,
         reference_a: r_a,
         raw_a,
         occ_b,
@@ -370,20 +442,32 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         .flat_map(|y| (w * 3 / 4..w).map(move |x| (x, y)))
         .map(|(x, y)| s_b[y * w + x])
         .fold(0.0f32, f32::max) as f64;
-    // Against the reference on the real buffer (non-sky pixels).
+    // Against the closer reference on the real buffer (non-sky pixels): the project's blur, or the
+    // same with the course's table.
     let mask: Vec<bool> = depth_a.iter().map(|d| *d < far).collect();
-    let (mut sq, mut cnt, mut worst) = (0.0f64, 0usize, (0.0f64, 0usize));
-    for i in 0..w * h {
-        if mask[i] {
-            let d = (s_a[i] - r_a[i]) as f64;
-            sq += d * d;
-            cnt += 1;
-            if d.abs() > worst.0.abs() {
-                worst = (d, i);
-            }
-        }
-    }
-    let rmse = (sq / cnt.max(1) as f64).sqrt();
+    let course = course_blur(&occ_a, &depth_a, w, h, far);
+    let (rmse_port, worst_port) = rmse_against(&s_a, &r_a, &mask);
+    let (rmse_course, worst_course) = rmse_against(&s_a, &course, &mask);
+    // The same on white noise, where every tap's weight shows (a changed table entry does).
+    let s_n: Vec<f32> = raw_n.iter().map(|v| as_r8(*v)).collect();
+    let course_n = course_blur(&noise_a, &depth_a, w, h, far);
+    let (noise_port, worst_noise_port) = rmse_against(&s_n, &reference_n, &mask);
+    let (noise_course, worst_noise_course) = rmse_against(&s_n, &course_n, &mask);
+    let (rmse, worst) = [
+        if rmse_course < rmse_port {
+            (rmse_course, worst_course)
+        } else {
+            (rmse_port, worst_port)
+        },
+        if noise_course < noise_port {
+            (noise_course, worst_noise_course)
+        } else {
+            (noise_port, worst_noise_port)
+        },
+    ]
+    .into_iter()
+    .max_by(|a, b| a.0.total_cmp(&b.0))
+    .unwrap_or((0.0, (0.0, 0)));
     let border = border_fault(&raw_d, &raw_e, w, h);
     let mut metrics = BTreeMap::new();
     metrics.insert("flat_mean_in".into(), in_mean);
@@ -396,6 +480,10 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     metrics.insert("edge_far_max".into(), far_max);
     metrics.insert("sky_max".into(), sky_max);
     metrics.insert("rmse".into(), rmse);
+    metrics.insert("rmse_port_table".into(), rmse_port);
+    metrics.insert("rmse_course_table".into(), rmse_course);
+    metrics.insert("rmse_noise_port_table".into(), noise_port);
+    metrics.insert("rmse_noise_course_table".into(), noise_course);
     metrics.insert("nan".into(), nan as f64);
     metrics.insert(
         crate::tools::grade::rig::NONFINITE_METRIC.into(),

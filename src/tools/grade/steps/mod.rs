@@ -7,12 +7,13 @@ mod restore;
 mod sao;
 mod sao_checkpoint;
 mod sao_isotropy;
+mod sao_lesson;
 mod sao_measure;
 mod sao_parts;
 mod sao_reach;
 mod simple;
 
-pub use blur::{blur, BLUR_SIZE};
+pub use blur::{blur, course_blur, BLUR_SIZE};
 pub use down_sampling::down_sampling;
 pub use restore::{restore, MAIN_SIZE};
 pub use sao::{sao, SAO_SIZE};

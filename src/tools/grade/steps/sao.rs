@@ -80,10 +80,34 @@ fn scaled(ratios: &[f64], samples: u32, metrics: &mut BTreeMap<String, f64>) -> 
     })
 }
 
+/// Whether `source` takes the cross product with the y derivative first (`cross(dFdy(…), …)`,
+/// `cross(dpdy, …)`, whatever the names): the lesson's order is x first.
+fn cross_reversed(source: &str) -> bool {
+    source.split("cross").skip(1).any(|rest| {
+        let args = rest.trim_start().strip_prefix('(').unwrap_or("");
+        let first: String = args
+            .chars()
+            .take_while(|c| *c != ',')
+            .filter(|c| !c.is_whitespace())
+            .collect();
+        let first = first.to_ascii_lowercase();
+        first.contains("dfdy")
+            || ["dy", "dpdy", "ddy"].contains(&first.as_str())
+            || first.ends_with("_dy")
+    })
+}
+
 /// Grades the student's SAO pass of `rig` as lesson step `lesson` has it (`None`: finished): before
 /// `SAO_SMOOTHING_STEP` the 2×2 smoothing is not taught yet, so it is neither asked for nor told.
-pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) -> Verdict {
-    let _ = level;
+/// `level`: `Lesson` also asks what the pages teach beyond the course's listing (`sao_lesson`);
+/// `source`: the student's file, read for derivatives inside branches.
+pub fn sao(
+    rig: &Rig,
+    params: &AoSettings,
+    lesson: Option<u32>,
+    level: Level,
+    source: Option<&str>,
+) -> Verdict {
     let smoothing_step = crate::tools::lesson::SAO_SMOOTHING_STEP;
     let smoothing_taught = lesson.is_none_or(|n| n >= smoothing_step);
     let scenes = sao_scenes(SAO_SIZE);
@@ -110,6 +134,9 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         sky_max,
         block_ratios,
         quads,
+        pattern,
+        edge,
+        straddle,
     } = match measure(rig, params, &scenes) {
         Ok(m) => m,
         Err(e) => return Verdict::grader_error(&e),
@@ -201,6 +228,16 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         return v;
     }
     let mut parts = Parts::new(smoothing_taught);
+    // From the source: llvmpipe gives a derivative inside a branch the expected value, so no
+    // picture shows it. The course's listing takes dFdx(occlusion) inside its `if` (erratum 22).
+    if let Some((line, in_smoothing)) = source.and_then(super::sao_lesson::derivative_in_branch) {
+        let message = say!("grade.verdict.sao_derivative_in_branch", line = line);
+        if in_smoothing {
+            parts.fail_keeping(SMOOTHING, message, Some(22));
+        } else {
+            parts.fail(NORMAL, message);
+        }
+    }
     let creases: Vec<&ProbeResult> = probes
         .iter()
         .filter(|p| p.kind == ProbeKind::Crease)
@@ -252,10 +289,15 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         let all_dark = creases.iter().all(|p| p.got < 0.25 * p.expected);
         let negative_terms = negative as f64 > 0.05 * n;
         let flipped = all_dark && !negative_terms;
+        // A z of the wrong sign in GetViewSpacePosition mirrors the scene, which reverses the cross
+        // product: the output is that of a reversed cross product, so the source tells which.
+        let cross_reversed = source.is_some_and(cross_reversed);
         let (got, expected) = (f2(p.got), f2(p.expected));
         let message = Text::new(|l| {
             let hint = if negative_terms {
                 rust_i18n::t!("grade.verdict.sao_hint_negative", locale = l)
+            } else if flipped && !cross_reversed {
+                rust_i18n::t!("grade.verdict.sao_hint_flipped_z", locale = l)
             } else if flipped {
                 rust_i18n::t!("grade.verdict.sao_hint_flipped_normal", locale = l)
             } else {
@@ -279,6 +321,40 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         } else {
             parts.fail(OCCLUSION, message);
         }
+    }
+    // Open surfaces first: a bias of the wrong sign (vn + BIAS) occludes every open surface, which
+    // also makes the weak occlusion look scaled.
+    let opens: Vec<&ProbeResult> = probes
+        .iter()
+        .filter(|p| p.kind == ProbeKind::Open)
+        .collect();
+    if !parts.broken() && opens.iter().all(|p| p.got > tol::SAO_OPEN_ALL_DARK) {
+        let got = opens
+            .iter()
+            .map(|p| f2(p.got))
+            .collect::<Vec<_>>()
+            .join("/");
+        parts.fail(OCCLUSION, say!("grade.verdict.sao_bias_sign", got = got));
+    }
+    if let Some(p) = probes
+        .iter()
+        .find(|p| {
+            p.kind == ProbeKind::Open
+                && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
+        })
+        .filter(|_| !parts.broken())
+    {
+        let (got, expected) = (f2(p.got), f2(p.expected));
+        parts.fail(
+            OCCLUSION,
+            say!(
+                l => "grade.verdict.sao_open_occluded",
+                probe = place(l, p.name),
+                scene = place(l, p.scene),
+                got = got,
+                expected = expected
+            ),
+        );
     }
     let scale_wrong = scale.is_some();
     if let Some(message) = scale.filter(|_| !parts.broken()) {
@@ -314,21 +390,6 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
     }
     if parts.broken() {
         return parts.verdict(say!("grade.verdict.part_pass"), metrics, panels);
-    }
-    if let Some(p) = probes.iter().find(|p| {
-        p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
-    }) {
-        let (got, expected) = (f2(p.got), f2(p.expected));
-        parts.fail(
-            OCCLUSION,
-            say!(
-                l => "grade.verdict.sao_open_occluded",
-                probe = place(l, p.name),
-                scene = place(l, p.scene),
-                got = got,
-                expected = expected
-            ),
-        );
     }
     for p in probes.iter().filter(|p| p.kind == ProbeKind::Falloff) {
         let ratio = p.got / p.expected.max(1e-6);
@@ -416,7 +477,6 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         Ok(s) => s,
         Err(e) => return Verdict::grader_error(&e),
     };
-    let mut metrics = metrics;
     metrics.insert("saturated_median".into(), saturated);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
@@ -426,6 +486,8 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
         format!("{:.4}", mip_s / scenes.len() as f64),
         format!("{:.4}", mip_r / scenes.len() as f64),
     );
+    // The mip use is measured against the reference's: only meaningful when the occlusion term is.
+    let mips_read = mips_read && !parts.failed(OCCLUSION);
     if mips_read && mip_use < tol::SAO_MIP_USE {
         parts.fail(
             SAMPLING,
@@ -475,6 +537,88 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) ->
                 percent = percent
             ),
         );
+    }
+    // What the pages add to the listing, measured against the reference only where the occlusion
+    // term itself agrees with it (a wrong term darkens edges and floors for its own reason).
+    if level == Level::Lesson && !parts.failed(OCCLUSION) {
+        let (edge_s, edge_r, _) = edge;
+        let (straddle_s, straddle_r, straddle_n) = straddle;
+        metrics.insert("edge_mean".into(), edge_s);
+        metrics.insert("edge_mean_reference".into(), edge_r);
+        metrics.insert("straddle_mean".into(), straddle_s);
+        metrics.insert("straddle_mean_reference".into(), straddle_r);
+        if straddle_n > 0 && straddle_s - straddle_r > tol::SAO_EDGE_DARKER {
+            let (got, expected) = (f3(straddle_s), f3(straddle_r));
+            parts.fail(
+                NORMAL,
+                say!("grade.verdict.sao_outlines", got = got, expected = expected),
+            );
+        }
+        let ((far_s, far_r), (near_s, near_r)) =
+            match super::sao_lesson::low_floor(rig, params, SAO_SIZE) {
+                Ok(v) => v,
+                Err(e) => return Verdict::grader_error(&e),
+            };
+        metrics.insert("low_floor_far".into(), far_s);
+        metrics.insert("low_floor_far_reference".into(), far_r);
+        metrics.insert("low_floor_near".into(), near_s);
+        metrics.insert("low_floor_near_reference".into(), near_r);
+        // Off-centre taps darken the band beside every depth edge and, with no edge guard, the far
+        // floor seen at a grazing angle.
+        if far_s - far_r > tol::SAO_LOW_FLOOR || edge_s - edge_r > tol::SAO_EDGE_BAND {
+            let message = if far_s - far_r > tol::SAO_LOW_FLOOR {
+                let (got, expected) = (f3(far_s), f3(far_r));
+                say!(
+                    "grade.verdict.sao_no_texel_snap",
+                    got = got,
+                    expected = expected
+                )
+            } else {
+                let (got, expected) = (f3(edge_s), f3(edge_r));
+                say!(
+                    "grade.verdict.sao_no_texel_snap_edges",
+                    got = got,
+                    expected = expected
+                )
+            };
+            parts.fail(SAMPLING, message);
+        } else if near_s - near_r > tol::SAO_LOW_FLOOR {
+            let (got, expected) = (f3(near_s), f3(near_r));
+            parts.fail(
+                OCCLUSION,
+                say!(
+                    "grade.verdict.sao_no_mip_bias",
+                    got = got,
+                    expected = expected
+                ),
+            );
+        }
+        let quads = pattern.quads.max(1) as f64;
+        let share = |n: usize| n as f64 / quads;
+        metrics.insert("quads_smeared".into(), share(pattern.smeared));
+        metrics.insert("quads_halved".into(), share(pattern.halved));
+        metrics.insert("quads_unsmoothed".into(), share(pattern.unsmoothed));
+        let percent = |n: usize| format!("{:.0}", 100.0 * share(n));
+        if !smoothing_taught {
+        } else if share(pattern.smeared) > tol::SAO_PATTERN_FRACTION {
+            let percent = percent(pattern.smeared);
+            parts.fail(
+                SMOOTHING,
+                say!("grade.verdict.sao_smoothing_smeared", percent = percent),
+            );
+        } else if share(pattern.halved) > tol::SAO_PATTERN_FRACTION {
+            let percent = percent(pattern.halved);
+            parts.fail(
+                SMOOTHING,
+                say!("grade.verdict.sao_smoothing_halved", percent = percent),
+            );
+        } else if share(pattern.unsmoothed) > tol::SAO_PATTERN_FRACTION {
+            let percent = percent(pattern.unsmoothed);
+            parts.fail(
+                SMOOTHING,
+                say!("grade.verdict.sao_no_smoothing", percent = percent),
+            );
+        }
     }
     let creases = creases
         .iter()

@@ -91,6 +91,64 @@ fn quad_parity(s: &[f32], depth: &[f32], clean: &[bool], w: usize, h: usize) -> 
     (quads, uneven)
 }
 
+/// How the student's 2×2 smoothing treats the quads the reference's treats (`quad_pattern`).
+#[derive(Default, Clone, Copy)]
+pub(super) struct Pattern {
+    /// Quads that tell: occluded ones, or ones where the reference leaves a pair apart.
+    pub(super) quads: usize,
+    /// Pairs evened out that the reference leaves apart (across a depth step of 2 cm or more).
+    pub(super) smeared: usize,
+    /// Pairs the reference evens out and the student leaves apart.
+    pub(super) unsmoothed: usize,
+    /// Quads the reference evens out whole where the student leaves each diagonal pair the mean of
+    /// the other (both derivatives taken of the unsmoothed value).
+    pub(super) halved: usize,
+}
+
+/// Aligned 2×2 quads of non-sky pixels, the student's output `s` against the reference's `r`: where
+/// the reference's smoothing evened a pair out (its `|Δz| < 0.02` test passed) the student's must
+/// too, with the whole quad's mean where both passed; where the reference left an occluded pair
+/// apart, the student's must not be equal.
+fn quad_pattern(s: &[f32], r: &[f32], depth: &[f32], far: f32, w: usize, h: usize) -> Pattern {
+    let mut p = Pattern::default();
+    let eq = |v: &[f32], i: usize, j: usize| (v[i] - v[j]).abs() as f64 <= tol::SAO_QUAD_SPREAD;
+    let apart = |v: &[f32], i: usize, j: usize| {
+        (v[i] - v[j]).abs() as f64 > tol::SAO_QUAD_APART * tol::SAO_QUAD_SPREAD
+    };
+    for y in (0..h.saturating_sub(1)).step_by(2) {
+        for x in (0..w.saturating_sub(1)).step_by(2) {
+            let [a, b, c, e] =
+                [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(u, v)| v * w + u);
+            if [a, b, c, e].iter().any(|&i| depth[i] >= far) {
+                continue;
+            }
+            let occluded = (r[a] + r[b] + r[c] + r[e]) as f64 / 4.0 > tol::SAO_QUAD_OCCLUDED;
+            let (rx, ry) = (eq(r, a, b) && eq(r, c, e), eq(r, a, c) && eq(r, b, e));
+            let (sx, sy) = (eq(s, a, b) && eq(s, c, e), eq(s, a, c) && eq(s, b, e));
+            let (r_apart_x, r_apart_y) = (
+                !rx && (apart(r, a, b) || apart(r, c, e)),
+                !ry && (apart(r, a, c) || apart(r, b, e)),
+            );
+            if !(occluded || r_apart_x || r_apart_y) {
+                continue;
+            }
+            p.quads += 1;
+            if (sx && r_apart_x) || (sy && r_apart_y) {
+                p.smeared += 1;
+            } else if occluded && rx && ry && !(sx && sy) {
+                if eq(s, a, e) && eq(s, b, c) {
+                    p.halved += 1;
+                } else {
+                    p.unsmoothed += 1;
+                }
+            } else if occluded && ((rx && !sx) || (ry && !sy)) {
+                p.unsmoothed += 1;
+            }
+        }
+    }
+    p
+}
+
 /// What the SAO step measures on its scenes (`_s` the student's, `_r` the reference's), before
 /// judging. Sums run over non-sky pixels: all of them, those away from depth edges (`clean`), and
 /// those also facing the camera (`flat`).
@@ -125,6 +183,43 @@ pub(super) struct Measured {
     pub(super) block_ratios: Vec<f64>,
     /// Quads checked for the 2×2 smoothing, and those left uneven (`quad_parity`).
     pub(super) quads: (usize, usize),
+    /// The 2×2 smoothing against the reference's, quad by quad.
+    pub(super) pattern: Pattern,
+    /// Pixels at depth edges (not sky, not `clean`): the student's mean, the reference's, how many.
+    pub(super) edge: (f64, f64, usize),
+    /// Pixels of the 2×2 quads that straddle a silhouette (their distances apart by more than 20 %
+    /// of the nearest, no sky), which the lesson's `onEdge` leaves open: the same three.
+    pub(super) straddle: (f64, f64, usize),
+}
+
+/// Sums over the pixels of aligned 2×2 quads whose distances differ by more than 20 % of the
+/// nearest (no sky): (the student's, the reference's, how many pixels).
+fn straddling(
+    s: &[f32],
+    r: &[f32],
+    depth: &[f32],
+    far: f32,
+    w: usize,
+    h: usize,
+) -> (f64, f64, usize) {
+    let mut sum = (0.0f64, 0.0f64, 0usize);
+    for y in (0..h.saturating_sub(1)).step_by(2) {
+        for x in (0..w.saturating_sub(1)).step_by(2) {
+            let quad = [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(u, v)| v * w + u);
+            let d = quad.map(|i| depth[i]);
+            let (lo, hi) = (
+                d.iter().fold(f32::MAX, |a, b| a.min(*b)),
+                d.iter().fold(0f32, |a, b| a.max(*b)),
+            );
+            if hi >= far || hi - lo <= 0.2 * lo {
+                continue;
+            }
+            for i in quad {
+                sum = (sum.0 + s[i] as f64, sum.1 + r[i] as f64, sum.2 + 1);
+            }
+        }
+    }
+    sum
 }
 
 pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> Result<Measured> {
@@ -139,6 +234,9 @@ pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> 
     let mut probes = vec![];
     let mut sky_max = 0.0f64;
     let mut quads = (0usize, 0usize);
+    let mut pattern = Pattern::default();
+    let mut edge = (0.0f64, 0.0f64, 0usize);
+    let mut straddle = (0.0f64, 0.0f64, 0usize);
     let mut block_ratios = vec![];
     let low = 0.5 / params.samples.max(1) as f64;
     for scene in scenes {
@@ -198,10 +296,26 @@ pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> 
                 clean_s += s[i] as f64;
                 clean_r += r[i] as f64;
                 clean_n += 1;
+            } else {
+                edge = (edge.0 + s[i] as f64, edge.1 + r[i] as f64, edge.2 + 1);
             }
         }
         let (q, uneven) = quad_parity(&s, &depth, &clean, w, h);
         quads = (quads.0 + q, quads.1 + uneven);
+        let qp = quad_pattern(
+            &s,
+            &r.iter().map(|v| as_r8(*v)).collect::<Vec<_>>(),
+            &depth,
+            far,
+            w,
+            h,
+        );
+        pattern.quads += qp.quads;
+        pattern.smeared += qp.smeared;
+        pattern.unsmoothed += qp.unsmoothed;
+        pattern.halved += qp.halved;
+        let st = straddling(&s, &r, &depth, far, w, h);
+        straddle = (straddle.0 + st.0, straddle.1 + st.1, straddle.2 + st.2);
         let bs = block_means(&s, &flat, w, h, 8);
         let br = block_means(&r, &flat, w, h, 8);
         for (k, (a, b)) in bs.iter().zip(&br).enumerate() {
@@ -268,6 +382,17 @@ pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> 
         sky_max,
         block_ratios,
         quads,
+        pattern,
+        edge: (
+            edge.0 / edge.2.max(1) as f64,
+            edge.1 / edge.2.max(1) as f64,
+            edge.2,
+        ),
+        straddle: (
+            straddle.0 / straddle.2.max(1) as f64,
+            straddle.1 / straddle.2.max(1) as f64,
+            straddle.2,
+        ),
     })
 }
 

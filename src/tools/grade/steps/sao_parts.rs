@@ -91,6 +91,11 @@ impl Parts {
         self.broken_by.get_or_insert(id);
     }
 
+    /// Whether `id` has failed.
+    pub fn failed(&self, id: &str) -> bool {
+        self.failures.contains_key(id)
+    }
+
     /// Whether a mistake already left the rest unmeasurable.
     pub fn broken(&self) -> bool {
         self.broken_by.is_some()
