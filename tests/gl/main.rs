@@ -22,6 +22,7 @@ mod gltf_files;
 mod grade;
 mod grade_class;
 mod grade_class_zip;
+mod grade_mistakes;
 mod grade_mutation;
 mod guard_band;
 mod i18n;

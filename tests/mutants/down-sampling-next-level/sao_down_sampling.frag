@@ -1,0 +1,21 @@
+#version 450
+
+// Step 2: one level of the linear-depth mip chain = the nearest of the 2x2 texels of the level above.
+
+layout(binding=0) uniform sampler2D texDepth;
+
+out float outColor;
+
+layout(location=200) uniform int mipLevel; // the level read (the one written is mipLevel + 1)
+
+void main()
+{
+  // Clamp so that odd sizes never read past the last texel of the source level.
+  ivec2 maxUV = textureSize(texDepth, mipLevel) - 1;
+  ivec2 uv = ivec2(gl_FragCoord.xy) * 2;
+  float d1 = texelFetch(texDepth, min(uv + ivec2(0, 0), maxUV), mipLevel + 1).x;
+  float d2 = texelFetch(texDepth, min(uv + ivec2(0, 1), maxUV), mipLevel + 1).x;
+  float d3 = texelFetch(texDepth, min(uv + ivec2(1, 1), maxUV), mipLevel + 1).x;
+  float d4 = texelFetch(texDepth, min(uv + ivec2(1, 0), maxUV), mipLevel + 1).x;
+  outColor = min(min(d1, d2), min(d3, d4));
+}
