@@ -203,7 +203,7 @@ fails! {
     restore_with_max_fails: "restore-max" => ["max instead of min"],
     restore_without_times_two_fails: "restore-no-x2" => ["gl_FragCoord.xy) * 2"],
     restore_with_the_debug_scale_left_fails: "restore-debug-scale" => ["0.01", "got 0.100"],
-    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "a typo in the course's printed text", "2D − 1"],
+    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "a typo in the course's printed text", "depth = 2 * depth - 1;"],
     restore_not_text_is_rejected_by_name: "restore-not-text" => ["restore-not-text/sao_restore_depth.frag", "neither UTF-8, UTF-16 nor Shift-JIS"],
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
@@ -222,19 +222,19 @@ fails! {
     sao_with_the_bias_added_names_its_sign: "sao-bias-plus" => ["vn + BIAS", "wrong sign", "max((vn - BIAS) / (vv + 0.001), 0)"],
     sao_with_a_derivative_in_a_branch_names_the_line_and_erratum_22: "sao-derivative-in-branch" => ["derivative is called inside a branch", "sao.frag:114", "appendix A #22"],
     sao_without_the_clamp_fails: "sao-no-clamp" => ["max(…, 0)"],
-    sao_reading_only_level_0_fails: "sao-level-0" => ["never reads the mip levels 1–3", "textureLod(texDepth, uv, mipLevel)"],
-    sao_with_a_squared_falloff_fails: "sao-falloff-squared" => ["f·f·f", "fades too slowly"],
+    sao_reading_only_level_0_fails: "sao-level-0" => ["never reads the mip levels 1–3", "textureLod(texDepth, uv, float(mipLevel))", "findMSB(int(ratio * pixelsSS))"],
+    sao_with_a_squared_falloff_fails: "sao-falloff-squared" => ["f * f * f", "fades too slowly"],
     sao_with_a_compile_error_names_file_and_line: "sao-compile-error" => ["does not compile", "sao-compile-error/sao.frag:83:"],
     sao_including_an_absolute_path_is_refused_unread: "sao-include-absolute" => ["sao-include-absolute/sao.frag:3: #include \"/etc/passwd\" is an absolute path"],
     sao_including_from_above_its_folder_is_refused_unread: "sao-include-parent" => ["sao-include-parent/sao.frag:3: #include \"../rewrite-sao-include/sao_helpers.glsl\" goes up with '..'"],
-    blur_without_normalisation_fails: "blur-no-normalise" => ["not normalised", "totalWeight"],
+    blur_without_normalisation_fails: "blur-no-normalise" => ["not normalised", "running total of the weights"],
     blur_without_the_edge_weight_fails: "blur-no-edge-weight" => ["across a depth edge"],
-    blur_ignoring_blur_scale_fails: "blur-no-blur-scale" => ["reads the wrong texels", "blurScale"],
+    blur_ignoring_blur_scale_fails: "blur-no-blur-scale" => ["reads the wrong texels", "ivec2(gl_FragCoord.xy) + ivec2(x, y) * 2"],
     blur_with_an_edge_distance_ten_times_too_large_fails: "blur-edge-distance-x10" => ["across a depth edge"],
     sao_without_the_2x2_smoothing_fails: "sao-no-smoothing" => ["2×2 smoothing"],
     sao_with_the_2x2_smoothing_of_the_wrong_sign_fails: "sao-smoothing-wrong-sign" => ["2×2 smoothing"],
     sao_with_the_mip_level_inverted_fails: "sao-mip-level-inverted" => ["flat and open but occluded"],
-    blur_without_its_clamp_fails_at_the_border: "blur-no-clamp" => ["reads past the texture's border", "clamp(uv + ivec2(x, y) * blurScale"],
+    blur_without_its_clamp_fails_at_the_border: "blur-no-clamp" => ["reads past the texture's border", "clamp(ivec2(gl_FragCoord.xy) + ivec2(x, y) * 2, ivec2(0), textureSize(texColor, 0) - 1)"],
     blur_clamped_to_the_transposed_size_fails: "blur-clamp-swapped" => ["reads past the texture's border"],
     sao_with_ndc_to_view_swapped_fails: "sao-ndc-swapped" => ["stretched along x or y", "x by ndcToView.x"],
     sao_without_the_aspect_fix_fails: "sao-no-aspect-fix" => ["stretched along x or y", "aspectFix = (height / width, 1)"],
@@ -243,7 +243,7 @@ fails! {
     sao_including_itself_is_an_include_cycle: "sao-include-self" => ["sao-include-self/sao.frag:3: #include \"sao.frag\"", "#include cycle"],
     blur_with_an_edge_distance_twice_too_large_fails: "blur-edge-distance-x2" => ["depth step of 0.05 m weigh 0.83", "gives 0.67"],
     sao_clamped_at_half_fails: "sao-clamped-at-half" => ["fully occluded pixels stay at 0.5", "min(1.0,"],
-    sao_with_a_falloff_below_zero_fails: "sao-falloff-below-zero" => ["post 1.5 m in front of the wall", "must count 0", "f = max(RADIUS2 − vv, 0)"],
+    sao_with_a_falloff_below_zero_fails: "sao-falloff-below-zero" => ["post 1.5 m in front of the wall", "must count 0", "f = max(RADIUS2 - vv, 0)"],
 }
 
 /// The SAO step of `res` (the project's files when `None`) at `--level level` with `--points`:
@@ -884,4 +884,26 @@ fn pictures_that_cannot_be_written_are_said_with_the_verdict() {
         message.contains("pictures not written") && message.contains("restore-expected.png"),
         "{message}"
     );
+}
+
+#[test]
+fn verdicts_write_code_a_student_can_paste_with_the_pages_names() {
+    // ASCII operators in both languages, and no name that only the folded answers define.
+    for lang in ["en", "ja"] {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join(format!("locales/{lang}.yml"));
+        let text = std::fs::read_to_string(path).unwrap();
+        for line in text.lines().filter(|l| l.starts_with("grade.verdict.")) {
+            assert!(!line.contains('−') && !line.contains('·'), "{lang}: {line}");
+            for name in [
+                "ssR",
+                "edgeSharpness",
+                "totalWeight",
+                "blurScale",
+                "blurRadius",
+                "farPlaneZ",
+            ] {
+                assert!(!line.contains(name), "{lang}: {name} in {line}");
+            }
+        }
+    }
 }
