@@ -214,7 +214,7 @@ fn bad_truths_give_clear_errors() {
         &[
             "--lang", "ja", "render", "--view", "error", "--truth", m, "--out", o,
         ],
-        &["nothere.pfm", "正解画像"],
+        &["nothere.pfm", "リファレンス"],
     );
     fails_with(
         &["--lang", "en", "render", "--view", "error", "--out", o],
