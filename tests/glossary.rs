@@ -274,7 +274,8 @@ fn checked_lines(file: &Path, text: &str, g: &Glossary) -> Vec<(usize, String)> 
                 Some(i) => Some(comment_text(&line[i..])),
                 None => line.split_once(": ").and_then(|(key, value)| {
                     let skipped = g.skipped_keys.iter().any(|(k, _)| key.starts_with(k.as_str()));
-                    (!skipped).then(|| value.to_string())
+                    // An escaped quote is a quote.
+                    (!skipped).then(|| value.replace("\\\"", "\""))
                 }),
             },
             _ => comment_start(ext, line).map(|i| comment_text(&line[i..])),

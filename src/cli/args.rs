@@ -119,6 +119,7 @@ pub struct LessonArgs {
     /// Render the step's view to --out instead of opening a window.
     #[arg(long)]
     pub headless: bool,
+    /// The picture written with --headless or when there is no display (.png or .pfm).
     #[arg(long, default_value = "out/lesson.png")]
     pub out: PathBuf,
 }
@@ -147,12 +148,16 @@ pub struct SceneArgs {
     /// Vertical field of view in degrees.
     #[arg(long, allow_negative_numbers = true)]
     pub fov: Option<f32>,
+    /// Distance to the near plane in metres (default: the scene file's).
     #[arg(long, allow_negative_numbers = true)]
     pub near: Option<f32>,
+    /// Distance to the far plane in metres (default: the scene file's).
     #[arg(long, allow_negative_numbers = true)]
     pub far: Option<f32>,
+    /// Output width in pixels.
     #[arg(long, allow_negative_numbers = true)]
     pub width: Option<u32>,
+    /// Output height in pixels.
     #[arg(long, allow_negative_numbers = true)]
     pub height: Option<u32>,
     /// Main depth buffer: d32 (the course's) or d32f-reversed (reversed-Z: far surfaces keep precision).
@@ -273,6 +278,7 @@ pub struct RenderArgs {
 pub struct WindowArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// The view shown first (V cycles through them).
     #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
     pub view: View,
     /// Close after this many frames (for scripted runs and tests).

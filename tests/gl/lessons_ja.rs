@@ -75,8 +75,17 @@ fn comment_start(lang: &str, line: &str) -> Option<usize> {
 }
 
 /// A code block without its comments: each line cut at its comment and trimmed at the end, lines
-/// left empty dropped (so a comment may take more or fewer lines in a translation).
+/// left empty dropped (so a comment may take more or fewer lines in a translation). A block without a
+/// language (formulas, diagrams) keeps only its symbols (`formula_symbols`): its words are translated.
 fn comment_free(lang: &str, body: &str) -> String {
+    if lang.is_empty() || lang == "text" {
+        return body
+            .lines()
+            .map(formula_symbols)
+            .filter(|l| !l.is_empty())
+            .map(|l| l + "\n")
+            .collect();
+    }
     let mut out = String::new();
     for line in body.lines() {
         let code = match comment_start(lang, line) {
@@ -89,6 +98,32 @@ fn comment_free(lang: &str, body: &str) -> String {
             out.push('\n');
         }
     }
+    out
+}
+
+/// What a translation of a formula line keeps: every symbol, number and one-letter variable, without
+/// spaces, words (two letters or more, hyphenated ones too) and Japanese.
+fn formula_symbols(line: &str) -> String {
+    let mut out = String::new();
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        if word.chars().filter(char::is_ascii_alphabetic).count() < 2 {
+            out.push_str(word);
+        }
+        word.clear();
+    };
+    for c in line.chars() {
+        let joins = !word.is_empty() && c == '-';
+        if c.is_ascii_alphabetic() || joins {
+            word.push(c);
+            continue;
+        }
+        flush(&mut word, &mut out);
+        if !c.is_whitespace() && !is_japanese(c) {
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
     out
 }
 
@@ -389,6 +424,53 @@ fn japanese_listings_comment_in_japanese() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
+/// Lines of the formula blocks (no language) of a page with two English words or more in a row.
+fn english_in_formulas(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut fence: Option<String> = None;
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if t.starts_with("```") || t.starts_with("~~~") {
+            fence = match fence {
+                Some(_) => None,
+                None => Some(t[3..].trim().to_string()),
+            };
+            continue;
+        }
+        if !fence.as_deref().is_some_and(|l| l.is_empty() || l == "text") {
+            continue;
+        }
+        let words: Vec<bool> = line
+            .split(' ')
+            .filter(|w| !w.is_empty())
+            .map(|w| {
+                let w = w.trim_matches(|c: char| "(),:;".contains(c));
+                w.len() >= 2 && w.chars().all(|c| c.is_ascii_alphabetic() || c == '-')
+            })
+            .collect();
+        if words.windows(2).any(|p| p[0] && p[1]) {
+            out.push((n + 1, line.to_string()));
+        }
+    }
+    out
+}
+
+#[test]
+fn japanese_formulas_are_written_in_japanese() {
+    assert_eq!(
+        english_in_formulas("```\nd = A / (D' − B)\nD' = 2D − 1 (back to NDC z)\n```\nback to prose\n"),
+        [(3, "D' = 2D − 1 (back to NDC z)".to_string())]
+    );
+    let mut problems = Vec::new();
+    for page in pages(&root().join("lessons/ja"), "") {
+        let text = std::fs::read_to_string(root().join("lessons/ja").join(&page)).unwrap();
+        for (line, said) in english_in_formulas(&text) {
+            problems.push(format!("lessons/ja/{}:{line}: English: {said}", page.display()));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
 #[test]
 fn the_comment_check_tells_english_from_code_and_japanese() {
     let page = "```glsl\nfloat r = 1.0; // disc radius in pixels\nx = y; // x = y\n```\n\
@@ -449,8 +531,20 @@ fn comments_may_differ_but_code_may_not() {
         comment_free("sh", "cargo test   # everything\necho '#1'\n"),
         "cargo test\necho '#1'\n"
     );
-    // Formulas keep every character.
-    assert_eq!(comment_free("", "x = y // 2\n"), "x = y // 2\n");
+    // Formulas keep every symbol and variable; their words may be translated.
+    assert_eq!(comment_free("", "x = y // 2\n"), "x=y//2\n");
+    assert_eq!(
+        comment_free("", "D' = 2D − 1   (back to NDC z)\n"),
+        comment_free("", "D' = 2D − 1   (NDCのzに戻す)\n")
+    );
+    assert_ne!(
+        comment_free("", "D' = 2D − 1   (back to NDC z)\n"),
+        comment_free("", "D' = 2D + 1   (NDCのzに戻す)\n")
+    );
+    assert_eq!(
+        comment_free("", "AO: restore → down-sample → SAO\n"),
+        comment_free("", "AO: 復元 → 縮小 → SAO\n")
+    );
 }
 
 #[test]

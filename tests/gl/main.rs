@@ -24,6 +24,7 @@ mod grade_class;
 mod grade_class_zip;
 mod grade_mutation;
 mod guard_band;
+mod help_ja;
 mod i18n;
 mod inputs;
 mod inputs_limits;

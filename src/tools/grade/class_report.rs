@@ -163,11 +163,11 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
     let mut h = String::new();
     h.push_str(&format!(
         "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
+         <title>{t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <h1>{t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
          <table>\n<thead><tr><th>{student}</th>",
         lang = crate::i18n::current().code(),
-        t = html(title),
+        t = html(&t!("class.html_title", title = title)),
         summary = html(&t!("class.html_summary", all = all, count = results.len())),
         legend = html(&t!("class.html_legend")),
         student = html(&t!("class.html_student")),
