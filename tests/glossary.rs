@@ -29,7 +29,11 @@ fn table(text: &str, heading: &str) -> Vec<Vec<String>> {
         .filter(|l| l.starts_with('|'))
         .skip(2)
         .map(|l| {
-            l.trim().trim_matches('|').split('|').map(|c| c.trim().to_string()).collect()
+            l.trim()
+                .trim_matches('|')
+                .split('|')
+                .map(|c| c.trim().to_string())
+                .collect()
         })
         .collect()
 }
@@ -51,7 +55,11 @@ fn glossary_from(text: &str) -> Glossary {
     let terms = table(text, "用語")
         .into_iter()
         .map(|cells| {
-            assert_eq!(cells.len(), 4, "glossary: a row of 用語 has 4 cells: {cells:?}");
+            assert_eq!(
+                cells.len(),
+                4,
+                "glossary: a row of 用語 has 4 cells: {cells:?}"
+            );
             Term {
                 term: cells[1].clone(),
                 variants: cells[3]
@@ -66,8 +74,15 @@ fn glossary_from(text: &str) -> Glossary {
     let mut phrases = Vec::new();
     let mut skipped_keys = Vec::new();
     for cells in table(text, "例外") {
-        assert_eq!(cells.len(), 3, "glossary: a row of 例外 has 3 cells: {cells:?}");
-        assert!(!cells[2].is_empty(), "glossary: the exception {cells:?} says no reason");
+        assert_eq!(
+            cells.len(),
+            3,
+            "glossary: a row of 例外 has 3 cells: {cells:?}"
+        );
+        assert!(
+            !cells[2].is_empty(),
+            "glossary: the exception {cells:?} says no reason"
+        );
         match cells[0].as_str() {
             "語句" => phrases.push(cells[1].clone()),
             "キー" => skipped_keys.push((cells[1].clone(), cells[2].clone())),
@@ -175,7 +190,8 @@ fn rule_problems(text: &str) -> Vec<String> {
         }
         // A number: `2x2` and a unit written without its space.
         let starts_number = c.is_ascii_digit()
-            && !before(1).is_some_and(|b| b.is_ascii_alphanumeric() || matches!(b, '.' | '_' | '-'));
+            && !before(1)
+                .is_some_and(|b| b.is_ascii_alphanumeric() || matches!(b, '.' | '_' | '-'));
         if starts_number {
             let mut j = i;
             while j < chars.len() && (chars[j].is_ascii_digit() || chars[j] == '.') {
@@ -192,8 +208,13 @@ fn rule_problems(text: &str) -> Vec<String> {
                     ));
                 }
             }
-            if let Some(u) = UNITS.iter().find(|u| rest.strip_prefix(**u).is_some_and(ends_word)) {
-                out.push(format!("\"{number}{u}\": write \"{number} {u}\" (a space before the unit)"));
+            if let Some(u) = UNITS
+                .iter()
+                .find(|u| rest.strip_prefix(**u).is_some_and(ends_word))
+            {
+                out.push(format!(
+                    "\"{number}{u}\": write \"{number} {u}\" (a space before the unit)"
+                ));
             }
         }
     }
@@ -273,7 +294,10 @@ fn checked_lines(file: &Path, text: &str, g: &Glossary) -> Vec<(usize, String)> 
             "yml" => match comment_start("yml", line) {
                 Some(i) => Some(comment_text(&line[i..])),
                 None => line.split_once(": ").and_then(|(key, value)| {
-                    let skipped = g.skipped_keys.iter().any(|(k, _)| key.starts_with(k.as_str()));
+                    let skipped = g
+                        .skipped_keys
+                        .iter()
+                        .any(|(k, _)| key.starts_with(k.as_str()));
                     // An escaped quote is a quote.
                     (!skipped).then(|| value.replace("\\\"", "\""))
                 }),
@@ -292,7 +316,9 @@ fn problems_in(file: &Path, name: &str, g: &Glossary) -> Vec<String> {
     let mut out = Vec::new();
     for (n, line) in checked_lines(file, &text, g) {
         for (variant, term) in variants_in(&line, &g.terms) {
-            out.push(format!("{name}:{n}: {variant}: write {term} (the glossary's term)"));
+            out.push(format!(
+                "{name}:{n}: {variant}: write {term} (the glossary's term)"
+            ));
         }
         for p in rule_problems(&line) {
             out.push(format!("{name}:{n}: {p}"));
@@ -371,7 +397,10 @@ fn japanese_text_follows_the_glossary() {
     for f in japanese_pages() {
         problems.extend(problems_in(&f, &relative(&f), &g));
     }
-    let copied: BTreeSet<PathBuf> = japanese_copies("rules").into_iter().map(|(_, s)| s).collect();
+    let copied: BTreeSet<PathBuf> = japanese_copies("rules")
+        .into_iter()
+        .map(|(_, s)| s)
+        .collect();
     for source in &copied {
         problems.extend(problems_in(source, &relative(source), &g));
     }
@@ -402,7 +431,11 @@ fn is_english_prose(comment: &str) -> bool {
 fn the_files_lesson_start_writes_in_japanese_comment_in_japanese() {
     let mut problems = Vec::new();
     for (written, source) in japanese_copies("comments") {
-        let ext = source.extension().and_then(|e| e.to_str()).unwrap_or("").to_string();
+        let ext = source
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_string();
         let text = read(&written);
         for (n, line) in text.lines().enumerate() {
             if let Some(i) = comment_start(&ext, line) {
@@ -450,7 +483,12 @@ fn japanese_copies_of_project_files_differ_only_in_their_comments() {
         }
         let original = res.join(rel);
         let ext = rel.extension().and_then(|e| e.to_str()).unwrap_or("");
-        assert!(original.is_file(), "{} has no original {}", relative(&twin), relative(&original));
+        assert!(
+            original.is_file(),
+            "{} has no original {}",
+            relative(&twin),
+            relative(&original)
+        );
         assert_eq!(
             comment_free(ext, &read(&twin)),
             comment_free(ext, &read(&original)),
@@ -475,8 +513,10 @@ fn the_checks_catch_each_rule_and_spare_code_quotes_and_phrases() {
     assert_eq!(g.skipped_keys[0].0, "grade.verdict.");
     let found = |line: &str| -> Vec<String> {
         let p = prose(line, &g.phrases);
-        let mut out: Vec<String> =
-            variants_in(&p, &g.terms).into_iter().map(|(v, _)| v).collect();
+        let mut out: Vec<String> = variants_in(&p, &g.terms)
+            .into_iter()
+            .map(|(v, _)| v)
+            .collect();
         out.extend(rule_problems(&p));
         out
     };
@@ -496,7 +536,8 @@ fn the_checks_catch_each_rule_and_spare_code_quotes_and_phrases() {
     assert!(found("4 msかかり、10%遅い。d32fとR8").is_empty());
     assert_eq!(found("ＡＯ").len(), 2);
     // A YAML file: values and comments, but not the skipped keys.
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("glossary-yml-{}", std::process::id()));
+    let dir =
+        Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("glossary-yml-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let yml = dir.join("ja.yml");
     std::fs::write(
@@ -512,7 +553,10 @@ fn the_checks_catch_each_rule_and_spare_code_quotes_and_phrases() {
     std::fs::write(&md, "```glsl\nfloat x2x2 = 1.0; // シェーダ\n```\n").unwrap();
     let problems = problems_in(&md, "p.md", &g);
     std::fs::remove_dir_all(&dir).unwrap();
-    assert_eq!(problems, ["p.md:2: シェーダ: write シェーダー (the glossary's term)"]);
+    assert_eq!(
+        problems,
+        ["p.md:2: シェーダ: write シェーダー (the glossary's term)"]
+    );
     assert!(is_english_prose("Nearest texel of level 0"));
     assert!(!is_english_prose("レベル0の最も近いテクセル(nearest)"));
 }

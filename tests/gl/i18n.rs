@@ -118,10 +118,7 @@ fn a_missing_student_folder_is_said_in_japanese_only() {
     let o = run(&[C], &["grade", "--lang", "ja", "--res", res]);
     assert_ne!(o.status.code(), Some(0));
     let e = err(&o);
-    assert!(
-        e.contains("フォルダーではありません(存在しません)"),
-        "{e}"
-    );
+    assert!(e.contains("フォルダーではありません(存在しません)"), "{e}");
     assert!(
         !e.contains("No such file") && !e.contains("os error"),
         "{e}"
@@ -194,7 +191,7 @@ fn common_command_line_errors_in_japanese() {
     );
     let o = run(&[JA], &["lesson", "x"]);
     assert!(
-        err(&o).contains("'x' はステップではありません"),
+        err(&o).contains("'x'はステップではありません"),
         "{}",
         err(&o)
     );
@@ -364,24 +361,20 @@ fn render_and_reference_speak_japanese() {
 fn usage_errors_in_japanese_with_the_usage_line() {
     // clap prints a usage line for an unknown name, not for a missing or wrong value.
     for (args, says, usage) in [
-        (
-            vec!["rendr"],
-            "'rendr' というサブコマンドはありません",
-            true,
-        ),
+        (vec!["rendr"], "'rendr'というサブコマンドはありません", true),
         (
             vec!["render", "--bogus"],
-            "'--bogus' という引数はありません",
+            "'--bogus'という引数はありません",
             true,
         ),
         (
             vec!["render", "--out"],
-            "'--out <OUT>' には値を指定してください",
+            "'--out <OUT>'には値を指定してください",
             false,
         ),
         (
             vec!["render", "--view", "x"],
-            "'x' は '--view <VIEW>' に指定できる値ではありません",
+            "'x'は'--view <VIEW>'に指定できる値ではありません",
             false,
         ),
     ] {
@@ -394,7 +387,7 @@ fn usage_errors_in_japanese_with_the_usage_line() {
         );
         assert_eq!(e.contains("使い方: opengl3d"), usage, "{args:?}: {e}");
         assert!(
-            e.contains("詳しくは '--help' を付けて実行してください"),
+            e.contains("詳しくは'--help'を付けて実行してください"),
             "{e}"
         );
         // --lang on the command line wins over the locale, even when parsing failed.
@@ -408,8 +401,8 @@ fn usage_errors_in_japanese_with_the_usage_line() {
         assert_eq!(e.contains("Usage:"), usage, "{args:?}: {e}");
     }
     let e = err(&run(&[C], &["--lang", "ja", "rendr"]));
-    assert!(e.contains("'rendr' というサブコマンドはありません"), "{e}");
-    assert!(e.contains("'render' のことですか？"), "{e}");
+    assert!(e.contains("'rendr'というサブコマンドはありません"), "{e}");
+    assert!(e.contains("'render'のことですか？"), "{e}");
 }
 
 #[test]
@@ -507,6 +500,6 @@ fn errors_and_the_headless_fallback_are_said_in_japanese() {
         e.contains("ディスプレイが見つからない") && e.contains(png.to_str().unwrap()),
         "{e}"
     );
-    assert!(out(&o).contains("線形距離 を表示します"), "{}", out(&o));
+    assert!(out(&o).contains("線形距離を表示します"), "{}", out(&o));
     assert!(png.is_file());
 }

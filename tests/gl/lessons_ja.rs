@@ -437,7 +437,10 @@ fn english_in_formulas(text: &str) -> Vec<(usize, String)> {
             };
             continue;
         }
-        if !fence.as_deref().is_some_and(|l| l.is_empty() || l == "text") {
+        if !fence
+            .as_deref()
+            .is_some_and(|l| l.is_empty() || l == "text")
+        {
             continue;
         }
         let words: Vec<bool> = line
@@ -458,14 +461,19 @@ fn english_in_formulas(text: &str) -> Vec<(usize, String)> {
 #[test]
 fn japanese_formulas_are_written_in_japanese() {
     assert_eq!(
-        english_in_formulas("```\nd = A / (D' − B)\nD' = 2D − 1 (back to NDC z)\n```\nback to prose\n"),
+        english_in_formulas(
+            "```\nd = A / (D' − B)\nD' = 2D − 1 (back to NDC z)\n```\nback to prose\n"
+        ),
         [(3, "D' = 2D − 1 (back to NDC z)".to_string())]
     );
     let mut problems = Vec::new();
     for page in pages(&root().join("lessons/ja"), "") {
         let text = std::fs::read_to_string(root().join("lessons/ja").join(&page)).unwrap();
         for (line, said) in english_in_formulas(&text) {
-            problems.push(format!("lessons/ja/{}:{line}: English: {said}", page.display()));
+            problems.push(format!(
+                "lessons/ja/{}:{line}: English: {said}",
+                page.display()
+            ));
         }
     }
     assert!(problems.is_empty(), "{}", problems.join("\n"));
