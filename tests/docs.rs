@@ -513,3 +513,14 @@ fn the_count_check_reads_the_phrases_it_is_for() {
         "{counts:#?}"
     );
 }
+
+/// Lesson 2 says the restore pass's clamp matters only for a full-size side of 1 pixel: the half size
+/// is rounded down, so the 2×2 block of the last half-size texel, `2x + 1`, stays inside any side but 1.
+#[test]
+fn only_a_one_pixel_side_reads_past_the_edge_without_the_clamp() {
+    for full in 1..=4097u32 {
+        let (half, _) = opengl3d::ao::targets::half_size(full, 8);
+        let last_read = 2 * (half - 1) + 1;
+        assert_eq!(last_read > full - 1, full == 1, "side {full}: half {half}");
+    }
+}
