@@ -145,7 +145,11 @@ fn heading_text(raw: &str) -> String {
         match (open, end) {
             (Some(o), Some(e)) => {
                 let text = s[o + 1..close].to_string();
-                let o = if o > 0 && s.as_bytes()[o - 1] == b'!' { o - 1 } else { o };
+                let o = if o > 0 && s.as_bytes()[o - 1] == b'!' {
+                    o - 1
+                } else {
+                    o
+                };
                 s.replace_range(o..=e, &text);
             }
             _ => break,
@@ -342,9 +346,7 @@ fn slugs_follow_github() {
 /// The names `render --method` accepts, from the command line's own definition.
 fn method_names() -> Vec<String> {
     let cmd = opengl3d::cli::Cli::command();
-    let render = cmd
-        .find_subcommand("render")
-        .expect("a render subcommand");
+    let render = cmd.find_subcommand("render").expect("a render subcommand");
     let method = render
         .get_arguments()
         .find(|a| a.get_id() == "method")
@@ -449,7 +451,10 @@ const METHOD_INDEXES: [&str; 6] = [
 #[test]
 fn the_method_pages_name_and_count_what_the_code_runs() {
     let names = method_names();
-    assert!(names.len() >= 2 && names.contains(&"sao-lesson".to_string()), "{names:?}");
+    assert!(
+        names.len() >= 2 && names.contains(&"sao-lesson".to_string()),
+        "{names:?}"
+    );
     let total = names.len();
     let mut bad = Vec::new();
     for page in METHOD_INDEXES {
@@ -469,8 +474,12 @@ fn the_method_pages_name_and_count_what_the_code_runs() {
     }
     let mut pages: Vec<String> = METHOD_INDEXES.iter().map(|s| s.to_string()).collect();
     pages.extend(
-        ["docs/architecture.md", "docs/architecture.ja.md", "lessons/README.md"]
-            .map(String::from),
+        [
+            "docs/architecture.md",
+            "docs/architecture.ja.md",
+            "lessons/README.md",
+        ]
+        .map(String::from),
     );
     pages.push("lessons/ja/README.md".into());
     for page in &pages {
