@@ -70,6 +70,36 @@ fn have(program: &str) -> bool {
         .is_ok_and(|o| o.status.success())
 }
 
+/// The committer date of the correct student's commit.
+const SUBMITTED_AT: &str = "2026-06-01T14:32:05Z";
+
+/// Makes `dir` a git checkout with everything in one commit at `date`.
+fn commit_all(dir: &Path, date: &str) {
+    let git = |args: &[&str]| {
+        let o = Command::new("git")
+            .args([
+                "-c",
+                "user.name=student",
+                "-c",
+                "user.email=student@example.com",
+            ])
+            .args(args)
+            .current_dir(dir)
+            .env("GIT_AUTHOR_DATE", date)
+            .env("GIT_COMMITTER_DATE", date)
+            .output()
+            .unwrap();
+        assert!(
+            o.status.success(),
+            "git {args:?}: {}",
+            crate::common::stderr(&o)
+        );
+    };
+    git(&["init", "-q"]);
+    git(&["add", "-A"]);
+    git(&["commit", "-q", "-m", "submission"]);
+}
+
 /// Checks `r` against the result.json contract (Classroom 50, Advanced Autograding: "The
 /// result.json contract"): the schema, the identity strings, integer scores that are the sums of
 /// the tests', and each test's four fields. Returns (score, max-score).
@@ -208,6 +238,9 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
     let mut results = Vec::new();
     for (name, mistakes) in &students {
         let dir = student(&class, name, &template, mistakes);
+        if *name == "correct" {
+            commit_all(&dir, SUBMITTED_AT);
+        }
         let submission = format!("submit/2026-12-01T10-00-00Z-{name}");
         let env = [
             ("CLASSROOM", "cg-2026"),
@@ -234,6 +267,12 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
         let text = std::fs::read_to_string(dir.join("result.json")).expect("result.json");
         let r: Json = serde_json::from_str(&text).expect("result.json is JSON");
         let (score, max) = check_contract(&r, &env);
+        if *name == "correct" {
+            assert_eq!(
+                r["datetime"], SUBMITTED_AT,
+                "the graded commit's committer date"
+            );
+        }
         assert_eq!(max, 100, "{name}: every step's points");
         let first = &r["tests"][0];
         assert!(
@@ -562,4 +601,50 @@ fn points_appear_in_json_csv_and_junit() {
     seen.sort();
     let want = |s: &str, p: &str| (s.to_string(), p.to_string(), "20".to_string());
     assert_eq!(seen, [want("ada", "20"), want("bob", "0")]);
+}
+
+#[test]
+fn an_installed_grader_needs_no_source_tree() {
+    // As `cargo install` leaves it: the binary alone in a folder of its own, away from the tree.
+    let bin = outside_dir("installed");
+    let exe = bin.join("opengl3d");
+    std::fs::copy(env!("CARGO_BIN_EXE_opengl3d"), &exe).unwrap();
+    let cache = outside_dir("installed-cache");
+    let run = |args: &[&str]| {
+        Command::new(&exe)
+            .args(args)
+            .current_dir(&bin)
+            .env("XDG_CACHE_HOME", &cache)
+            .output()
+            .unwrap()
+    };
+    // The project's own shaders pass their own grading, read from the copy built into the binary.
+    let o = run(&["grade"]);
+    let out = String::from_utf8_lossy(&o.stdout);
+    assert!(o.status.success(), "{out}\n{}", crate::common::stderr(&o));
+    let source = env!("CARGO_MANIFEST_DIR");
+    assert!(!out.contains(source), "reads the source tree: {out}");
+    assert!(out.contains(&cache.display().to_string()), "{out}");
+    // A student's folder is written from it too, and graded.
+    let o = run(&["lesson", "start", "work"]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    assert!(bin.join("work/sao.frag").is_file() && bin.join("work/scenes/demo.toml").is_file());
+    let o = run(&["--res", "work", "grade", "--step", "restore"]);
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "the stub fails: {}",
+        crate::common::stderr(&o)
+    );
+    // A pruned cache is noticed and written again.
+    let extracted = std::fs::read_dir(cache.join("opengl3d"))
+        .unwrap()
+        .filter_map(Result::ok)
+        .find(|e| e.file_name().to_string_lossy().starts_with("res-"))
+        .unwrap()
+        .path();
+    std::fs::remove_file(extracted.join("sao_blur.frag")).unwrap();
+    let o = run(&["grade", "--step", "blur"]);
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    assert!(extracted.join("sao_blur.frag").is_file());
 }

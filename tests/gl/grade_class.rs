@@ -363,15 +363,24 @@ fn a_japanese_class_report_is_japanese_and_each_student_has_a_page() {
     assert_eq!(o.status.code(), Some(1), "{}", crate::common::stderr(&o));
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
-    assert_eq!(rows[0], "学生,restore,restoreの点数,合格数,点数,満点", "{csv}");
+    assert_eq!(
+        rows[0], "学生,restore,restoreの点数,合格数,点数,満点",
+        "{csv}"
+    );
     assert!(rows.contains(&"ada,合格,20,1,20,20"), "{csv}");
     assert!(rows.contains(&"bob,不合格,0,0,0,20"), "{csv}");
     let junit = std::fs::read_to_string(out.join("junit.xml")).unwrap();
     assert!(junit.contains("type=\"不合格\""), "{junit}");
     assert!(!junit.contains("failed"), "no English verdict: {junit}");
     let html = std::fs::read_to_string(out.join("report.html")).unwrap();
-    for (name, page) in [("ada", "students/001-ada.html"), ("bob", "students/002-bob.html")] {
-        assert!(html.contains(&format!("href=\"{page}\">{name}</a>")), "{html}");
+    for (name, page) in [
+        ("ada", "students/001-ada.html"),
+        ("bob", "students/002-bob.html"),
+    ] {
+        assert!(
+            html.contains(&format!("href=\"{page}\">{name}</a>")),
+            "{html}"
+        );
         let text = std::fs::read_to_string(out.join(page)).unwrap();
         assert!(text.contains(&format!("{name}さんの採点結果")), "{text}");
         // Every picture the page shows is there, one folder up.
@@ -381,6 +390,9 @@ fn a_japanese_class_report_is_japanese_and_each_student_has_a_page() {
         }
     }
     let bob = std::fs::read_to_string(out.join("students/002-bob.html")).unwrap();
-    assert!(bob.contains("restore-difference.png") && bob.contains("不合格"), "{bob}");
+    assert!(
+        bob.contains("restore-difference.png") && bob.contains("不合格"),
+        "{bob}"
+    );
     assert!(bob.contains("20点中0点"), "{bob}");
 }

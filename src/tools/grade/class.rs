@@ -266,7 +266,11 @@ fn student_page(s: &Student) -> String {
 const STUDENT_PAGES: &str = "students";
 
 /// Writes each student's feedback page (its pictures are one folder up from the page).
-fn write_student_pages(out: &Path, results: &[StudentResult], points: Option<&Points>) -> Result<()> {
+fn write_student_pages(
+    out: &Path,
+    results: &[StudentResult],
+    points: Option<&Points>,
+) -> Result<()> {
     crate::io::create_dir_all(&out.join(STUDENT_PAGES))?;
     for r in results {
         let entries: Vec<feedback::Entry> = r
