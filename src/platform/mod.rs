@@ -13,10 +13,14 @@ pub mod window;
 
 pub use headless::HeadlessContext;
 
-/// True when a desktop display looks reachable (X11 or Wayland) and this build has the window.
+/// True when a desktop display looks reachable (X11 or Wayland; Windows always has one) and this
+/// build has the window.
 pub fn display_available() -> bool {
     if cfg!(not(feature = "window")) {
         return false;
+    }
+    if cfg!(windows) {
+        return true;
     }
     std::env::var_os("DISPLAY").is_some_and(|v| !v.is_empty())
         || std::env::var_os("WAYLAND_DISPLAY").is_some_and(|v| !v.is_empty())

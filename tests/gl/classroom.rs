@@ -648,3 +648,92 @@ fn an_installed_grader_needs_no_source_tree() {
     assert!(o.status.success(), "{}", crate::common::stderr(&o));
     assert!(extracted.join("sao_blur.frag").is_file());
 }
+
+#[test]
+fn the_class_edition_leaves_out_every_answer_listing() {
+    let dir = temp_dir("edition");
+    let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args(["--lang", "ja", "lesson", "edition"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let lessons = Path::new(env!("CARGO_MANIFEST_DIR")).join("lessons");
+    // The lines of the project's five lesson shaders that a stub does not have: the answers.
+    let mut answer_lines = Vec::new();
+    for f in [
+        "sao_restore_depth.frag",
+        "sao_down_sampling.frag",
+        "simple.frag",
+        "sao.frag",
+        "sao_blur.frag",
+    ] {
+        let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("Res");
+        let solution = std::fs::read_to_string(root.join(f)).unwrap();
+        let stub = std::fs::read_to_string(root.join("lesson-stubs").join(f)).unwrap();
+        for line in solution.lines().map(str::trim) {
+            // Constants and declarations are the task's facts (the pages state them); statements
+            // with an operator or a call are what a student writes.
+            let given = ["//", "const ", "#", "layout", "uniform ", "in ", "out "]
+                .iter()
+                .any(|p| line.starts_with(p));
+            let code = line.len() > 24 && !given && line.contains(['=', '(']);
+            if code && !stub.contains(line) {
+                answer_lines.push(line.to_string());
+            }
+        }
+    }
+    assert!(answer_lines.len() > 30, "{answer_lines:?}");
+    let (mut pages, mut leaks) = (0, 0);
+    for (source, edition) in [
+        (lessons.clone(), dir.join("lessons")),
+        (lessons.join("ja"), dir.join("lessons/ja")),
+    ] {
+        for e in std::fs::read_dir(&source).unwrap() {
+            let p = e.unwrap().path();
+            if p.extension().is_none_or(|x| x != "md") {
+                continue;
+            }
+            let original = std::fs::read_to_string(&p).unwrap();
+            let text = std::fs::read_to_string(edition.join(p.file_name().unwrap())).unwrap();
+            pages += 1;
+            // The page's text outside its folded blocks: what the task itself says stays.
+            let (mut outside, mut inside) = (String::new(), String::new());
+            for (i, part) in original.split("<details>").enumerate() {
+                match part.split_once("</details>") {
+                    Some((folded, rest)) if i > 0 => {
+                        inside.push_str(folded);
+                        outside.push_str(rest);
+                    }
+                    _ => outside.push_str(part),
+                }
+            }
+            let found: Vec<&String> = answer_lines
+                .iter()
+                .filter(|l| inside.contains(l.as_str()) && !outside.contains(l.as_str()))
+                .filter(|l| text.contains(l.as_str()))
+                .collect();
+            if !found.is_empty() {
+                eprintln!("{}: {found:?}", p.display());
+                leaks += found.len();
+            }
+            if !inside.is_empty() {
+                assert!(text.len() < original.len(), "{}", p.display());
+            }
+        }
+    }
+    assert_eq!(leaks, 0, "answer lines left in the edition (listed above)");
+    assert!(pages >= 26, "{pages} pages");
+    for img in std::fs::read_dir(lessons.join("img")).unwrap() {
+        let name = img.unwrap().file_name();
+        assert!(dir.join("lessons/img").join(&name).exists(), "{name:?}");
+    }
+    for stub in ["sao.frag", "sao_blur.frag", "scenes/demo.toml"] {
+        assert!(dir.join("start").join(stub).is_file(), "{stub}");
+    }
+    let sao = std::fs::read_to_string(dir.join("start/sao.frag")).unwrap();
+    assert!(
+        sao.contains("レッスン") || sao.contains("ステップ"),
+        "Japanese stub comments"
+    );
+}
