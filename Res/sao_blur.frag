@@ -1,6 +1,6 @@
 #version 450
 
-// Step 4: depth-aware (bilateral) 9x9 blur of the SAO buffer.
+// The blur pass (fourth of four): depth-aware (bilateral) 9x9 blur of the SAO buffer.
 
 layout(binding=0) uniform sampler2D texColor; // occlusion
 layout(binding=1) uniform sampler2D texDepth; // linear depth

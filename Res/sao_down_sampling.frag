@@ -1,6 +1,6 @@
 #version 450
 
-// Step 2: one level of the linear-depth mip chain = the nearest of the 2x2 texels of the level above.
+// The down-sampling pass (second of four): one level of the linear-depth mip chain = the nearest of the 2x2 texels of the level above.
 
 layout(binding=0) uniform sampler2D texDepth;
 

@@ -1,6 +1,6 @@
 #version 450
 
-// Step 1 of the AO lesson: turn the depth buffer back into view distance (metres),
+// The restore pass (first of the AO lesson's four): turn the depth buffer back into view distance (metres),
 // at half size, keeping the nearest of each 2x2 block.
 
 out float outColor;
