@@ -116,7 +116,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
         for s in &r.reports {
             row.push(verdict(s));
             if let Some(p) = points {
-                row.push(p.earned(&s.step, s.passed).to_string());
+                row.push(s.earned_points(p).to_string());
             }
         }
         row.push(r.passed().to_string());
@@ -132,10 +132,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
 /// What a student earned and could have earned.
 fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
-        (
-            e + points.earned(&s.step, s.passed),
-            m + points.of_name(&s.step),
-        )
+        (e + s.earned_points(points), m + s.max_points(points))
     })
 }
 
@@ -310,7 +307,7 @@ pub fn to_junit(
                 xml(&s.file)
             ));
             if let Some(p) = points {
-                x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
+                x.push_str(&properties(s.earned_points(p), s.max_points(p)));
             }
             let message = xml(s.shown_message());
             if s.passed {
