@@ -575,10 +575,10 @@ fn points_appear_in_json_csv_and_junit() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(
         rows[0],
-        "student,restore,restore points,passed,points,max points"
+        "student,restore,restore points,passed,points,max points,level"
     );
-    assert!(rows.contains(&"ada,PASS,20,1,20,20"), "{csv}");
-    assert!(rows.contains(&"bob,FAIL,0,0,0,20"), "{csv}");
+    assert!(rows.contains(&"ada,PASS,20,1,20,20,lesson"), "{csv}");
+    assert!(rows.contains(&"bob,FAIL,0,0,0,20,lesson"), "{csv}");
     let xml = std::fs::read_to_string(out.join("junit.xml")).unwrap();
     // Each test case's points, read with an XML parser: (suite, points, max_points).
     let mut reader = quick_xml::Reader::from_str(&xml);

@@ -110,6 +110,7 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
             t!("class.csv_max_points").into_owned(),
         ]);
     }
+    header.push(t!("class.csv_level").into_owned());
     let mut csv = csv_row(&header);
     for r in results {
         let mut row = vec![csv_name(&r.name)];
@@ -124,9 +125,15 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
             let (earned, max) = student_points(p, r);
             row.extend([earned.to_string(), max.to_string()]);
         }
+        row.push(level_of(r).to_string());
         csv.push_str(&csv_row(&row));
     }
     csv
+}
+
+/// How strictly the student was graded (`--level`; every step of a class has the same).
+fn level_of(r: &StudentResult) -> &'static str {
+    r.reports.first().map_or("", |s| s.level.name())
 }
 
 /// What a student earned and could have earned.
@@ -184,13 +191,17 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
     h.push_str(&format!(
         "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
+         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p>{level}</p>\n<p><small>{legend}</small></p>\n\
          <table>\n<thead><tr><th>{student}</th>",
         lang = crate::i18n::current().code(),
         t = html(title),
         summary = html(&t!("class.html_summary", all = all, count = results.len())),
         legend = html(&t!("class.html_legend")),
         student = html(&t!("class.html_student")),
+        level = html(&t!(
+            "grade.level",
+            level = results.first().map_or("", level_of)
+        )),
     ));
     for s in steps {
         h.push_str(&format!(
@@ -296,9 +307,15 @@ pub fn to_junit(
             r.reports.len() - r.passed(),
             r.seconds
         ));
-        if let Some(p) = points {
-            let (earned, max) = student_points(p, r);
-            x.push_str(&format!("    {}\n", properties(earned, max)));
+        let level = format!("<property name=\"level\" value=\"{}\"/>", xml(level_of(r)));
+        match points {
+            Some(p) => {
+                let (earned, max) = student_points(p, r);
+                let props = properties(earned, max)
+                    .replace("</properties>", &format!("{level}</properties>"));
+                x.push_str(&format!("    {props}\n"));
+            }
+            None => x.push_str(&format!("    <properties>{level}</properties>\n")),
         }
         for s in &r.reports {
             x.push_str(&format!(

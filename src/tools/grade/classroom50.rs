@@ -33,10 +33,13 @@ pub struct ResultTest {
     #[serde(rename = "max-score")]
     pub max_score: u32,
     /// Diagnostic fields (the contract keeps extra fields of a test as they are): the unit's stable
-    /// id (`restore`, `sao`, …), the graded file and the grader's message in the class's language.
+    /// id (`restore`, `sao.smoothing`, …), the graded file, the grader's message in the class's
+    /// language and the grading level.
     pub id: String,
     pub file: String,
     pub message: String,
+    /// How strictly it was graded (`grade --level`).
+    pub level: &'static str,
 }
 
 #[derive(Debug, Serialize)]
@@ -128,6 +131,7 @@ pub fn tests(reports: &[StepReport], points: &Points) -> Vec<ResultTest> {
                 id: r.step.clone(),
                 file: r.file.clone(),
                 message: r.shown_message().to_string(),
+                level: r.level.name(),
             });
         }
         for p in &r.parts {
@@ -140,6 +144,7 @@ pub fn tests(reports: &[StepReport], points: &Points) -> Vec<ResultTest> {
                 id: p.part.clone(),
                 file: r.file.clone(),
                 message: p.shown_message().to_string(),
+                level: r.level.name(),
             });
         }
     }

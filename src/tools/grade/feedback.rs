@@ -55,6 +55,12 @@ pub fn page(name: Option<&str>, entries: &[Entry], points: Option<&Points>) -> S
             count = entries.len()
         )),
     );
+    if let Some(first) = entries.first() {
+        h.push_str(&format!(
+            "<p>{}</p>\n",
+            html(&t!("grade.level", level = first.report.level.name()))
+        ));
+    }
     if let Some(p) = points {
         let earned: u32 = entries.iter().map(|e| e.report.earned_points(p)).sum();
         let max: u32 = entries.iter().map(|e| e.report.max_points(p)).sum();
