@@ -4,6 +4,7 @@
 //! messages echoing their shaders) is quoted or escaped for the format it lands in.
 
 use super::args::Step;
+use super::feedback::html;
 use super::points::Points;
 use super::report::StepReport;
 use rust_i18n::t;
@@ -141,22 +142,6 @@ fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
         (e + s.earned_points(points), m + s.max_points(points))
     })
-}
-
-/// `text` escaped for HTML text and quoted attribute values.
-fn html(text: &str) -> String {
-    let mut s = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => s.push_str("&amp;"),
-            '<' => s.push_str("&lt;"),
-            '>' => s.push_str("&gt;"),
-            '"' => s.push_str("&quot;"),
-            '\'' => s.push_str("&#39;"),
-            c => s.push(c),
-        }
-    }
-    s
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}\
