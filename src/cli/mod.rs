@@ -461,7 +461,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
                 &cache,
                 res,
                 &scene,
-                bvh.content_hash(),
+                &bvh,
                 &params,
             )?
         } else {
