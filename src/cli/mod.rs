@@ -194,6 +194,11 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     }
     engine.collect_stats = args.stats;
     write_view(&mut engine, view, &args.out)?;
+    let cut = engine.ao.cut_pixels(engine.ao_settings.method);
+    if cut > 0 {
+        let message = t!("render.rtao_cut", pixels = cut);
+        eprintln!("{}", t!("render.warning", message = message));
+    }
     let msg = t!(
         "render.wrote",
         path = args.out.display(),

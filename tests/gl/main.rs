@@ -39,6 +39,7 @@ mod reference_backface;
 mod reference_screen;
 mod reference_slabs;
 mod rtao;
+mod rtao_dense;
 mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;

@@ -139,7 +139,8 @@ pub fn load_or_render_gpu_cached(
     let cam = scene.camera.camera();
     let (w, h) = (scene.output.width, scene.output.height);
     let mut hash = Fnv64::new();
-    hash.bytes(b"gpu");
+    // "2": images traced in one pass may be cut short by the driver (see `PASS_RAYS`).
+    hash.bytes(b"gpu2");
     hash.bytes(cache_key(cpu.content_hash(), &cam, w, h, params).as_bytes());
     let key = format!("{:016x}", hash.0);
     if let Some(img) = read_cached(cache_dir, &key) {
