@@ -42,7 +42,7 @@ pub fn read_beside(model: &Path, what: &str, name: &str, limit: u64) -> Result<V
         )
     };
     let relative = Path::new(name);
-    if relative.is_absolute() || relative.has_root() {
+    if relative.has_root() || !stays_inside(relative) {
         return Err(outside());
     }
     let file = folder.join(relative);
@@ -65,6 +65,21 @@ pub fn read_beside(model: &Path, what: &str, name: &str, limit: u64) -> Result<V
     }
     crate::io::read_capped(&resolved, limit)
         .with_context(|| t!("model.reference", path = shown, what = what).into_owned())
+}
+
+/// Whether a relative path stays in its folder as written: no `..` climbs above where it starts.
+fn stays_inside(relative: &Path) -> bool {
+    use std::path::Component;
+    let mut depth = 0usize;
+    for c in relative.components() {
+        match c {
+            Component::Normal(_) => depth += 1,
+            Component::CurDir => {}
+            Component::ParentDir if depth > 0 => depth -= 1,
+            _ => return false,
+        }
+    }
+    true
 }
 
 impl MeshData {

@@ -19,6 +19,7 @@ mod engine_options;
 mod error_map;
 mod gl_basics;
 mod gltf_files;
+mod gltf_reach;
 mod grade;
 mod grade_class;
 mod grade_class_zip;
