@@ -38,8 +38,9 @@ pub struct Framed {
 /// the one the same model in metres gives, unless a camera value or the radius was fixed in the
 /// model's units. `None` for a mesh without vertices.
 pub fn frame_mesh(desc: &mut SceneDesc, mesh: &MeshData, fixed: Fixed) -> Option<Framed> {
-    let (lo, hi) = mesh.bounds()?;
-    let size = objects_diagonal(mesh).unwrap_or((hi - lo).length());
+    let whole = mesh.bounds()?;
+    let (lo, hi) = objects_bounds(mesh).unwrap_or(whole);
+    let size = (hi - lo).length();
     let camera_fixed = fixed.eye || fixed.target || fixed.near || fixed.far;
     let scale = if fixed.radius || camera_fixed {
         1.0
@@ -52,7 +53,8 @@ pub fn frame_mesh(desc: &mut SceneDesc, mesh: &MeshData, fixed: Fixed) -> Option
             o.position = o.position.map(|p| p * scale);
         }
     }
-    let radius = frame_sized(desc, lo * scale, hi * scale, size * scale, fixed);
+    let whole = (whole.0 * scale, whole.1 * scale);
+    let radius = frame_sized(desc, (lo * scale, hi * scale), whole, fixed);
     Some(Framed {
         radius,
         size,
@@ -78,10 +80,15 @@ fn unit_scale(radius: f32) -> f32 {
     scale as f32
 }
 
-/// The diagonal of the bounds of the mesh's connected parts (triangles joined where they share a
-/// corner position), leaving out ground-like parts: flat (thinner than 2 % of their extent) and at
-/// least half as wide as the whole model. `None` when nothing but such parts remain.
+/// The diagonal of [`objects_bounds`].
 pub fn objects_diagonal(mesh: &MeshData) -> Option<f32> {
+    objects_bounds(mesh).map(|(lo, hi)| (hi - lo).length())
+}
+
+/// The bounds of the mesh's connected parts (triangles joined where they share a corner position),
+/// leaving out ground-like parts: flat (thinner than 2 % of their extent) and at least half as wide
+/// as the whole model. `None` when nothing but such parts remain.
+pub fn objects_bounds(mesh: &MeshData) -> Option<(Vec3, Vec3)> {
     let (all_lo, all_hi) = mesh.bounds()?;
     let widest = (all_hi - all_lo).max_element();
     // Corners welded by their exact position (a box's faces have a vertex each per normal).
@@ -124,20 +131,26 @@ pub fn objects_diagonal(mesh: &MeshData) -> Option<f32> {
         let ground = e.min_element() <= 0.02 * e.max_element() && e.max_element() >= 0.5 * widest;
         !ground
     });
-    let (lo, hi) = kept.fold(None, |acc: Option<(Vec3, Vec3)>, &(lo, hi)| {
+    kept.fold(None, |acc: Option<(Vec3, Vec3)>, &(lo, hi)| {
         Some(acc.map_or((lo, hi), |(a, b)| (a.min(lo), b.max(hi))))
-    })?;
-    Some((hi - lo).length())
+    })
 }
 
 /// Frames the bounds `lo`..`hi` in `desc`'s camera and AO radius, except what `fixed` keeps.
 /// Returns the AO radius it chose (`None` when the radius was fixed).
 pub fn frame_model(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, fixed: Fixed) -> Option<f32> {
-    frame_sized(desc, lo, hi, (hi - lo).length(), fixed)
+    frame_sized(desc, (lo, hi), (lo, hi), fixed)
 }
 
-/// [`frame_model`] with the AO radius a tenth of `size` (a diagonal) instead of the bounds'.
-fn frame_sized(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, size: f32, fixed: Fixed) -> Option<f32> {
+/// [`frame_model`] of the bounds `objects` (camera and radius), with a far plane that also takes
+/// in `whole`, the bounds of everything (a ground plane around the objects).
+fn frame_sized(
+    desc: &mut SceneDesc,
+    (lo, hi): (Vec3, Vec3),
+    whole: (Vec3, Vec3),
+    fixed: Fixed,
+) -> Option<f32> {
+    let size = (hi - lo).length();
     let c = &mut desc.camera;
     let center = (lo + hi) * 0.5;
     let half = (hi - lo).length() * 0.5;
@@ -153,7 +166,15 @@ fn frame_sized(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, size: f32, fixed: Fixed
     let d = Vec3::from(c.eye).distance(center);
     // Room to step back in the window, and a near plane well in front of the model (or a tenth of
     // its size when the eye is close), never more than 1e4 below far.
-    let far = (d + r) * 2.0;
+    let eye = Vec3::from(c.eye);
+    let farthest = (0..8)
+        .map(|i| {
+            let pick = |bit: usize, a: f32, b: f32| if i >> bit & 1 == 0 { a } else { b };
+            let (a, b) = whole;
+            Vec3::new(pick(0, a.x, b.x), pick(1, a.y, b.y), pick(2, a.z, b.z)).distance(eye)
+        })
+        .fold(0.0f32, f32::max);
+    let far = ((d + r) * 2.0).max(farthest * 1.05);
     let near = ((d - r) * 0.5).min(r * 0.1).max(far * 1e-4);
     if !fixed.far {
         c.far = far;

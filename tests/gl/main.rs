@@ -29,6 +29,7 @@ mod i18n;
 mod inputs;
 mod inputs_limits;
 mod inputs_misread;
+mod model_units;
 mod layer2_back_faces;
 mod lessons_ja;
 mod methods;
