@@ -234,3 +234,30 @@ fn gltf_data_the_engine_does_not_use_is_accepted_and_other_formats_named() {
     let e = error_of(&save("v1.gltf", &v1));
     assert!(e.contains("v1.gltf") && e.contains("glTF 1.0") && e.contains("2.0"), "{e}");
 }
+
+#[test]
+fn odd_geometry_is_named_for_what_it_is() {
+    let dir = temp_dir("model-odd");
+    // NaN corners are not "on one line".
+    let (doc, mut bin) = triangle_doc();
+    bin[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
+    write(&dir, "tri.bin", &bin);
+    // (The corner is shared by both triangles of the quad: nothing is left to draw.)
+    let e = error_of(&write(&dir, "nan.gltf", serde_json::to_vec(&doc).unwrap()));
+    assert!(e.contains("nan.gltf") && e.contains("2 triangles have a corner that is not a finite number"), "{e}");
+    assert!(!e.contains("one line"), "{e}");
+    // A triangle whose corners lie on one line is not a face "of 1-2 vertices".
+    let flat = write(&dir, "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
+    let e = format!("{:#}", read_obj(&flat).unwrap_err());
+    assert!(e.contains("flat.obj:4") && e.contains("one line"), "{e}");
+    assert!(!e.contains("1-2 vertices"), "{e}");
+    // A sparse accessor the engine never reads (here one nothing refers to) refuses nothing.
+    let (mut sparse, bin) = triangle_doc();
+    write(&dir, "tri.bin", &bin);
+    sparse["accessors"].as_array_mut().unwrap().push(json!({
+        "componentType": 5126, "count": 4, "type": "VEC3",
+        "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5125},
+                   "values": {"bufferView": 0}}
+    }));
+    assert!(read_gltf(&write(&dir, "sparse.gltf", serde_json::to_vec(&sparse).unwrap())).is_ok());
+}

@@ -38,6 +38,7 @@ mod obj_corpus;
 mod obj_files;
 mod reference_analytic;
 mod reference_backface;
+mod reference_inputs;
 mod reference_screen;
 mod reference_slabs;
 mod rtao;

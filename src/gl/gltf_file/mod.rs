@@ -62,6 +62,7 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
         flat: 0,
         primitives: 0,
         morphed: 0,
+        non_finite: 0,
     };
     out.walk(&document, &scene, &instancing)?;
     let mut warnings = Vec::new();
@@ -72,6 +73,10 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
     if out.flat > 0 {
         let count = out.flat;
         warnings.push(t!("gltf.no_area", path = shown, count = count).into_owned());
+    }
+    if out.non_finite > 0 {
+        let count = out.non_finite;
+        warnings.push(t!("gltf.non_finite", path = shown, count = count).into_owned());
     }
     if out.morphed > 0 {
         let count = out.morphed;
@@ -85,7 +90,9 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
             primitives = primitives,
             skipped = skipped
         );
-        bail!("{message}");
+        // What was skipped says why: every triangle without area, or with a corner not a number.
+        let why: Vec<String> = warnings.iter().map(|w| format!("\n  {w}")).collect();
+        bail!("{message}{}", why.concat());
     }
     Ok(GltfMesh {
         mesh: out.mesh,
@@ -103,6 +110,8 @@ struct Builder<'a> {
     primitives: usize,
     /// Primitives with morph targets, drawn in their base shape.
     morphed: usize,
+    /// Triangles with a corner that is not a finite number.
+    non_finite: usize,
 }
 
 impl Builder<'_> {
@@ -237,6 +246,10 @@ impl Builder<'_> {
             let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
             let corners = [a, b, c].map(|i| i as usize);
             let p = corners.map(|i| world.transform_point3(positions[i]));
+            if !p.iter().all(|v| v.is_finite()) {
+                self.non_finite += 1;
+                continue;
+            }
             let face = (p[1] - p[0]).cross(p[2] - p[0]);
             let Some(face_normal) = face.try_normalize() else {
                 self.flat += 1;

@@ -68,14 +68,8 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh> {
         warnings.push(t!("obj.no_area", place = place, more = more).into_owned());
     }
     if mesh.indices.is_empty() {
-        let holds = t!(
-            "obj.holds",
-            vertices = obj.positions.len(),
-            lines = obj.lines.count,
-            points = obj.points.count,
-            short = obj.short_faces.count + flat.count
-        );
-        bail!("{}", t!("obj.no_faces", path = shown, holds = holds));
+        let place = format!("{shown}:{}", flat.first);
+        bail!("{}", t!("obj.all_flat", place = place, count = flat.count));
     }
     Ok(ObjMesh { mesh, warnings })
 }
