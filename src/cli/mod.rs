@@ -468,13 +468,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             ..params
         };
         if args.gpu {
-            crate::tools::reference::load_or_render_gpu_cached(
-                &cache,
-                res,
-                &scene,
-                &bvh,
-                &params,
-            )?
+            crate::tools::reference::load_or_render_gpu_cached(&cache, res, &scene, &bvh, &params)?
         } else {
             load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
         }

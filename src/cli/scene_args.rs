@@ -128,7 +128,10 @@ fn frame_mesh(desc: &mut SceneDesc, mesh: &crate::gl::mesh::MeshData, args: &Sce
         eprintln!("{}", t!("render.obj_scaled", size = size, scale = scale));
     }
     if let Some(radius) = framed.radius {
-        eprintln!("{}", t!("render.obj_radius", radius = radius, diagonal = size));
+        eprintln!(
+            "{}",
+            t!("render.obj_radius", radius = radius, diagonal = size)
+        );
     }
 }
 

@@ -473,10 +473,15 @@ mod tests {
         assert!(e.contains("s.frag again: an #include cycle"), "{e}");
         // Two files that include each other, below the shader: a -> b -> a.
         std::fs::write(root.join("shaders/p.glsl"), "#include \"q.glsl\"\n").unwrap();
-        std::fs::write(root.join("shaders/q.glsl"), "float q;\n#include \"p.glsl\"\n").unwrap();
+        std::fs::write(
+            root.join("shaders/q.glsl"),
+            "float q;\n#include \"p.glsl\"\n",
+        )
+        .unwrap();
         let e = build_with(&root, "#include \"p.glsl\"");
         assert!(
-            e.contains("#include \"p.glsl\" includes") && e.contains("p.glsl again: an #include cycle"),
+            e.contains("#include \"p.glsl\" includes")
+                && e.contains("p.glsl again: an #include cycle"),
             "{e}"
         );
         // An ordinary include still builds.

@@ -204,10 +204,26 @@ mod tests {
         let mut m = MeshData::default();
         let s = |v: Vec3| v * unit;
         // A ground slab 28 m wide and three boxes about 1 m tall on it.
-        shapes::add_box(&mut m, s(Vec3::new(-14.0, -0.05, -14.0)), s(Vec3::new(14.0, 0.0, 14.0)));
-        shapes::add_box(&mut m, s(Vec3::new(-1.0, 0.0, -0.5)), s(Vec3::new(0.0, 1.0, 0.5)));
-        shapes::add_box(&mut m, s(Vec3::new(0.3, 0.0, -0.4)), s(Vec3::new(1.0, 0.6, 0.3)));
-        shapes::add_box(&mut m, s(Vec3::new(-0.4, 0.0, 0.8)), s(Vec3::new(0.4, 1.4, 1.2)));
+        shapes::add_box(
+            &mut m,
+            s(Vec3::new(-14.0, -0.05, -14.0)),
+            s(Vec3::new(14.0, 0.0, 14.0)),
+        );
+        shapes::add_box(
+            &mut m,
+            s(Vec3::new(-1.0, 0.0, -0.5)),
+            s(Vec3::new(0.0, 1.0, 0.5)),
+        );
+        shapes::add_box(
+            &mut m,
+            s(Vec3::new(0.3, 0.0, -0.4)),
+            s(Vec3::new(1.0, 0.6, 0.3)),
+        );
+        shapes::add_box(
+            &mut m,
+            s(Vec3::new(-0.4, 0.0, 0.8)),
+            s(Vec3::new(0.4, 1.4, 1.2)),
+        );
         m
     }
 
@@ -217,7 +233,10 @@ mod tests {
         let diagonal = objects_diagonal(&metres).unwrap();
         // The boxes span x -1..1, y 0..1.4, z -0.5..1.2.
         let expected = Vec3::new(2.0, 1.4, 1.7).length();
-        assert!((diagonal - expected).abs() < 1e-5, "{diagonal} vs {expected}");
+        assert!(
+            (diagonal - expected).abs() < 1e-5,
+            "{diagonal} vs {expected}"
+        );
         let mut desc_m = SceneDesc::single_obj(std::path::Path::new("m.obj"));
         let mut desc_mm = desc_m.clone();
         let m = frame_mesh(&mut desc_m, &metres, Fixed::default()).unwrap();
@@ -244,7 +263,11 @@ mod tests {
     #[test]
     fn a_lone_ground_plane_is_its_own_size() {
         let mut m = MeshData::default();
-        shapes::add_box(&mut m, Vec3::new(-5.0, -0.01, -5.0), Vec3::new(5.0, 0.0, 5.0));
+        shapes::add_box(
+            &mut m,
+            Vec3::new(-5.0, -0.01, -5.0),
+            Vec3::new(5.0, 0.0, 5.0),
+        );
         assert_eq!(objects_diagonal(&m), None);
         assert_eq!(unit_scale(0.5), 1.0);
         assert_eq!(unit_scale(f32::NAN), 1.0);

@@ -48,7 +48,10 @@ fn gltf_buffers_stay_inside_the_models_folder() {
             "{uri}: {e}"
         );
         // Nothing of the file was read: no message about its contents.
-        assert!(!e.contains("vertex index") && !e.contains("holds"), "{uri}: {e}");
+        assert!(
+            !e.contains("vertex index") && !e.contains("holds"),
+            "{uri}: {e}"
+        );
     };
     outside("absolute.gltf", "/etc/passwd");
     outside("up.gltf", "../../../../etc/passwd");
@@ -79,10 +82,13 @@ fn gltf_buffers_stay_inside_the_models_folder() {
     // SAFETY: mkfifo on a path this test owns.
     assert_eq!(unsafe { libc::mkfifo(c.as_ptr(), 0o600) }, 0);
     let e = error_of(&with_uri(&dir, "fifo.gltf", &doc, "fifo.bin"));
-    assert!(e.contains("fifo.gltf") && e.contains("not a regular file"), "{e}");
+    assert!(
+        e.contains("fifo.gltf") && e.contains("not a regular file"),
+        "{e}"
+    );
     // A file far longer than the buffer's byteLength is not read to its end.
     let mut long = bin.clone();
-    long.resize(bin.len() + 1 << 20, 0);
+    long.resize(bin.len() + (1 << 20), 0);
     write(&dir, "long.bin", &long);
     let e = error_of(&with_uri(&dir, "long.gltf", &doc, "long.bin"));
     assert!(e.contains("long.gltf") && e.contains("larger than"), "{e}");
@@ -96,7 +102,8 @@ fn obj_material_libraries_stay_inside_the_models_folder() {
     let square = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n";
     write(&root, "outside.mtl", "newmtl a\nKd 1 0 0\n");
     write(&dir, "inside.mtl", "newmtl a\nKd 1 0 0\n");
-    let obj = |name: &str, lib: &str| write(&dir, name, format!("mtllib {lib}\n{square}f 1 2 3 4\n"));
+    let obj =
+        |name: &str, lib: &str| write(&dir, name, format!("mtllib {lib}\n{square}f 1 2 3 4\n"));
     assert!(read_obj(&obj("good.obj", "inside.mtl")).is_ok());
     std::os::unix::fs::symlink(root.join("outside.mtl"), dir.join("link.mtl")).unwrap();
     for (name, lib) in [
@@ -118,7 +125,11 @@ fn obj_material_libraries_stay_inside_the_models_folder() {
 
 /// A unit box as a one-mesh document whose node 0 carries `extension` (and `required` lists the
 /// instancing extension in extensionsRequired too), with the instance accessors appended.
-fn instanced(translations: &[[f32; 3]], rotations: &[[f32; 4]], required: bool) -> (Value, Vec<u8>) {
+fn instanced(
+    translations: &[[f32; 3]],
+    rotations: &[[f32; 4]],
+    required: bool,
+) -> (Value, Vec<u8>) {
     let mut cube = MeshData::default();
     shapes::add_box(&mut cube, Vec3::ZERO, Vec3::ONE);
     let (mut doc, mut bin) = document(&[&cube], json!([{"mesh": 0}]), json!([0]), Some("i.bin"));
@@ -130,10 +141,16 @@ fn instanced(translations: &[[f32; 3]], rotations: &[[f32; 4]], required: bool) 
         views.push(json!({"buffer": 0, "byteOffset": offset, "byteLength": floats.len() * 4}));
         let view = views.len() - 1;
         let accessors = doc["accessors"].as_array_mut().unwrap();
-        accessors.push(json!({"bufferView": view, "componentType": 5126, "count": count, "type": kind}));
+        accessors
+            .push(json!({"bufferView": view, "componentType": 5126, "count": count, "type": kind}));
         attributes.insert(name.into(), json!(accessors.len() - 1));
     };
-    add("TRANSLATION", "VEC3", translations.concat(), translations.len());
+    add(
+        "TRANSLATION",
+        "VEC3",
+        translations.concat(),
+        translations.len(),
+    );
     if !rotations.is_empty() {
         add("ROTATION", "VEC4", rotations.concat(), rotations.len());
     }
@@ -157,10 +174,18 @@ fn gltf_gpu_instancing_draws_every_instance() {
         let m = read_gltf(&path).unwrap().mesh;
         assert_eq!(m.indices.len(), 3 * 36, "three boxes of 12 triangles");
         let (lo, hi) = m.bounds().unwrap();
-        assert_eq!((lo, hi), (Vec3::new(0.0, 0.0, -4.0), Vec3::new(4.0, 1.0, 1.0)));
+        assert_eq!(
+            (lo, hi),
+            (Vec3::new(0.0, 0.0, -4.0), Vec3::new(4.0, 1.0, 1.0))
+        );
     }
     // A rotation: a quarter turn about y takes the box's +x corner to -z.
-    let quarter = [0.0, std::f32::consts::FRAC_1_SQRT_2, 0.0, std::f32::consts::FRAC_1_SQRT_2];
+    let quarter = [
+        0.0,
+        std::f32::consts::FRAC_1_SQRT_2,
+        0.0,
+        std::f32::consts::FRAC_1_SQRT_2,
+    ];
     let (doc, bin) = instanced(&[[10.0, 0.0, 0.0]], &[quarter], false);
     write(&dir, "i.bin", &bin);
     let path = write(&dir, "r.gltf", serde_json::to_vec(&doc).unwrap());
@@ -173,7 +198,10 @@ fn gltf_gpu_instancing_draws_every_instance() {
     doc["extensionsRequired"] = json!([]);
     let path = write(&dir, "mixed.gltf", serde_json::to_vec(&doc).unwrap());
     let e = format!("{:#}", read_gltf(&path).unwrap_err());
-    assert!(e.contains("mixed.gltf: node 0") && e.contains("different counts"), "{e}");
+    assert!(
+        e.contains("mixed.gltf: node 0") && e.contains("different counts"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -184,7 +212,12 @@ fn a_deep_node_chain_loads_without_exhausting_the_stack() {
         .map(|i| json!({"children": [i + 1], "translation": [0.001, 0.0, 0.0]}))
         .collect();
     nodes.push(json!({"mesh": 0}));
-    let (doc, bin) = document(&[&ground_and_box()], json!(nodes), json!([0]), Some("d.bin"));
+    let (doc, bin) = document(
+        &[&ground_and_box()],
+        json!(nodes),
+        json!([0]),
+        Some("d.bin"),
+    );
     write(&dir, "d.bin", &bin);
     let path = write(&dir, "deep.gltf", serde_json::to_vec(&doc).unwrap());
     // In a thread with a small stack, as a recursion over the chain would overflow any.
@@ -196,7 +229,10 @@ fn a_deep_node_chain_loads_without_exhausting_the_stack() {
         .expect("no stack overflow")
         .unwrap();
     let (lo, _) = m.bounds().unwrap();
-    assert!((lo.x - (-1.2 + 30.0)).abs() < 0.05, "30 000 steps of 1 mm: {lo}");
+    assert!(
+        (lo.x - (-1.2 + 30.0)).abs() < 0.05,
+        "30 000 steps of 1 mm: {lo}"
+    );
 }
 
 #[test]
@@ -219,7 +255,11 @@ fn gltf_data_the_engine_does_not_use_is_accepted_and_other_formats_named() {
     let mut morph = doc.clone();
     morph["meshes"][0]["primitives"][0]["targets"] = json!([{"POSITION": 1}]);
     let g = read_gltf(&save("morph.gltf", &morph)).unwrap();
-    assert!(g.warnings.iter().any(|w| w.contains("morph targets")), "{:?}", g.warnings);
+    assert!(
+        g.warnings.iter().any(|w| w.contains("morph targets")),
+        "{:?}",
+        g.warnings
+    );
     // A byte-order mark before the JSON.
     let mut bom = b"\xEF\xBB\xBF".to_vec();
     bom.extend(serde_json::to_vec(&doc).unwrap());
@@ -232,7 +272,10 @@ fn gltf_data_the_engine_does_not_use_is_accepted_and_other_formats_named() {
     assert!(e.contains("utf16.gltf") && e.contains("UTF-16"), "{e}");
     let v1 = json!({"asset": {"version": "1.0"}, "meshes": {"m": {"primitives": []}}});
     let e = error_of(&save("v1.gltf", &v1));
-    assert!(e.contains("v1.gltf") && e.contains("glTF 1.0") && e.contains("2.0"), "{e}");
+    assert!(
+        e.contains("v1.gltf") && e.contains("glTF 1.0") && e.contains("2.0"),
+        "{e}"
+    );
 }
 
 #[test]
@@ -244,7 +287,11 @@ fn odd_geometry_is_named_for_what_it_is() {
     write(&dir, "tri.bin", &bin);
     // (The corner is shared by both triangles of the quad: nothing is left to draw.)
     let e = error_of(&write(&dir, "nan.gltf", serde_json::to_vec(&doc).unwrap()));
-    assert!(e.contains("nan.gltf") && e.contains("2 triangles have a corner that is not a finite number"), "{e}");
+    assert!(
+        e.contains("nan.gltf")
+            && e.contains("2 triangles have a corner that is not a finite number"),
+        "{e}"
+    );
     assert!(!e.contains("one line"), "{e}");
     // A triangle whose corners lie on one line is not a face "of 1-2 vertices".
     let flat = write(&dir, "flat.obj", "v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
@@ -259,5 +306,10 @@ fn odd_geometry_is_named_for_what_it_is() {
         "sparse": {"count": 1, "indices": {"bufferView": 2, "componentType": 5125},
                    "values": {"bufferView": 0}}
     }));
-    assert!(read_gltf(&write(&dir, "sparse.gltf", serde_json::to_vec(&sparse).unwrap())).is_ok());
+    assert!(read_gltf(&write(
+        &dir,
+        "sparse.gltf",
+        serde_json::to_vec(&sparse).unwrap()
+    ))
+    .is_ok());
 }

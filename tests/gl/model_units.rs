@@ -62,6 +62,11 @@ fn the_same_boxes_in_metres_and_millimetres_give_the_same_ao() {
         .zip(&ao_mm)
         .map(|(a, b)| (a - b).abs())
         .fold(0.0f32, f32::max);
-    let mean = ao_m.iter().zip(&ao_mm).map(|(a, b)| (a - b).abs()).sum::<f32>() / ao_m.len() as f32;
+    let mean = ao_m
+        .iter()
+        .zip(&ao_mm)
+        .map(|(a, b)| (a - b).abs())
+        .sum::<f32>()
+        / ao_m.len() as f32;
     assert!(mean < 0.002 && worst < 0.05, "mean {mean}, worst {worst}");
 }

@@ -6,8 +6,9 @@ use crate::common::{run, stderr, temp_dir};
 #[test]
 fn reference_clamps_the_radius_as_render_does() {
     let dir = temp_dir("reference-inputs");
-    let demo = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/Res/scenes/demo.toml"))
-        .unwrap();
+    let demo =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/Res/scenes/demo.toml"))
+            .unwrap();
     assert!(demo.contains("radius = 1.0"));
     let meshes = concat!(env!("CARGO_MANIFEST_DIR"), "/Res/meshes/");
     let text = demo

@@ -27,7 +27,8 @@ fn rippled_sphere(k: usize) -> MeshData {
         for j in 0..nu {
             let ph = std::f32::consts::TAU * j as f32 / nu as f32;
             let d = Vec3::new(th.sin() * ph.cos(), th.cos(), th.sin() * ph.sin());
-            let ripple = (9.0 * d.x + 1.3).sin() * (9.0 * d.y + 0.7).sin() * (9.0 * d.z + 2.1).sin();
+            let ripple =
+                (9.0 * d.x + 1.3).sin() * (9.0 * d.y + 0.7).sin() * (9.0 * d.z + 2.1).sin();
             let p = Vec3::new(0.0, 0.6, 0.0) + d * 0.6 * (1.0 + 0.25 * ripple);
             m.vertices.push(Vertex {
                 position: p.to_array(),
@@ -92,7 +93,10 @@ fn rtao_gpu_reference_agrees_with_the_cpu_on_a_dense_mesh_at_1024_rays() {
         "dense mesh, GPU vs CPU at 1024 rays: {psnr:.1} dB, mean difference {mean:+.4}, \
          {off} pixels off by more than 0.1, {occluded} pixels below 0.9"
     );
-    assert!(occluded > 300, "the scene should have occlusion to agree on");
+    assert!(
+        occluded > 300,
+        "the scene should have occlusion to agree on"
+    );
     // Both estimate the same visibility with 1024 stratified rays, whose noise is below 0.016 per
     // pixel (the binomial bound, sqrt(0.25 / 1024)); the 8-bit passes add at most 1/510. 40 dB is a
     // mean error of 0.01; rays left untraced made this 26 dB and 5 % of the pixels too bright by
@@ -100,7 +104,8 @@ fn rtao_gpu_reference_agrees_with_the_cpu_on_a_dense_mesh_at_1024_rays() {
     assert!(psnr >= 40.0, "{psnr:.1} dB");
     assert!(mean.abs() < 0.003, "GPU − CPU mean {mean:+.4}");
     assert!(off <= 3, "{off} pixels off by more than 0.1");
-    let check = opengl3d::tools::reference::cross_check(&cpu_scene, &s.camera.camera(), &params, &gpu);
+    let check =
+        opengl3d::tools::reference::cross_check(&cpu_scene, &s.camera.camera(), &params, &gpu);
     assert!(check.agrees(), "{check:?}");
 }
 
@@ -119,7 +124,10 @@ fn rtao_counts_the_pixels_whose_rays_were_cut_short() {
     eng.ao_settings.rays = 8;
     let few = eng.render_values(View::AoRaw).unwrap();
     let cut_few = eng.ao.cut_pixels(AoMethod::Rtao);
-    eprintln!("pixels cut short: {cut_full} at 1024 rays, {cut_few} at 8 ({})", ctx.renderer);
+    eprintln!(
+        "pixels cut short: {cut_full} at 1024 rays, {cut_few} at 8 ({})",
+        ctx.renderer
+    );
     assert_eq!(cut_few, 0);
     common::assert_finite("rtao", &full);
     common::assert_finite("rtao", &few);

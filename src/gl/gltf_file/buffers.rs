@@ -41,9 +41,11 @@ pub fn load(
                     bail!("{message}");
                 }
                 // The declared length, and a little for the padding some writers add.
-                let cap = (buffer.length() as u64).saturating_add(BIN_SLACK).min(limit);
+                let cap = (buffer.length() as u64)
+                    .saturating_add(BIN_SLACK)
+                    .min(limit);
                 let what = t!("gltf.buffer_what", index = index);
-                crate::gl::model::read_beside(path, &what, &percent_decoded(uri), cap)?
+                crate::gl::model_refs::read_beside(path, &what, &percent_decoded(uri), cap)?
             }
         };
         if data.len() < buffer.length() {

@@ -17,7 +17,8 @@ pub fn read(
     node: usize,
     shown: &str,
 ) -> Result<Vec<Mat4>> {
-    let translation = vectors::<[f32; 3]>(doc, buffers, attrs.translation, "TRANSLATION", node, shown)?;
+    let translation =
+        vectors::<[f32; 3]>(doc, buffers, attrs.translation, "TRANSLATION", node, shown)?;
     let rotation = vectors::<[f32; 4]>(doc, buffers, attrs.rotation, "ROTATION", node, shown)?;
     let scale = vectors::<[f32; 3]>(doc, buffers, attrs.scale, "SCALE", node, shown)?;
     let counts: Vec<usize> = [
@@ -43,7 +44,9 @@ pub fn read(
     }
     Ok((0..count)
         .map(|i| {
-            let t = translation.as_ref().map_or(Vec3::ZERO, |v| Vec3::from(v[i]));
+            let t = translation
+                .as_ref()
+                .map_or(Vec3::ZERO, |v| Vec3::from(v[i]));
             let r = rotation
                 .as_ref()
                 .map_or(Quat::IDENTITY, |v| Quat::from_array(v[i]).normalize());

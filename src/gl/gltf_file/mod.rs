@@ -127,10 +127,8 @@ impl Builder<'_> {
     ) -> Result<()> {
         let nodes: Vec<gltf::Node> = document.nodes().collect();
         let mut visited = vec![false; nodes.len()];
-        let mut pending: Vec<(usize, Mat4)> = scene
-            .nodes()
-            .map(|n| (n.index(), Mat4::IDENTITY))
-            .collect();
+        let mut pending: Vec<(usize, Mat4)> =
+            scene.nodes().map(|n| (n.index(), Mat4::IDENTITY)).collect();
         pending.reverse();
         while let Some((index, parent)) = pending.pop() {
             if std::mem::replace(&mut visited[index], true) {

@@ -127,7 +127,7 @@ fn check_mtllib(
         if present && found.insert(file.clone()) {
             let shown = file.display().to_string();
             let what = t!("obj.mtl_what");
-            let bytes = crate::gl::model::read_beside(obj_path, &what, n, MAX_MTL_BYTES)?;
+            let bytes = crate::gl::model_refs::read_beside(obj_path, &what, n, MAX_MTL_BYTES)?;
             mtl::check(&decode(&bytes), &shown)?;
         }
     }

@@ -96,7 +96,11 @@ pub fn render_reference_gpu(
     };
     for (&s, &z) in sum.iter().zip(&depth) {
         let sky = z.is_nan() || z >= far;
-        let v = if sky { 1.0 } else { (s / total as f64).clamp(0.0, 1.0) as f32 };
+        let v = if sky {
+            1.0
+        } else {
+            (s / total as f64).clamp(0.0, 1.0) as f32
+        };
         img.ao.push(v);
         img.std_error.push((v * (1.0 - v) / n).max(0.0).sqrt());
         img.linear_depth.push(if sky { f32::INFINITY } else { z });

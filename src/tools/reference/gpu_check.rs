@@ -131,9 +131,17 @@ mod tests {
     /// A floor and a box, traced on the CPU at `rays`.
     fn traced(rays: u32, seed: u64) -> (Scene, Camera, RefParams, RefImage) {
         let mut m = crate::gl::mesh::MeshData::default();
-        shapes::add_box(&mut m, Vec3::new(-4.0, -0.1, -4.0), Vec3::new(4.0, 0.0, 4.0));
+        shapes::add_box(
+            &mut m,
+            Vec3::new(-4.0, -0.1, -4.0),
+            Vec3::new(4.0, 0.0, 4.0),
+        );
         shapes::add_box(&mut m, Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 0.8, 0.5));
-        shapes::add_box(&mut m, Vec3::new(-1.2, 0.0, -1.2), Vec3::new(1.2, 1.5, -0.9));
+        shapes::add_box(
+            &mut m,
+            Vec3::new(-1.2, 0.0, -1.2),
+            Vec3::new(1.2, 1.5, -0.9),
+        );
         shapes::add_box(&mut m, Vec3::new(0.7, 0.0, -0.9), Vec3::new(1.0, 1.0, 0.6));
         let scene = Scene::new(m.triangles().collect()).unwrap();
         let cam = Camera {
