@@ -6,7 +6,7 @@
 
 use crate::io::scale_bar::{self, Scale};
 use crate::render::{Engine, View};
-use crate::tools::bench::metrics;
+use crate::tools::metrics;
 use anyhow::{bail, Result};
 use image::{Rgb, RgbImage};
 use rust_i18n::t;

@@ -17,6 +17,8 @@ pub struct StudentResult {
     pub heat_maps: Vec<Option<String>>,
     /// Wall time spent grading the student.
     pub seconds: f64,
+    /// The student's own feedback page, relative to the report (`students/001-ada.html`).
+    pub page: String,
 }
 
 impl StudentResult {
@@ -28,15 +30,32 @@ impl StudentResult {
     }
 }
 
-/// PASS, FAIL, or "not submitted".
-fn verdict(r: &StepReport) -> &'static str {
+/// What became of a step.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Outcome {
+    Pass,
+    Fail,
+    Missing,
+}
+
+fn outcome(r: &StepReport) -> Outcome {
     if r.passed {
-        "PASS"
+        Outcome::Pass
     } else if r.submitted {
-        "FAIL"
+        Outcome::Fail
     } else {
-        "not submitted"
+        Outcome::Missing
     }
+}
+
+/// The outcome in the chosen language (PASS, FAIL, not submitted in English).
+fn verdict(r: &StepReport) -> String {
+    match outcome(r) {
+        Outcome::Pass => t!("class.csv_pass"),
+        Outcome::Fail => t!("class.csv_fail"),
+        Outcome::Missing => t!("class.csv_not_submitted"),
+    }
+    .into_owned()
 }
 
 /// `field` as one CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a
@@ -74,24 +93,28 @@ fn csv_name(name: &str) -> String {
 
 /// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many);
 /// with `points`, after each step's column the points it earned (`sao points`), and at the end
-/// `points` and `max points`.
+/// `points` and `max points`. Headings and verdicts are in the chosen language; the step names
+/// are the grader's (`--step` takes them).
 pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>) -> String {
-    let mut header = vec!["student".to_string()];
+    let mut header = vec![t!("class.csv_student").into_owned()];
     for s in steps {
         header.push(s.name().to_string());
         if points.is_some() {
-            header.push(format!("{} points", s.name()));
+            header.push(t!("class.csv_step_points", step = s.name()).into_owned());
         }
     }
-    header.push("passed".into());
+    header.push(t!("class.csv_passed").into_owned());
     if points.is_some() {
-        header.extend(["points".into(), "max points".into()]);
+        header.extend([
+            t!("class.csv_points").into_owned(),
+            t!("class.csv_max_points").into_owned(),
+        ]);
     }
     let mut csv = csv_row(&header);
     for r in results {
         let mut row = vec![csv_name(&r.name)];
         for s in &r.reports {
-            row.push(verdict(s).to_string());
+            row.push(verdict(s));
             if let Some(p) = points {
                 row.push(p.earned(&s.step, s.passed).to_string());
             }
@@ -184,12 +207,16 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
         html(&t!("class.html_passed"))
     ));
     for r in results {
-        h.push_str(&format!("<tr><th>{}</th>", html(&r.name)));
+        h.push_str(&format!(
+            "<tr><th><a href=\"{}\">{}</a></th>",
+            html(&r.page),
+            html(&r.name)
+        ));
         for (i, s) in r.reports.iter().enumerate() {
-            let (class, shown) = match verdict(s) {
-                "PASS" => ("pass", t!("grade.pass")),
-                "FAIL" => ("fail", t!("grade.fail")),
-                _ => ("missing", t!("class.html_not_submitted")),
+            let (class, shown) = match outcome(s) {
+                Outcome::Pass => ("pass", t!("grade.pass")),
+                Outcome::Fail => ("fail", t!("grade.fail")),
+                Outcome::Missing => ("missing", t!("class.html_not_submitted")),
             };
             let picture = match r.heat_maps.get(i) {
                 Some(Some(stem)) => heat_map(&s.step, stem),
@@ -241,8 +268,8 @@ fn xml(text: &str) -> String {
 }
 
 /// junit.xml: a `<testsuite>` per student, a `<testcase>` per step, a `<failure>` with the reason
-/// for each step that did not pass ("not submitted" included); with `points`, `points` and
-/// `max_points` properties on each test case and each suite.
+/// for each step that did not pass ("not submitted" included), in the chosen language; with
+/// `points`, `points` and `max_points` properties on each test case and each suite.
 pub fn to_junit(
     title: &str,
     results: &[StudentResult],
@@ -285,15 +312,11 @@ pub fn to_junit(
             if let Some(p) = points {
                 x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
             }
-            let message = xml(&s.message);
+            let message = xml(s.shown_message());
             if s.passed {
                 x.push_str(&format!("<system-out>{message}</system-out>"));
             } else {
-                let kind = if s.submitted {
-                    "failed"
-                } else {
-                    "not submitted"
-                };
+                let kind = xml(&verdict(s));
                 x.push_str(&format!(
                     "<failure type=\"{kind}\" message=\"{message}\">{message}</failure>"
                 ));

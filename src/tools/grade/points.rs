@@ -66,6 +66,15 @@ impl Points {
             .map_or(0, |s| self.of(s))
     }
 
+    /// The `STEP=N,...` text that parses back to these points (what the class templates pass on).
+    pub fn spec(&self) -> String {
+        Step::ALL
+            .iter()
+            .map(|s| format!("{}={}", s.name(), self.of(*s)))
+            .collect::<Vec<_>>()
+            .join(",")
+    }
+
     /// What the step called `name` earned: its points when it passed.
     pub fn earned(&self, name: &str, passed: bool) -> u32 {
         if passed {
@@ -89,6 +98,7 @@ mod tests {
         assert_eq!((q.of(Step::Sao), q.of(Step::Blur)), (40, 20));
         assert_eq!(q.of(Step::Restore), 20, "unnamed steps keep their default");
         assert_eq!(Points::parse("default").unwrap(), p);
+        assert_eq!(Points::parse(&q.spec()).unwrap(), q, "{}", q.spec());
     }
 
     #[test]
