@@ -24,8 +24,9 @@ pub const MAX_GPU_RAYS: u32 = crate::ao::settings::RAYS_RANGE.1;
 
 /// Rays per pixel of one pass: a pixel's rays are traced in passes of at most this many (points of
 /// the same lattice), halved while the shader reports pixels whose rays the driver cut short
-/// (llvmpipe ends a shader invocation's loops after 65535 iterations in all: on a 75 000-triangle
-/// scene 256 rays in one pass stayed under it and 1024 did not).
+/// (llvmpipe ends a shader invocation's loops after 65535 iterations in all: a rippled sphere of
+/// 6 400 triangles at 1024 rays in one pass meets it on 350 of its 64×48 pixels, `tests/gl/rtao_dense.rs`;
+/// passes of 64 rays met it on no pixel of three models of 62 000 triangles at 320×180).
 const PASS_RAYS: u32 = 64;
 
 /// Renders the reference of `scene`'s camera at its output size on the GPU. The rays go in passes
