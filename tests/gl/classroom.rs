@@ -233,7 +233,7 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
         ("down-sampling-max", vec!["down-sampling-max"]),
         ("smoothing-sign", vec!["sao-smoothing-wrong-sign"]),
         ("blur-no-clamp", vec!["blur-no-clamp"]),
-        ("course-text", vec!["sao-no-aspect-fix"]),
+        ("course-text", vec!["course-sao"]),
     ];
     let mut results = Vec::new();
     for (name, mistakes) in &students {
@@ -311,13 +311,27 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
     assert_eq!(unit("restore-2d-plus-1", "restore"), 0);
     assert_eq!(score("down-sampling-max"), 90);
     assert_eq!(score("blur-no-clamp"), 90);
-    for n in ["smoothing-sign", "course-text"] {
-        // SAO's mistakes cost SAO's points only.
-        assert!(score(n) >= 50 && score(n) < 100, "{n}: {}", score(n));
-        for id in ["restore", "down-sampling", "simple", "blur"] {
-            assert!(unit(n, id) > 0, "{n} keeps {id}");
-        }
+    // SAO is graded in sub-steps: a wrong sign in the smoothing costs only the smoothing's points.
+    assert_eq!(score("smoothing-sign"), 90);
+    assert_eq!(unit("smoothing-sign", "sao.smoothing"), 0);
+    for id in ["sao.normal", "sao.sampling", "sao.occlusion", "sao.view"] {
+        assert_eq!(unit("smoothing-sign", id), 10, "smoothing-sign keeps {id}");
     }
+    // The course's own text keeps its stretched sampling disc (appendix A #20): the points of what
+    // that erratum does not touch, and the erratum named.
+    let course = &results.iter().find(|r| r.0 == "course-text").unwrap().2;
+    assert_eq!(unit("course-text", "sao.sampling"), 0);
+    assert!(score("course-text") >= 80, "{}", score("course-text"));
+    let sampling = course["tests"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .find(|t| t["id"] == "sao.sampling")
+        .unwrap();
+    assert!(
+        sampling["message"].as_str().unwrap().contains("#20"),
+        "the erratum is named: {sampling}"
+    );
 }
 
 fn str_at<'a>(v: &'a Value, key: &str) -> &'a str {
@@ -430,7 +444,7 @@ fn the_actions_workflow_gives_each_step_its_verdict_from_result_json() {
         .find(|r| r.contains("grade --format classroom50"))
         .expect("one grading step");
     assert!(
-        grade.contains("--lang ja") && grade.contains("sao=40"),
+        grade.contains("--lang ja") && grade.contains("sao.smoothing=8"),
         "{grade}"
     );
     let mut tests = Vec::new();
@@ -447,10 +461,15 @@ fn the_actions_workflow_gives_each_step_its_verdict_from_result_json() {
         }
     }
     let ids: Vec<&str> = tests.iter().map(|t| t.0.as_str()).collect();
-    assert_eq!(ids, ["restore", "down_sampling", "simple", "sao", "blur"]);
+    let sao = ["normal", "sampling", "occlusion", "smoothing", "view"].map(|p| format!("sao_{p}"));
+    let mut want = vec!["restore", "down_sampling", "simple"];
+    want.extend(sao.iter().map(String::as_str));
+    want.push("blur");
+    assert_eq!(ids, want);
+    // sao=40 spreads over its five sub-steps.
     assert_eq!(
         tests.iter().map(|t| t.2).collect::<Vec<_>>(),
-        [20, 10, 10, 40, 20]
+        [20, 10, 10, 8, 8, 8, 8, 8, 20]
     );
     let reporter = steps.last().unwrap();
     assert_eq!(
@@ -556,10 +575,10 @@ fn points_appear_in_json_csv_and_junit() {
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(
         rows[0],
-        "student,restore,restore points,passed,points,max points"
+        "student,restore,restore points,passed,points,max points,level"
     );
-    assert!(rows.contains(&"ada,PASS,20,1,20,20"), "{csv}");
-    assert!(rows.contains(&"bob,FAIL,0,0,0,20"), "{csv}");
+    assert!(rows.contains(&"ada,PASS,20,1,20,20,lesson"), "{csv}");
+    assert!(rows.contains(&"bob,FAIL,0,0,0,20,lesson"), "{csv}");
     let xml = std::fs::read_to_string(out.join("junit.xml")).unwrap();
     // Each test case's points, read with an XML parser: (suite, points, max_points).
     let mut reader = quick_xml::Reader::from_str(&xml);

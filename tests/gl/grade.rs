@@ -53,17 +53,26 @@ fn grade(res: Option<&Path>, args: &[&str]) -> Run {
     }
 }
 
-/// The report must have exactly {"passed", "steps": [{"step", "file", "passed", "submitted",
-/// "message"}]}.
+/// The report must have exactly {"passed", "level", "steps": [{"step", "file", "passed",
+/// "submitted", "message", "parts"?}]}; each part {"part", "passed", "message", "erratum"?}, and a
+/// step with parts passes exactly when all of them do.
 fn check_shape(v: &Value) {
     let top = v.as_object().expect("a JSON object");
     let mut keys: Vec<&str> = top.keys().map(String::as_str).collect();
     keys.sort();
-    assert_eq!(keys, ["passed", "steps"], "{v}");
+    assert_eq!(keys, ["level", "passed", "steps"], "{v}");
     assert!(top["passed"].is_boolean());
+    assert!(
+        ["course", "lesson"].contains(&top["level"].as_str().unwrap()),
+        "{v}"
+    );
     for s in top["steps"].as_array().expect("steps is an array") {
         let o = s.as_object().expect("each step is an object");
-        let mut keys: Vec<&str> = o.keys().map(String::as_str).collect();
+        let mut keys: Vec<&str> = o
+            .keys()
+            .map(String::as_str)
+            .filter(|k| *k != "parts")
+            .collect();
         keys.sort();
         assert_eq!(
             keys,
@@ -72,6 +81,19 @@ fn check_shape(v: &Value) {
         );
         assert!(o["passed"].is_boolean() && o["message"].is_string());
         assert!(o["submitted"].is_boolean());
+        if let Some(parts) = o.get("parts") {
+            let parts = parts.as_array().expect("parts is an array");
+            assert!(!parts.is_empty(), "{s}");
+            for p in parts {
+                let p = p.as_object().expect("each part is an object");
+                let mut keys: Vec<&str> = p.keys().map(String::as_str).collect();
+                keys.retain(|k| *k != "erratum");
+                keys.sort();
+                assert_eq!(keys, ["message", "part", "passed"], "{s}");
+            }
+            let all = parts.iter().all(|p| p["passed"].as_bool().unwrap());
+            assert_eq!(o["passed"].as_bool(), Some(all), "{s}");
+        }
     }
 }
 
@@ -94,9 +116,14 @@ fn step_of(dir: &Path) -> &'static str {
 
 /// Grades mutant `name` on its own step; checks the verdict and that the message holds `needles`.
 fn expect(name: &str, pass: bool, needles: &[&str]) {
+    expect_at(name, "lesson", pass, needles)
+}
+
+/// `expect` at `--level level`.
+fn expect_at(name: &str, level: &str, pass: bool, needles: &[&str]) {
     let dir = mutant(name);
     let step = step_of(&dir);
-    let run = grade(Some(&dir), &["--json", "--step", step]);
+    let run = grade(Some(&dir), &["--json", "--level", level, "--step", step]);
     let v = run.json();
     check_shape(&v);
     let s = &v["steps"][0];
@@ -197,6 +224,126 @@ fails! {
     blur_with_an_edge_distance_twice_too_large_fails: "blur-edge-distance-x2" => ["depth step of 0.05 m weigh 0.83", "gives 0.67"],
     sao_clamped_at_half_fails: "sao-clamped-at-half" => ["fully occluded pixels stay at 0.5", "min(1.0,"],
     sao_with_a_falloff_below_zero_fails: "sao-falloff-below-zero" => ["post 1.5 m in front of the wall", "must count 0", "f = max(RADIUS2 − vv, 0)"],
+}
+
+/// The SAO step of `res` (the project's files when `None`) at `--level level` with `--points`:
+/// (points, max points, [(part, passed, points, erratum, message)]).
+type Part = (String, bool, u64, Option<String>, String);
+fn sao_parts(res: Option<&Path>, level: &str) -> (u64, u64, Vec<Part>) {
+    let run = grade(
+        res,
+        &["--json", "--points", "--level", level, "--step", "sao"],
+    );
+    let v = run.json();
+    assert_eq!(v["level"], level, "{v}");
+    let s = &v["steps"][0];
+    let parts = s["parts"]
+        .as_array()
+        .unwrap_or_else(|| panic!("sao has parts: {v}"))
+        .iter()
+        .map(|p| {
+            (
+                p["part"].as_str().unwrap().to_string(),
+                p["passed"].as_bool().unwrap(),
+                p["points"].as_u64().unwrap(),
+                p["erratum"].as_str().map(str::to_string),
+                p["message"].as_str().unwrap().to_string(),
+            )
+        })
+        .collect::<Vec<_>>();
+    let earned: u64 = parts.iter().map(|p| p.2).sum();
+    assert_eq!(
+        s["points"].as_u64(),
+        Some(earned),
+        "a step's points are its parts': {v}"
+    );
+    assert_eq!(v["points"].as_u64(), Some(earned), "{v}");
+    (earned, s["max_points"].as_u64().unwrap(), parts)
+}
+
+/// The parts of `parts` that failed.
+fn failing(parts: &[Part]) -> Vec<&str> {
+    parts
+        .iter()
+        .filter(|p| !p.1)
+        .map(|p| p.0.as_str())
+        .collect()
+}
+
+#[test]
+fn a_correct_sao_gets_every_part() {
+    for res in [None, Some(mutant("rewrite-sao"))] {
+        let (earned, max, parts) = sao_parts(res.as_deref(), "lesson");
+        assert_eq!((earned, max), (50, 50), "{parts:?}");
+        let ids: Vec<&str> = parts.iter().map(|p| p.0.as_str()).collect();
+        assert_eq!(
+            ids,
+            [
+                "sao.normal",
+                "sao.sampling",
+                "sao.occlusion",
+                "sao.smoothing",
+                "sao.view"
+            ]
+        );
+    }
+}
+
+#[test]
+fn a_smoothing_of_the_wrong_sign_loses_only_the_smoothing() {
+    let (earned, max, parts) = sao_parts(Some(&mutant("sao-smoothing-wrong-sign")), "lesson");
+    assert_eq!(failing(&parts), ["sao.smoothing"], "{parts:?}");
+    assert_eq!((earned, max), (40, 50));
+    assert!(parts[3].4.contains("2×2 smoothing"), "{parts:?}");
+}
+
+#[test]
+fn the_courses_text_gets_the_parts_its_erratum_does_not_touch_and_the_erratum_is_named() {
+    let (earned, _, parts) = sao_parts(Some(&mutant("course-sao")), "course");
+    assert_eq!(failing(&parts), ["sao.sampling"], "{parts:?}");
+    assert_eq!(earned, 40);
+    let sampling = &parts[1];
+    assert_eq!(
+        sampling.3.as_deref(),
+        Some("appendix A #20: the sampling disc in texture coordinates, stretched by the aspect ratio")
+    );
+    assert!(
+        sampling.4.contains("appendix A #20") && sampling.4.contains("aspectFix"),
+        "{sampling:?}"
+    );
+}
+
+#[test]
+fn a_mistake_that_leaves_nothing_to_measure_fails_the_rest_saying_so() {
+    let (earned, _, parts) = sao_parts(Some(&mutant("sao-flipped-normal")), "lesson");
+    assert_eq!(earned, 0);
+    assert!(parts[0].4.contains("normal flipped"), "{parts:?}");
+    for p in &parts[1..] {
+        assert!(
+            p.4.contains("not measured") && p.4.contains("view position and normal (lesson 6)"),
+            "{p:?}"
+        );
+    }
+}
+
+#[test]
+fn sub_step_points_are_taken_from_the_command_line() {
+    let run = grade(
+        Some(&mutant("sao-smoothing-wrong-sign")),
+        &[
+            "--json",
+            "--points",
+            "sao.smoothing=20,sao.view=5",
+            "--step",
+            "sao",
+        ],
+    );
+    let v = run.json();
+    assert_eq!(
+        (v["points"].as_u64(), v["max_points"].as_u64()),
+        (Some(35), Some(55)),
+        "{v}"
+    );
 }
 
 #[test]

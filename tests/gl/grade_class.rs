@@ -167,9 +167,12 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "sao",
             "blur",
             "passed",
+            "level",
         ],
-        vec!["ada", "PASS", "PASS", "PASS", "PASS", "PASS", "5"],
-        vec![ODD_NAME, "PASS", "PASS", "PASS", "FAIL", "PASS", "4"],
+        vec!["ada", "PASS", "PASS", "PASS", "PASS", "PASS", "5", "lesson"],
+        vec![
+            ODD_NAME, "PASS", "PASS", "PASS", "FAIL", "PASS", "4", "lesson",
+        ],
         vec![
             "cleo",
             "not submitted",
@@ -178,6 +181,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "not submitted",
             "not submitted",
             "0",
+            "lesson",
         ],
         vec![
             "dan",
@@ -187,6 +191,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "FAIL",
             "not submitted",
             "0",
+            "lesson",
         ],
     ];
     assert_eq!(rows, expected, "{csv}\n{stdout}");
@@ -364,11 +369,11 @@ fn a_japanese_class_report_is_japanese_and_each_student_has_a_page() {
     let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
     let rows: Vec<&str> = csv.lines().collect();
     assert_eq!(
-        rows[0], "学生,restore,restoreの点数,合格数,点数,満点",
+        rows[0], "学生,restore,restoreの点数,合格数,点数,満点,採点の基準",
         "{csv}"
     );
-    assert!(rows.contains(&"ada,合格,20,1,20,20"), "{csv}");
-    assert!(rows.contains(&"bob,不合格,0,0,0,20"), "{csv}");
+    assert!(rows.contains(&"ada,合格,20,1,20,20,lesson"), "{csv}");
+    assert!(rows.contains(&"bob,不合格,0,0,0,20,lesson"), "{csv}");
     let junit = std::fs::read_to_string(out.join("junit.xml")).unwrap();
     assert!(junit.contains("type=\"不合格\""), "{junit}");
     assert!(!junit.contains("failed"), "no English verdict: {junit}");

@@ -141,7 +141,7 @@ fn json_keeps_english_and_adds_the_localised_message() {
     let keys = |v: &Value| -> Vec<String> { v.as_object().unwrap().keys().cloned().collect() };
     let o = run(&[JA], &["--res", res, "grade", "--json", "--step", "sao"]);
     let v: Value = serde_json::from_str(out(&o).trim()).expect("JSON");
-    assert_eq!(keys(&v), ["passed", "steps"]);
+    assert_eq!(keys(&v), ["level", "passed", "steps"]);
     let step = &v["steps"][0];
     assert_eq!(
         keys(step),

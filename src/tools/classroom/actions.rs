@@ -8,8 +8,6 @@
 //! uploaded as the run's artifact.
 
 use super::{student_readme, write_new, ClassroomOptions, APT_PACKAGES, GRADER_ASSET, REPORT_DIR};
-use crate::tools::grade::classroom50::ResultTest;
-use crate::tools::grade::Step;
 use anyhow::Result;
 use std::path::{Path, PathBuf};
 
@@ -35,23 +33,15 @@ pub struct ActionsTest {
     pub max_score: u32,
 }
 
-/// The tests: one per graded step in the lesson's order (the same units as result.json's tests).
+/// The tests: one per graded unit in the lesson's order (the units of result.json's tests).
 pub fn tests(options: &ClassroomOptions) -> Vec<ActionsTest> {
-    Step::ALL
-        .iter()
-        .map(|s| {
-            let report = crate::tools::grade::StepReport::failed(*s, String::new());
-            let unit: ResultTest = crate::tools::grade::classroom50::tests(
-                std::slice::from_ref(&report),
-                &options.points,
-            )
-            .remove(0);
-            ActionsTest {
-                id: unit.id.replace(['-', '.'], "_"),
-                unit: unit.id,
-                name: unit.name,
-                max_score: unit.max_score,
-            }
+    crate::tools::grade::classroom50::units(&options.points)
+        .into_iter()
+        .map(|u| ActionsTest {
+            id: u.id.replace(['-', '.'], "_"),
+            unit: u.id,
+            name: u.name,
+            max_score: u.max_score,
         })
         .collect()
 }

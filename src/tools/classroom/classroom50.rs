@@ -160,6 +160,6 @@ mod tests {
         assert!(text.contains("GRADER_TAG = \"v"));
         assert!(text.contains("https://github.com/school/opengl3d/releases/download/v"));
         assert!(text.contains("LANG = \"ja\""));
-        assert!(text.contains("restore=20,down-sampling=10,simple=10,sao=50,blur=10"));
+        assert!(text.contains("restore=20,down-sampling=10,simple=10,sao.normal=10,"));
     }
 }

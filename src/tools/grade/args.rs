@@ -3,7 +3,28 @@
 
 use anyhow::{bail, Result};
 use clap::{Args, ValueEnum};
+use serde::{Deserialize, Serialize};
 use std::path::PathBuf;
+
+/// How strict the grader is (`--level`): `course` passes the original listings with the documented
+/// errata fixed; `lesson` also asks for what the pages add (the depth-edge guard, the mip bias,
+/// the texel-centre snap, the smoothing's 2 cm tests, derivatives outside branches).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, ValueEnum, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Level {
+    Course,
+    #[default]
+    Lesson,
+}
+
+impl Level {
+    pub fn name(self) -> &'static str {
+        match self {
+            Level::Course => "course",
+            Level::Lesson => "lesson",
+        }
+    }
+}
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, PartialOrd, Ord, ValueEnum)]
 pub enum Step {
@@ -125,6 +146,10 @@ pub struct GradeArgs {
     /// Also print each step's measurements on stderr.
     #[arg(long)]
     pub verbose: bool,
+    /// How strict: `course` (the original listings with the documented errata fixed pass) or
+    /// `lesson` (also what the pages teach beyond them); shown in every report.
+    #[arg(long, value_enum, default_value_t = Level::Lesson)]
+    pub level: Level,
 }
 
 /// The hidden child command: grades one step and prints its report as JSON.
@@ -146,6 +171,9 @@ pub struct GradeStepArgs {
     /// the report's metrics (`grade --mutation-score`).
     #[arg(long)]
     pub probe: bool,
+    /// How strict (`grade --level`).
+    #[arg(long, value_enum, default_value_t = Level::Lesson)]
+    pub level: Level,
 }
 
 /// The lesson step the children are told about: `--lesson N` (`--step`, which cannot come with it,

@@ -347,6 +347,7 @@ pub fn run(
         pictures: None,
         timeout,
         lesson: super::args::lesson_of(args),
+        level: args.level,
     };
     let bar = progress_bar(students.len());
     let start = Instant::now();

@@ -4,6 +4,7 @@
 //! messages echoing their shaders) is quoted or escaped for the format it lands in.
 
 use super::args::Step;
+use super::feedback::html;
 use super::points::Points;
 use super::report::StepReport;
 use rust_i18n::t;
@@ -110,13 +111,14 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
             t!("class.csv_max_points").into_owned(),
         ]);
     }
+    header.push(t!("class.csv_level").into_owned());
     let mut csv = csv_row(&header);
     for r in results {
         let mut row = vec![csv_name(&r.name)];
         for s in &r.reports {
             row.push(verdict(s));
             if let Some(p) = points {
-                row.push(p.earned(&s.step, s.passed).to_string());
+                row.push(s.earned_points(p).to_string());
             }
         }
         row.push(r.passed().to_string());
@@ -124,35 +126,22 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
             let (earned, max) = student_points(p, r);
             row.extend([earned.to_string(), max.to_string()]);
         }
+        row.push(level_of(r).to_string());
         csv.push_str(&csv_row(&row));
     }
     csv
 }
 
+/// How strictly the student was graded (`--level`; every step of a class has the same).
+fn level_of(r: &StudentResult) -> &'static str {
+    r.reports.first().map_or("", |s| s.level.name())
+}
+
 /// What a student earned and could have earned.
 fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
-        (
-            e + points.earned(&s.step, s.passed),
-            m + points.of_name(&s.step),
-        )
+        (e + s.earned_points(points), m + s.max_points(points))
     })
-}
-
-/// `text` escaped for HTML text and quoted attribute values.
-fn html(text: &str) -> String {
-    let mut s = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => s.push_str("&amp;"),
-            '<' => s.push_str("&lt;"),
-            '>' => s.push_str("&gt;"),
-            '"' => s.push_str("&quot;"),
-            '\'' => s.push_str("&#39;"),
-            c => s.push(c),
-        }
-    }
-    s
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}\
@@ -187,13 +176,17 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
     h.push_str(&format!(
         "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n\
          <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
+         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p>{level}</p>\n<p><small>{legend}</small></p>\n\
          <table>\n<thead><tr><th>{student}</th>",
         lang = crate::i18n::current().code(),
         t = html(title),
         summary = html(&t!("class.html_summary", all = all, count = results.len())),
         legend = html(&t!("class.html_legend")),
         student = html(&t!("class.html_student")),
+        level = html(&t!(
+            "grade.level",
+            level = results.first().map_or("", level_of)
+        )),
     ));
     for s in steps {
         h.push_str(&format!(
@@ -299,9 +292,15 @@ pub fn to_junit(
             r.reports.len() - r.passed(),
             r.seconds
         ));
-        if let Some(p) = points {
-            let (earned, max) = student_points(p, r);
-            x.push_str(&format!("    {}\n", properties(earned, max)));
+        let level = format!("<property name=\"level\" value=\"{}\"/>", xml(level_of(r)));
+        match points {
+            Some(p) => {
+                let (earned, max) = student_points(p, r);
+                let props = properties(earned, max)
+                    .replace("</properties>", &format!("{level}</properties>"));
+                x.push_str(&format!("    {props}\n"));
+            }
+            None => x.push_str(&format!("    <properties>{level}</properties>\n")),
         }
         for s in &r.reports {
             x.push_str(&format!(
@@ -310,7 +309,7 @@ pub fn to_junit(
                 xml(&s.file)
             ));
             if let Some(p) = points {
-                x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
+                x.push_str(&properties(s.earned_points(p), s.max_points(p)));
             }
             let message = xml(s.shown_message());
             if s.passed {

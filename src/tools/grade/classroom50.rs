@@ -3,6 +3,7 @@
 //! identity fields from its environment, one test per graded unit (a step, or each part of a step
 //! that is graded in parts) with its points, and `score` / `max-score` as their sums.
 
+use super::args::Step;
 use super::points::Points;
 use super::report::StepReport;
 use serde::Serialize;
@@ -32,10 +33,13 @@ pub struct ResultTest {
     #[serde(rename = "max-score")]
     pub max_score: u32,
     /// Diagnostic fields (the contract keeps extra fields of a test as they are): the unit's stable
-    /// id (`restore`, `sao`, …), the graded file and the grader's message in the class's language.
+    /// id (`restore`, `sao.smoothing`, …), the graded file, the grader's message in the class's
+    /// language and the grading level.
     pub id: String,
     pub file: String,
     pub message: String,
+    /// How strictly it was graded (`grade --level`).
+    pub level: &'static str,
 }
 
 #[derive(Debug, Serialize)]
@@ -60,31 +64,91 @@ pub struct ClassroomResult {
 }
 
 /// A step's title as the class reads it: its name in the chosen language and its file.
-fn unit_name(r: &StepReport) -> String {
-    let key = format!("classroom.step_{}", r.step.replace('-', "_"));
+fn step_name(step: &str, file: &str) -> String {
+    let key = format!("classroom.step_{}", step.replace('-', "_"));
     let title = rust_i18n::t!(&key);
     let title = if title == key {
-        r.step.clone()
+        step.to_string()
     } else {
         title.into_owned()
     };
-    format!("{title} ({})", r.file)
+    format!("{title} ({file})")
 }
 
-/// One test per graded step, worth its points.
+/// A sub-step's title: its step's, then the sub-step's own (`SAO (sao.frag): 2×2 smoothing`).
+fn part_name(step: &str, file: &str, part: &str) -> String {
+    let key = format!("grade.part.{part}");
+    let title = rust_i18n::t!(&key);
+    let title = if title == key {
+        part.to_string()
+    } else {
+        title.into_owned()
+    };
+    format!("{}: {title}", step_name(step, file))
+}
+
+/// A graded unit: a step graded as one, or one sub-step of a step graded in parts.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Unit {
+    pub id: String,
+    pub name: String,
+    pub max_score: u32,
+}
+
+/// Every unit the grader gives points to, in the lesson's order (what the templates' tests list).
+pub fn units(points: &Points) -> Vec<Unit> {
+    let mut units = Vec::new();
+    for s in Step::ALL {
+        let parts = super::points::parts_of(s);
+        if parts.is_empty() {
+            units.push(Unit {
+                id: s.name().to_string(),
+                name: step_name(s.name(), s.file()),
+                max_score: points.of(s),
+            });
+        }
+        for (id, _) in parts {
+            units.push(Unit {
+                id: id.to_string(),
+                name: part_name(s.name(), s.file(), id),
+                max_score: points.of_part(id),
+            });
+        }
+    }
+    units
+}
+
+/// One test per graded unit of `reports`, worth its points.
 pub fn tests(reports: &[StepReport], points: &Points) -> Vec<ResultTest> {
-    reports
-        .iter()
-        .map(|r| ResultTest {
-            name: unit_name(r),
-            passed: r.passed,
-            score: points.earned(&r.step, r.passed),
-            max_score: points.of_name(&r.step),
-            id: r.step.clone(),
-            file: r.file.clone(),
-            message: r.shown_message().to_string(),
-        })
-        .collect()
+    let mut tests = Vec::new();
+    for r in reports {
+        if r.parts.is_empty() {
+            tests.push(ResultTest {
+                name: step_name(&r.step, &r.file),
+                passed: r.passed,
+                score: r.earned_points(points),
+                max_score: r.max_points(points),
+                id: r.step.clone(),
+                file: r.file.clone(),
+                message: r.shown_message().to_string(),
+                level: r.level.name(),
+            });
+        }
+        for p in &r.parts {
+            let max = points.of_part(&p.part);
+            tests.push(ResultTest {
+                name: part_name(&r.step, &r.file, &p.part),
+                passed: p.passed,
+                score: if p.passed { max } else { 0 },
+                max_score: max,
+                id: p.part.clone(),
+                file: r.file.clone(),
+                message: p.shown_message().to_string(),
+                level: r.level.name(),
+            });
+        }
+    }
+    tests
 }
 
 /// `seconds` since 1970 (UTC) as `YYYY-MM-DDTHH:MM:SSZ` (days to a civil date: the proleptic

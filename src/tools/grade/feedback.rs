@@ -55,12 +55,15 @@ pub fn page(name: Option<&str>, entries: &[Entry], points: Option<&Points>) -> S
             count = entries.len()
         )),
     );
+    if let Some(first) = entries.first() {
+        h.push_str(&format!(
+            "<p>{}</p>\n",
+            html(&t!("grade.level", level = first.report.level.name()))
+        ));
+    }
     if let Some(p) = points {
-        let earned: u32 = entries
-            .iter()
-            .map(|e| p.earned(&e.report.step, e.report.passed))
-            .sum();
-        let max: u32 = entries.iter().map(|e| p.of_name(&e.report.step)).sum();
+        let earned: u32 = entries.iter().map(|e| e.report.earned_points(p)).sum();
+        let max: u32 = entries.iter().map(|e| e.report.max_points(p)).sum();
         h.push_str(&format!(
             "<p><b>{}</b></p>\n",
             html(&t!("feedback.points", earned = earned, max = max))
@@ -81,8 +84,8 @@ pub fn page(name: Option<&str>, entries: &[Entry], points: Option<&Points>) -> S
                     " ({})",
                     t!(
                         "feedback.step_points",
-                        earned = p.earned(&r.step, r.passed),
-                        max = p.of_name(&r.step)
+                        earned = r.earned_points(p),
+                        max = r.max_points(p)
                     )
                 )
             })
@@ -94,6 +97,36 @@ pub fn page(name: Option<&str>, entries: &[Entry], points: Option<&Points>) -> S
             worth = html(&worth),
             why = html(r.shown_message()),
         ));
+        if !r.parts.is_empty() {
+            h.push_str("<ul>\n");
+            for part in &r.parts {
+                let mark = if part.passed {
+                    t!("grade.pass")
+                } else {
+                    t!("grade.fail")
+                };
+                let key = format!("grade.part.{}", part.part);
+                let title = t!(&key);
+                let worth = points
+                    .map(|p| {
+                        let max = p.of_part(&part.part);
+                        let earned = if part.passed { max } else { 0 };
+                        format!(
+                            " ({})",
+                            t!("feedback.step_points", earned = earned, max = max)
+                        )
+                    })
+                    .unwrap_or_default();
+                h.push_str(&format!(
+                    "<li><b>{}</b>: {}{}<br><span class=\"why\">{}</span></li>\n",
+                    html(&mark),
+                    html(&title),
+                    html(&worth),
+                    html(part.shown_message())
+                ));
+            }
+            h.push_str("</ul>\n");
+        }
         if let Some(stem) = &e.pictures {
             for (kind, label) in [
                 ("difference", t!("feedback.heat_map")),

@@ -9,6 +9,14 @@
 //! | `sao` | `sao.frag` | the project's `Res/sao.frag` on the same mip chain (240×160): mean, 8×8 block RMSE, open surfaces ≈ 0, creases occluded, weak occlusion not scaled by one factor, the 2×2 smoothing (diagonal pixels of quads facing the camera equal), the same occlusion in every direction, far samples read from mip levels 1–3 and near ones from level 0 |
 //! | `blur` | `sao_blur.frag` | the project's `Res/sao_blur.frag` on the same input (160×112): RMSE, edges kept (one 0.5 m deep), flat surfaces smoothed, mean kept, the impulse response's footprint and symmetry, taps past the border clamped |
 //!
+//! SAO is graded in five sub-steps, one per lesson that writes `sao.frag` (`steps/sao_parts`,
+//! `points::SAO_PARTS`): the view position and normal (6), sampling and mip levels (7), the
+//! occlusion term (8), the 2×2 smoothing (9) and the SAO view (10), each with its own verdict and
+//! points; a mistake that leaves nothing to measure fails the sub-steps after it, saying so, and a
+//! shader that keeps an erratum of the course's printed text has it named. `--level course` passes
+//! the course's listings with the documented errata fixed; `--level lesson` (the default) also asks
+//! for what the pages teach beyond them.
+//!
 //! Each step is graded on its own, from the project's inputs (a broken restore pass does not fail the
 //! SAO step). With `--res DIR`, a step whose file is missing from DIR (or misnamed, a folder, a
 //! link out of DIR, unreadable) fails as "not submitted" (`submitted: false` in `--json`): it is

@@ -187,6 +187,7 @@ fn run_one(
     step: Step,
     m: &Mutant,
     timeout: Duration,
+    level: super::args::Level,
 ) -> Result<MutantResult> {
     let id = format!("{}-{:03}", step.name(), m.index);
     let dir = root.join(&id);
@@ -203,7 +204,9 @@ fn run_one(
         .arg(step.name())
         .arg("--work")
         .arg(root.join(format!("{id}-work")))
-        .arg("--probe");
+        .arg("--probe")
+        .arg("--level")
+        .arg(level.name());
     let child =
         Child::spawn(cmd, step).with_context(|| format!("cannot start {}", exe.display()))?;
     let report = child.finish(timeout);
@@ -276,7 +279,7 @@ pub fn run(exe: &Path, steps: &[Step], args: &GradeArgs, timeout: Duration) -> R
     let results: Vec<Result<(Step, MutantResult)>> = pool.install(|| {
         work.par_iter()
             .map(|(step, m)| {
-                let r = run_one(exe, &root.0, *step, m, timeout).map(|r| (*step, r));
+                let r = run_one(exe, &root.0, *step, m, timeout, args.level).map(|r| (*step, r));
                 bar.inc(1);
                 r
             })

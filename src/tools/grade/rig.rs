@@ -25,6 +25,19 @@ pub struct Verdict {
     pub message: Text,
     pub metrics: BTreeMap<String, f64>,
     pub panels: Vec<Panel>,
+    /// The sub-steps' verdicts, for a step graded in parts (`points::parts_of`); empty otherwise.
+    pub parts: Vec<PartVerdict>,
+}
+
+/// One sub-step's outcome.
+pub struct PartVerdict {
+    /// `points::SAO_PARTS`'s id.
+    pub id: &'static str,
+    pub passed: bool,
+    pub message: Text,
+    /// The number in appendix A of the course's erratum that the shader keeps, when that is why
+    /// the sub-step fails.
+    pub erratum: Option<u32>,
 }
 
 impl Verdict {
@@ -34,6 +47,7 @@ impl Verdict {
             message,
             metrics: BTreeMap::new(),
             panels: Vec::new(),
+            parts: Vec::new(),
         }
     }
     /// A failure of the grader itself (not of the student's shader).

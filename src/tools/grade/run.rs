@@ -55,7 +55,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         // `--lesson 1`: that step is maths only, and the restore pass is still the stub it starts
         // from, so there is nothing to grade yet (and nothing has failed).
         if json {
-            println!("{}", report::to_json(&[], points.as_ref())?);
+            println!("{}", report::to_json_at(&[], points.as_ref(), args.level)?);
         } else {
             let (lesson, first) = (
                 args.lesson.unwrap_or(1),
@@ -116,6 +116,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
         pictures: out.as_deref(),
         timeout,
         lesson: super::args::lesson_of(args),
+        level: args.level,
     };
     let reports = student::grade(&grading, student, &steps)?;
     let passed = reports.iter().all(|r| r.passed);

@@ -2,10 +2,10 @@
 //! one step and prints its report as one JSON line on stdout. Each step uses the project's passes
 //! for everything but the graded file.
 
-use super::args::{GradeStepArgs, Step};
+use super::args::{GradeStepArgs, Level, Step};
 use super::interface::{self, Written};
 use super::picture;
-use super::report::StepReport;
+use super::report::{PartReport, StepReport};
 use super::rig::{build_rig, Rig, Subject, Verdict};
 use super::say::say;
 use super::staging::stage;
@@ -43,6 +43,7 @@ fn grade(
     project_res: &Path,
     begun: Option<(u32, lesson::Begun)>,
     at_lesson: Option<u32>,
+    level: Level,
 ) -> Verdict {
     let camera = Camera::default();
     let params = AoSettings::default();
@@ -77,7 +78,7 @@ fn grade(
         (Step::Restore, None) => steps::restore(&rig, &camera),
         (Step::DownSampling, None) => steps::down_sampling(&rig),
         (Step::Simple, None) => steps::simple(&rig),
-        (Step::Sao, None) => steps::sao(&rig, &params, at_lesson),
+        (Step::Sao, None) => steps::sao(&rig, &params, at_lesson, level),
         (Step::Blur, None) => steps::blur(&rig, &params),
     };
     if let Some(problem) = unread {
@@ -149,6 +150,7 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
         },
     };
     let mut report = StepReport::failed(step, String::new());
+    report.level = args.level;
     match stage(&file, &args.work) {
         Err(e) => {
             // Already names the student's file and what is wrong with it (size, encoding, include).
@@ -169,9 +171,20 @@ pub fn run_step(student: Option<&Path>, args: &GradeStepArgs) -> Result<()> {
                     .filter(|b| b.file == step.file())
                     .map(|b| (n, b))
             });
-            let v = grade(step, &subject, &project, begun, args.lesson);
+            let v = grade(step, &subject, &project, begun, args.lesson, args.level);
             report.passed = v.passed;
             report.metrics = v.metrics;
+            report.parts = v
+                .parts
+                .into_iter()
+                .map(|p| PartReport {
+                    part: p.id.to_string(),
+                    passed: p.passed,
+                    message: p.message.en,
+                    message_localised: p.message.localised,
+                    erratum: p.erratum.map(|n| steps::erratum_name(n, "en")),
+                })
+                .collect();
             let mut message = v.message;
             if let Some(out) = &args.out {
                 if !v.panels.is_empty() {

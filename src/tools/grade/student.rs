@@ -55,6 +55,8 @@ pub struct Grading<'a> {
     pub pictures: Option<&'a Path>,
     pub timeout: Duration,
     pub lesson: Option<u32>,
+    /// How strict (`--level`).
+    pub level: super::args::Level,
 }
 
 /// Grades `steps` of the shaders in `student` (the project's own files when `None`): one verdict
@@ -87,6 +89,7 @@ pub fn grade(g: &Grading, student: Option<&Path>, steps: &[Step]) -> Result<Vec<
         if let Some(n) = g.lesson {
             cmd.arg("--lesson").arg(n.to_string());
         }
+        cmd.arg("--level").arg(g.level.name());
         match Child::spawn(cmd, s) {
             Ok(child) => {
                 children.push((reports.len(), child));
@@ -103,5 +106,13 @@ pub fn grade(g: &Grading, student: Option<&Path>, steps: &[Step]) -> Result<Vec<
         reports[i] = Some(c.finish(g.timeout));
     }
     drop(work);
-    Ok(reports.into_iter().flatten().collect())
+    // Every report says how strictly it was graded, those that needed no child too.
+    Ok(reports
+        .into_iter()
+        .flatten()
+        .map(|r| StepReport {
+            level: g.level,
+            ..r
+        })
+        .collect())
 }

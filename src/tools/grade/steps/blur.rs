@@ -418,6 +418,7 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
+        parts: Vec::new(),
     };
     let f2 = |v: f64| format!("{v:.2}");
     let f3 = |v: f64| format!("{v:.3}");

@@ -132,6 +132,7 @@ pub fn down_sampling(rig: &Rig) -> Verdict {
             message: say!("grade.verdict.down_pass", last = last, total = total),
             metrics,
             panels,
+            parts: Vec::new(),
         };
     };
     // What would common mistakes have written into this level (from a correct parent)?
@@ -178,5 +179,6 @@ pub fn down_sampling(rig: &Rig) -> Verdict {
         message,
         metrics,
         panels,
+        parts: Vec::new(),
     }
 }

@@ -8,6 +8,7 @@ mod sao;
 mod sao_checkpoint;
 mod sao_isotropy;
 mod sao_measure;
+mod sao_parts;
 mod sao_reach;
 mod simple;
 
@@ -16,4 +17,5 @@ pub use down_sampling::down_sampling;
 pub use restore::{restore, MAIN_SIZE};
 pub use sao::{sao, SAO_SIZE};
 pub use sao_checkpoint::sao_checkpoint;
+pub use sao_parts::erratum_name;
 pub use simple::{probe_difference as simple_probe, simple, SIMPLE_SIZE};

@@ -141,6 +141,7 @@ pub fn restore(rig: &Rig, cam: &Camera) -> Verdict {
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
+        parts: Vec::new(),
     };
     if bad == 0 {
         let worst = format!("{:.2}", worst.0);

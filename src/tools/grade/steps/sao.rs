@@ -18,8 +18,10 @@
 //! in the disc, `sao_reach`).
 
 use super::sao_measure::{measure, mip_change, saturation, Measured, ProbeResult};
+use super::sao_parts::{Parts, NORMAL, OCCLUSION, SAMPLING, SMOOTHING, VIEW};
 use crate::ao::AoSettings;
 use crate::i18n::Text;
+use crate::tools::grade::args::Level;
 use crate::tools::grade::rig::{Rig, Verdict};
 use crate::tools::grade::say::say;
 use crate::tools::grade::scene::{sao_scenes, ProbeKind};
@@ -80,7 +82,8 @@ fn scaled(ratios: &[f64], samples: u32, metrics: &mut BTreeMap<String, f64>) -> 
 
 /// Grades the student's SAO pass of `rig` as lesson step `lesson` has it (`None`: finished): before
 /// `SAO_SMOOTHING_STEP` the 2×2 smoothing is not taught yet, so it is neither asked for nor told.
-pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
+pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>, level: Level) -> Verdict {
+    let _ = level;
     let smoothing_step = crate::tools::lesson::SAO_SMOOTHING_STEP;
     let smoothing_taught = lesson.is_none_or(|n| n >= smoothing_step);
     let scenes = sao_scenes(SAO_SIZE);
@@ -178,12 +181,6 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         format!("{:.0}", 100.0 * aniso_s),
         format!("{:.0}", 100.0 * aniso_r),
     );
-    let verdict = |passed: bool, message: Text| Verdict {
-        passed,
-        message,
-        metrics: metrics.clone(),
-        panels: panels.clone(),
-    };
     let f2 = |v: f64| format!("{v:.2}");
     let f3 = |v: f64| format!("{v:.3}");
     // The reference must itself meet the probes, or every verdict below is meaningless.
@@ -193,51 +190,50 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         ProbeKind::Falloff => p.expected < 0.05,
     }) {
         let got = f2(p.expected);
-        return verdict(
-            false,
-            say!(
-                l => "grade.verdict.sao_reference_off",
-                got = got,
-                probe = place(l, p.name),
-                scene = place(l, p.scene)
-            ),
-        );
+        let mut v = Verdict::fail(say!(
+            l => "grade.verdict.sao_reference_off",
+            got = got,
+            probe = place(l, p.name),
+            scene = place(l, p.scene)
+        ));
+        v.metrics = metrics;
+        v.panels = panels;
+        return v;
     }
-    if nan as f64 > tol::SAO_BAD_PIXEL_FRACTION * n {
-        let percent = format!("{:.1}", 100.0 * nan as f64 / n);
-        // Inf is a division by zero or an overflow; NaN alone, most often normalize() of a zero
-        // vector.
-        return verdict(
-            false,
-            if inf > 0 {
-                let inf = format!("{:.1}", 100.0 * inf as f64 / n);
-                say!("grade.verdict.sao_inf", percent = percent, inf = inf)
-            } else {
-                say!("grade.verdict.sao_nan", percent = percent)
-            },
-        );
-    }
+    let mut parts = Parts::new(smoothing_taught);
     let creases: Vec<&ProbeResult> = probes
         .iter()
         .filter(|p| p.kind == ProbeKind::Crease)
         .collect();
-    if max_raw.abs() < 1e-3 && negative == 0 {
-        return verdict(false, say!("grade.verdict.sao_zero"));
-    }
     // Values above 1 are clamped by the engine's R8 target: they are a mistake when what is left
     // after clamping still differs (a sum that was never averaged), a detail when it does not.
     let overflow = over as f64 > tol::SAO_BAD_PIXEL_FRACTION * n;
     let distorted = mean_err.abs() > tol::SAO_MEAN_REL || falloff_err.abs() > tol::SAO_FALLOFF_REL;
     // The scenes always hold creases, so one is found to quote.
     let worst_crease = creases.iter().max_by(|a, b| a.raw.total_cmp(&b.raw));
-    if let (true, Some(worst)) = (overflow && distorted, worst_crease) {
+    if nan as f64 > tol::SAO_BAD_PIXEL_FRACTION * n {
+        let percent = format!("{:.1}", 100.0 * nan as f64 / n);
+        // Inf is a division by zero or an overflow, in what is written; NaN alone, most often
+        // normalize() of a zero vector.
+        if inf > 0 {
+            let inf = format!("{:.1}", 100.0 * inf as f64 / n);
+            parts.break_all(
+                VIEW,
+                say!("grade.verdict.sao_inf", percent = percent, inf = inf),
+            );
+        } else {
+            parts.break_all(NORMAL, say!("grade.verdict.sao_nan", percent = percent));
+        }
+    } else if max_raw.abs() < 1e-3 && negative == 0 {
+        parts.break_all(OCCLUSION, say!("grade.verdict.sao_zero"));
+    } else if let (true, Some(worst)) = (overflow && distorted, worst_crease) {
         let (got, expected, max) = (
             format!("{:.1}", worst.raw),
             f2(worst.expected),
             format!("{max_raw:.1}"),
         );
-        return verdict(
-            false,
+        parts.break_all(
+            VIEW,
             say!(
                 l => "grade.verdict.sao_not_normalised",
                 got = got,
@@ -251,14 +247,16 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
     if let Some(p) = creases
         .iter()
         .find(|p| p.got < (tol::SAO_CREASE_FRACTION * p.expected).max(tol::SAO_CREASE_MIN))
+        .filter(|_| !parts.broken())
     {
         let all_dark = creases.iter().all(|p| p.got < 0.25 * p.expected);
         let negative_terms = negative as f64 > 0.05 * n;
+        let flipped = all_dark && !negative_terms;
         let (got, expected) = (f2(p.got), f2(p.expected));
         let message = Text::new(|l| {
             let hint = if negative_terms {
                 rust_i18n::t!("grade.verdict.sao_hint_negative", locale = l)
-            } else if all_dark {
+            } else if flipped {
                 rust_i18n::t!("grade.verdict.sao_hint_flipped_normal", locale = l)
             } else {
                 rust_i18n::t!("grade.verdict.sao_hint_weak_crease", locale = l)
@@ -274,27 +272,55 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
             )
             .into_owned()
         });
-        return verdict(false, message);
+        // A normal pointing away from the camera finds no occluder anywhere: nothing after it
+        // can be measured.
+        if flipped {
+            parts.break_all(NORMAL, message);
+        } else {
+            parts.fail(OCCLUSION, message);
+        }
     }
-    if let Some(message) = scale {
-        return verdict(false, message);
+    let scale_wrong = scale.is_some();
+    if let Some(message) = scale.filter(|_| !parts.broken()) {
+        parts.fail(OCCLUSION, message);
     }
-    if stretched && aniso_s > tol::SAO_ANISOTROPY {
-        return verdict(
-            false,
-            say!(
-                "grade.verdict.sao_stretched",
-                spread = spread,
-                reference = spread_reference
-            ),
-        );
+    if !parts.broken() && stretched && aniso_s > tol::SAO_ANISOTROPY {
+        // A disc stretched on screen (the course's own form, erratum 20) leaves the occlusion's
+        // measures within their tolerances; positions rebuilt with a wrong aspect ratio distort
+        // every one of them.
+        let disc_only = !scale_wrong
+            && mean_err.abs() <= tol::SAO_MEAN_REL
+            && falloff_err.abs() <= tol::SAO_FALLOFF_REL;
+        if disc_only {
+            parts.fail_keeping(
+                SAMPLING,
+                say!(
+                    "grade.verdict.sao_stretched_disc",
+                    spread = spread,
+                    reference = spread_reference
+                ),
+                Some(20),
+            );
+        } else {
+            parts.break_all(
+                NORMAL,
+                say!(
+                    "grade.verdict.sao_stretched_positions",
+                    spread = spread,
+                    reference = spread_reference
+                ),
+            );
+        }
+    }
+    if parts.broken() {
+        return parts.verdict(say!("grade.verdict.part_pass"), metrics, panels);
     }
     if let Some(p) = probes.iter().find(|p| {
         p.kind == ProbeKind::Open && p.got > p.expected.min(tol::SAO_OPEN_ABS) + tol::SAO_OPEN_ABS
     }) {
         let (got, expected) = (f2(p.got), f2(p.expected));
-        return verdict(
-            false,
+        parts.fail(
+            OCCLUSION,
             say!(
                 l => "grade.verdict.sao_open_occluded",
                 probe = place(l, p.name),
@@ -309,8 +335,8 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         if (ratio - 1.0).abs() > tol::SAO_FALLOFF_REL {
             let (got, expected) = (f3(p.got), f3(p.expected));
             let percent = format!("{:.0}", tol::SAO_FALLOFF_REL * 100.0);
-            return verdict(
-                false,
+            parts.fail(
+                OCCLUSION,
                 if ratio > 1.0 {
                     say!(
                         l => "grade.verdict.sao_falloff_slow",
@@ -336,8 +362,8 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
     if mean_err.abs() > tol::SAO_MEAN_REL {
         let (got, expected) = (f3(fmean_s), f3(fmean_r));
         let percent = format!("{:.0}", tol::SAO_MEAN_REL * 100.0);
-        return verdict(
-            false,
+        parts.fail(
+            OCCLUSION,
             if mean_err > 0.0 {
                 say!(
                     "grade.verdict.sao_mean_strong",
@@ -356,15 +382,16 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         );
     }
     if smoothing_taught && uneven > tol::SAO_UNEVEN_QUADS {
-        return verdict(false, {
-            let percent = format!("{:.0}", 100.0 * uneven);
-            say!("grade.verdict.sao_no_smoothing", percent = percent)
-        });
+        let percent = format!("{:.0}", 100.0 * uneven);
+        parts.fail(
+            SMOOTHING,
+            say!("grade.verdict.sao_no_smoothing", percent = percent),
+        );
     }
     if rmse > tol::SAO_BLOCK_RMSE {
         let (rmse, diff) = (f3(rmse), format!("{:+.2}", worst_block.0));
-        return verdict(
-            false,
+        parts.fail(
+            VIEW,
             say!(
                 l => "grade.verdict.sao_rmse",
                 rmse = rmse,
@@ -389,36 +416,36 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         Ok(s) => s,
         Err(e) => return Verdict::grader_error(&e),
     };
-    let mut metrics = metrics.clone();
+    let mut metrics = metrics;
     metrics.insert("saturated_median".into(), saturated);
     metrics.insert("mip_change".into(), mip_s / scenes.len() as f64);
     metrics.insert("mip_change_reference".into(), mip_r / scenes.len() as f64);
     metrics.insert("mip_use".into(), mip_use);
-    let verdict = |passed: bool, message: Text| Verdict {
-        passed,
-        message,
-        metrics: metrics.clone(),
-        panels: panels.clone(),
-    };
-    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use < tol::SAO_MIP_USE {
-        let got = format!("{:.4}", mip_s / scenes.len() as f64);
-        let reference = format!("{:.4}", mip_r / scenes.len() as f64);
-        return verdict(
-            false,
+    let mips_read = mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN;
+    let (mip_got, mip_reference) = (
+        format!("{:.4}", mip_s / scenes.len() as f64),
+        format!("{:.4}", mip_r / scenes.len() as f64),
+    );
+    if mips_read && mip_use < tol::SAO_MIP_USE {
+        parts.fail(
+            SAMPLING,
             say!(
                 "grade.verdict.sao_no_mips",
-                got = got,
-                reference = reference
+                got = mip_got,
+                reference = mip_reference
             ),
         );
     }
     if saturated_n > 0 && saturated < tol::SAO_SATURATED_MEDIAN {
         let got = format!("{saturated:.2}");
-        return verdict(false, say!("grade.verdict.sao_not_saturated", got = got));
+        parts.fail(
+            OCCLUSION,
+            say!("grade.verdict.sao_not_saturated", got = got),
+        );
     }
     if aniso_s > tol::SAO_ANISOTROPY {
-        return verdict(
-            false,
+        parts.fail(
+            SAMPLING,
             say!(
                 "grade.verdict.sao_anisotropy",
                 spread = spread,
@@ -426,24 +453,21 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
             ),
         );
     }
-    if mip_r / scenes.len() as f64 > tol::SAO_MIP_CHANGE_MIN && mip_use > tol::SAO_MIP_USE_MAX {
-        let got = format!("{:.4}", mip_s / scenes.len() as f64);
-        let reference = format!("{:.4}", mip_r / scenes.len() as f64);
-        return verdict(
-            false,
+    if mips_read && mip_use > tol::SAO_MIP_USE_MAX {
+        parts.fail(
+            SAMPLING,
             say!(
                 "grade.verdict.sao_near_mips",
-                got = got,
-                reference = reference
+                got = mip_got,
+                reference = mip_reference
             ),
         );
     }
-    // Last, so that each mistake the checks above name keeps its message.
     if (near_s / near_r.max(1e-6) - 1.0).abs() > tol::SAO_NEAR_POST_REL {
         let (got, expected) = (f3(near_s), f3(near_r));
         let percent = format!("{:.0}", tol::SAO_NEAR_POST_REL * 100.0);
-        return verdict(
-            false,
+        parts.fail(
+            OCCLUSION,
             say!(
                 "grade.verdict.sao_far_occluders",
                 got = got,
@@ -504,5 +528,5 @@ pub fn sao(rig: &Rig, params: &AoSettings, lesson: Option<u32>) -> Verdict {
         )
         .into_owned()
     });
-    verdict(true, message)
+    parts.verdict(message, metrics, panels)
 }

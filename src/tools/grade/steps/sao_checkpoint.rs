@@ -110,6 +110,7 @@ pub fn sao_checkpoint(
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
+        parts: Vec::new(),
     };
     let complete = crate::tools::lesson::SAO_COMPLETE_STEP;
     if bad_fraction <= tol::CHECKPOINT_BAD_FRACTION {

@@ -269,6 +269,7 @@ pub fn simple(rig: &Rig) -> Verdict {
         message,
         metrics: metrics.clone(),
         panels: panels.clone(),
+        parts: Vec::new(),
     };
     let copy_ok = copy_err <= tol::SIMPLE_ABS;
     if copy_ok && comp_err <= tol::SIMPLE_ABS {
