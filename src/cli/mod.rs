@@ -204,6 +204,11 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     }
     engine.collect_stats = args.stats;
     write_view(&mut engine, view, &args.out)?;
+    let cut = engine.ao.cut_pixels(engine.ao_settings.method);
+    if cut > 0 {
+        let message = t!("render.rtao_cut", pixels = cut);
+        eprintln!("{}", t!("render.warning", message = message));
+    }
     let msg = t!(
         "render.wrote",
         path = args.out.display(),
@@ -464,7 +469,13 @@ fn window_options(
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
     let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
-    let scene = load_scene(&args.scene, res)?;
+    let mut scene = load_scene(&args.scene, res)?;
+    // The engine's ranges, as `render` applies them: the truth traces what the methods are given.
+    let (ao, notes) = scene.ao.sanitized();
+    for note in notes {
+        eprintln!("{}", t!("render.warning", message = note));
+    }
+    scene.ao = ao;
     // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
     // `backface`: each pixel's slab reaches its back face, and where there is none it has vbao's
     // fixed thickness for this radius (`AoSettings::thickness_metres`: the scene's `[ao] thickness`
@@ -559,13 +570,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             ..params
         };
         if args.gpu {
-            crate::tools::reference::load_or_render_gpu_cached(
-                &cache,
-                res,
-                &scene,
-                bvh.content_hash(),
-                &params,
-            )?
+            crate::tools::reference::load_or_render_gpu_cached(&cache, res, &scene, &bvh, &params)?
         } else {
             load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
         }
