@@ -1,6 +1,6 @@
 #version 450
 
-// Step 3: Scalable Ambient Obscurance (McGuire et al. 2012) on the linear-depth mip chain.
+// The SAO pass (third of four): Scalable Ambient Obscurance (McGuire et al. 2012) on the linear-depth mip chain.
 // Output: occlusion in [0,1] (0 = open, 1 = fully occluded).
 
 layout(location=1) in vec2 inTexcoord;

@@ -1,14 +1,15 @@
 #version 450
 
-// Step 4: depth-aware (bilateral) 9x9 blur of the SAO buffer.
+// The blur pass (fourth of four): depth-aware (bilateral) 9x9 blur of the SAO buffer.
 
 layout(binding=0) uniform sampler2D texColor; // occlusion
 layout(binding=1) uniform sampler2D texDepth; // linear depth
 
 out vec4 outColor;
 
-// McGuire's weights, centre first. His source labels them "stddev = 2", but their ratios are
-// exp(-k^2/18): a sigma = 3 Gaussian cut at +-4 taps and renormalised (the lesson printed them +0.3).
+// The Gaussian of SAO_blur.pix, centre first ("stddev = 2" there; its ratios are exp(-k^2/18), a
+// sigma = 3 Gaussian cut at +-4 taps). SAO_blur.pix and the course add 0.3 to every tap but the
+// centre; this port leaves the 0.3 out, for a narrower kernel.
 const float gaussian[5] =
   { 0.153170, 0.144893, 0.122649, 0.092902, 0.062970 };
 

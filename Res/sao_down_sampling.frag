@@ -1,6 +1,6 @@
 #version 450
 
-// Step 2: one level of the linear-depth mip chain = the nearest of the 2x2 texels of the level above.
+// The down-sampling pass (second of four): one level of the linear-depth mip chain = the nearest of the 2x2 texels of the level above.
 
 layout(binding=0) uniform sampler2D texDepth;
 
@@ -10,7 +10,7 @@ layout(location=200) uniform int mipLevel; // the level read (the one written is
 
 void main()
 {
-  // Clamp so that odd sizes never read past the last texel of the source level.
+  // Clamp: a source level 1 texel wide or tall would read past its last texel.
   ivec2 maxUV = textureSize(texDepth, mipLevel) - 1;
   ivec2 uv = ivec2(gl_FragCoord.xy) * 2;
   float d1 = texelFetch(texDepth, min(uv + ivec2(0, 0), maxUV), mipLevel).x;

@@ -1,6 +1,6 @@
 #version 450
 
-// Step 1 of the AO lesson: turn the depth buffer back into view distance (metres),
+// The restore pass (first of the AO lesson's four): turn the depth buffer back into view distance (metres),
 // at half size, keeping the nearest of each 2x2 block.
 
 out float outColor;
@@ -18,7 +18,7 @@ layout(binding=0) uniform sampler2D texDepth;
 void main()
 {
   // Nearest of the 2x2 texels (depth is not linear, so it must not be averaged).
-  // Clamp so that odd sizes never read past the last texel.
+  // Clamp: a full-size side of 1 pixel would read past the last texel.
   ivec2 maxUV = textureSize(texDepth, 0) - 1;
   ivec2 uv = ivec2(gl_FragCoord.xy) * 2;
   float d1 = texelFetch(texDepth, min(uv + ivec2(0, 0), maxUV), 0).x;

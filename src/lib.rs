@@ -17,6 +17,7 @@ pub mod math;
 pub mod platform;
 pub mod render;
 pub mod res;
+pub mod res_embedded;
 pub mod scene;
 pub mod shader_interface;
 pub mod tools;

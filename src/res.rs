@@ -53,20 +53,24 @@ pub struct ResDirs {
     dirs: Vec<PathBuf>,
 }
 
-/// The crate's own `Res/` folder (found from the build location, so the binary works from any directory).
+/// The project's own `Res/` folder, in this order: a `Res/` folder beside the executable (a release
+/// archive unpacked with it); the source tree's when the executable was built inside it (`cargo run`,
+/// `cargo test`: edits to its shaders show at once); else the copy carried in the binary, written
+/// once to the user's cache folder. An installed binary never reads the tree it was built from, which
+/// may have moved on to other shaders or been deleted.
 pub fn project_res_dir() -> PathBuf {
-    let built = Path::new(env!("CARGO_MANIFEST_DIR")).join("Res");
-    if built.is_dir() {
-        return built;
-    }
-    // A moved binary: look beside it and in the working directory.
-    if let Some(dir) = std::env::current_exe()
-        .ok()
-        .and_then(|p| p.parent().map(|d| d.join("Res")))
-    {
+    let exe = std::env::current_exe().ok();
+    if let Some(dir) = exe.as_ref().and_then(|p| p.parent().map(|d| d.join("Res"))) {
         if dir.is_dir() {
             return dir;
         }
+    }
+    let source = Path::new(env!("CARGO_MANIFEST_DIR"));
+    if exe.as_ref().is_some_and(|e| e.starts_with(source)) && source.join("Res").is_dir() {
+        return source.join("Res");
+    }
+    if let Some(dir) = crate::res_embedded::extracted_res_dir() {
+        return dir;
     }
     PathBuf::from("Res")
 }

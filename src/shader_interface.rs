@@ -109,6 +109,8 @@ pub mod storage {
     /// ao/rtao.frag: `BvhNodes` and `BvhTriangles` (layout in `scene::bvh`).
     pub const BVH_NODES: u32 = 0;
     pub const BVH_TRIANGLES: u32 = 1;
+    /// ao/rtao.frag: `RtaoStatus`, the count of pixels whose rays were cut short.
+    pub const RTAO_STATUS: u32 = 2;
 }
 
 /// One uniform a program declares.

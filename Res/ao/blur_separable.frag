@@ -1,8 +1,8 @@
 #version 450
 
-// One direction of the separable bilateral blur (McGuire's reference: 2 passes x 9 taps, radius 4,
-// McGuire's weights (a sigma = 3 Gaussian in taps); taps off the centre's plane lose their weight:
-// blur_edge.glsl). Taps are 1 texel apart, not 2:
+// One direction of the separable bilateral blur (as in SAO_blur.pix: 2 passes x 9 taps, radius 4,
+// its Gaussian table, a sigma = 3 Gaussian in taps, without the 0.3 it adds off the centre; taps off
+// the centre's plane lose their weight: blur_edge.glsl). Taps are 1 texel apart, not 2:
 // the methods rotate their samples with a 4x4 tile, and taps 2 apart would only ever see 2 of its 4
 // phases per axis, leaving the tile's pattern in the picture.
 

@@ -16,11 +16,18 @@
 
 layout(location=240) uniform mat4 viewToWorld;
 // (rays this frame, index of the frame's first sample, frames already in the history (0: none),
-// sequence: 0 = R2 over the frames, 1 = one stratified lattice of `rays` points (the GPU reference))
+// sequence: 0 = R2 over the frames, n > 0 = points first .. first + rays of one stratified lattice of
+// n points (the GPU reference, which may split a pixel's lattice over several passes))
 layout(location=241) uniform ivec4 rtaoFrame;
 // Nodes in the BVH (0: no triangles, every ray is open).
 layout(location=243) uniform int rtaoNodeCount;
 layout(binding=3) uniform sampler2D texHistory; // (mean occlusion, depth) of the frames so far
+// Pixels whose rays were not all traced to the end (zeroed before each pass, read back after it).
+// A driver may end long loops early: Mesa's llvmpipe stops every loop of a shader invocation once
+// all of them together have run 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS), and a traversal cut
+// short would read as "no hit". Such pixels keep the mean of the rays that did finish and are
+// counted here, so the pass can be split or refused instead of being silently too bright.
+layout(std430, binding=2) buffer RtaoStatus { uint rtaoCutPixels; };
 
 // The shader's stack; src/scene/bvh.rs refuses deeper trees (MAX_STACK).
 #define BVH_STACK 64
@@ -64,8 +71,10 @@ bool TriangleHit(uint i, vec3 o, vec3 d, float tMax) {
 }
 
 // Any hit within tMax along unit d: AO needs only "blocked or not", so the first triangle hit ends
-// the walk. Both children are tested before descending; the far one waits on the stack.
-bool Occluded(vec3 o, vec3 d, float tMax, uint start) {
+// the walk. Both children are tested before descending; the far one waits on the stack. The walk
+// visits each node at most once, so its bound is never met by a walk that runs its course: leaving
+// the loop through it (`cut`) means the driver ended the loop, and the answer is unknown.
+bool Occluded(vec3 o, vec3 d, float tMax, uint start, inout bool cut) {
   if (rtaoNodeCount <= 0) {
     return false;
   }
@@ -76,7 +85,7 @@ bool Occluded(vec3 o, vec3 d, float tMax, uint start) {
   uint stack[BVH_STACK];
   int top = 0;
   uint node = start;
-  for (;;) {
+  for (int step = 0; step <= rtaoNodeCount; ++step) {
     uint count = nodes[node].count;
     uint first = nodes[node].first;
     if (count == 0u) {
@@ -92,10 +101,14 @@ bool Occluded(vec3 o, vec3 d, float tMax, uint start) {
         continue;
       }
     } else {
-      for (uint t = first; t < first + count; ++t) {
+      uint t = first;
+      for (; t < first + count; ++t) {
         if (TriangleHit(t, o, d, tMax)) {
           return true;
         }
+      }
+      if (t < first + count) {
+        break; // this loop, too, can be ended early
       }
     }
     if (top == 0) {
@@ -103,6 +116,8 @@ bool Occluded(vec3 o, vec3 d, float tMax, uint start) {
     }
     node = stack[--top];
   }
+  cut = true;
+  return false;
 }
 
 bool SphereMeetsBox(uint i, vec3 c, float r) {
@@ -157,7 +172,7 @@ const float TO_UNIT = 1.0 / 4294967296.0;
 // The i-th point: R2 (golden ratio of the plane) or the lattice of n points, shifted by `shift`
 // (fixed point, so the fraction stays exact however far the sequence runs).
 vec2 SamplePoint(uint i, uint n, uvec2 shift) {
-  if (rtaoFrame.w == 1) {
+  if (rtaoFrame.w > 0) {
     uint u = uint((float(i) + 0.5) / float(n) * 4294967296.0);
     return vec2(u + shift.x, i * 2654435769u + shift.y) * TO_UNIT;
   }
@@ -190,17 +205,27 @@ void main()
   // llvmpipe, where lanes wait for the slowest, the demo camera's 640x360 reference at 256 rays
   // went from 5.1 to 4.0 s; blocks of 8, 16 or the whole image gained nothing more). Each pixel's estimate stays
   // unbiased; neighbours' errors are correlated, which a reference's per-pixel error ignores.
-  ivec2 cell = rtaoFrame.w == 1 ? pix / STRATIFIED_BLOCK : pix;
+  ivec2 cell = rtaoFrame.w > 0 ? pix / STRATIFIED_BLOCK : pix;
   uint h = Hash(uint(cell.x) + Hash(uint(cell.y)));
   uvec2 shift = uvec2(h, Hash(h));
+  uint lattice = rtaoFrame.w > 0 ? uint(rtaoFrame.w) : rays;
   uint entry = EntryNode(origin, AO_RADIUS);
   int blocked = 0;
-  for (uint k = 0u; k < rays; ++k) {
-    vec2 uv = SamplePoint(first + k, rays, shift);
+  int traced = 0;
+  bool cut = false;
+  for (uint k = 0u; k < rays && !cut; ++k) {
+    vec2 uv = SamplePoint(first + k, lattice, shift);
     vec3 d = CosineDirection(nWorld, t, b, uv);
-    blocked += Occluded(origin, normalize(d), AO_RADIUS, entry) ? 1 : 0;
+    bool hit = Occluded(origin, normalize(d), AO_RADIUS, entry, cut);
+    if (!cut) {
+      blocked += hit ? 1 : 0;
+      traced += 1;
+    }
   }
-  float occlusion = float(blocked) / float(rays);
+  if (traced < int(rays)) {
+    atomicAdd(rtaoCutPixels, 1u);
+  }
+  float occlusion = traced > 0 ? float(blocked) / float(traced) : 0.0;
   int history = rtaoFrame.z;
   if (history > 0) {
     // The history holds what went out, intensity applied: undone here (intensity 5 is the identity).

@@ -89,6 +89,11 @@ pub trait AoMethodPass {
     fn accumulated_frames(&self) -> u32 {
         1
     }
+    /// Pixels of its last pass whose rays the driver ended before they were all traced (`rtao`: a
+    /// driver's loop limit); those pixels hold the mean of the rays that finished.
+    fn cut_pixels(&self) -> u32 {
+        0
+    }
     /// Starts its running mean again at the next frame (the window, after any change of setting).
     fn restart_accumulation(&self) {}
     /// The slab hierarchy its last frame built (`vbao` with `[ao] slab_hierarchy`).

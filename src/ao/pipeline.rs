@@ -233,6 +233,11 @@ impl AoPipeline {
             .map_or(1, |m| m.accumulated_frames())
     }
 
+    /// Pixels of `method`'s last pass whose rays were cut short (see `AoMethodPass::cut_pixels`).
+    pub fn cut_pixels(&self, method: AoMethod) -> u32 {
+        self.methods.get(&method).map_or(0, |m| m.cut_pixels())
+    }
+
     /// Starts every method's running mean again at its next frame.
     pub fn restart_accumulation(&self) {
         for m in self.methods.values() {

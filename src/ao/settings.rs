@@ -316,6 +316,11 @@ pub struct AoSettings {
     /// --gpu`), instead of a sequence that continues from frame to frame. Not a scene-file key.
     #[serde(skip)]
     pub stratified: bool,
+    /// With `stratified`: this frame traces lattice points `first .. first + rays` of a lattice of
+    /// `of` points, as `(first, of)` (`reference --gpu` splits a pixel's rays over several passes);
+    /// `of` 0: the lattice is this frame's `rays`. Not a scene-file key.
+    #[serde(skip)]
+    pub lattice_slice: (u32, u32),
 }
 
 /// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
@@ -445,6 +450,7 @@ impl Default for AoSettings {
             rays: 2,
             accumulate: 1,
             stratified: false,
+            lattice_slice: (0, 0),
         }
     }
 }

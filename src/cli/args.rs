@@ -106,21 +106,55 @@ pub struct ReferenceArgs {
 
 #[derive(Args, Debug)]
 pub struct LessonArgs {
-    /// Step number 1-12, or `start` (without it, the steps are listed).
+    /// Step number 1-12, `start`, or `edition` (without it, the steps are listed).
     pub step: Option<String>,
-    /// With `start`: the folder to create (then use it with --res).
+    /// With `start`: the folder to create (then use it with --res); with `edition`: the folder for
+    /// the class edition (the pages without their folded answers, and the stubs).
     pub dir: Option<PathBuf>,
-    /// With `start`: write a GitHub Classroom student repository into DIR instead: the stub
-    /// shaders and .github/workflows/classroom.yml (one autograding test per graded shader).
-    #[arg(long, value_name = "DIR", conflicts_with = "dir")]
-    pub classroom: Option<PathBuf>,
+    /// With `start`: write what a teacher publishes for a class into DIR instead: `classroom50`
+    /// (a template repository, the Classroom 50 autograder bundle and the assignment's settings) or
+    /// `actions` (a template repository with a plain GitHub Actions workflow). Both name this
+    /// grader's version; see docs/grade/classroom.md.
+    #[arg(long, value_enum, value_name = "KIND")]
+    pub classroom: Option<ClassroomArg>,
+    /// With --classroom: the points of each step (`STEP=N,...`, as `grade --points`; 100 in all by
+    /// default: restore 20, down-sampling 10, simple 10, sao 50, blur 10).
+    #[arg(long, value_name = "STEP=N,...", requires = "classroom")]
+    pub points: Option<String>,
+    /// With --classroom: the class's copy of opengl3d on GitHub (OWNER/REPO), whose Release of
+    /// this version's tag holds the prebuilt grader (default: a placeholder to replace).
+    #[arg(long, value_name = "OWNER/REPO", requires = "classroom")]
+    pub grader_repo: Option<String>,
+    /// With `edition`: the folder of the lesson pages to copy (default: lessons/ of the source tree
+    /// this opengl3d was built from, when it is still there).
+    #[arg(long, value_name = "DIR")]
+    pub pages: Option<PathBuf>,
     #[command(flatten)]
     pub scene: SceneArgs,
     /// Render the step's view to --out instead of opening a window.
     #[arg(long)]
     pub headless: bool,
+    /// The picture written with --headless or when there is no display (.png or .pfm).
     #[arg(long, default_value = "out/lesson.png")]
     pub out: PathBuf,
+}
+
+/// `lesson start --classroom KIND`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum ClassroomArg {
+    /// Classroom 50: a template repository and the autograder bundle.
+    Classroom50,
+    /// Plain GitHub Actions: a template repository with its workflow.
+    Actions,
+}
+
+impl From<ClassroomArg> for crate::tools::classroom::ClassroomKind {
+    fn from(a: ClassroomArg) -> Self {
+        match a {
+            ClassroomArg::Classroom50 => Self::Classroom50,
+            ClassroomArg::Actions => Self::Actions,
+        }
+    }
 }
 
 #[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
@@ -147,12 +181,16 @@ pub struct SceneArgs {
     /// Vertical field of view in degrees.
     #[arg(long, allow_negative_numbers = true)]
     pub fov: Option<f32>,
+    /// Distance to the near plane in metres (default: the scene file's).
     #[arg(long, allow_negative_numbers = true)]
     pub near: Option<f32>,
+    /// Distance to the far plane in metres (default: the scene file's).
     #[arg(long, allow_negative_numbers = true)]
     pub far: Option<f32>,
+    /// Output width in pixels.
     #[arg(long, allow_negative_numbers = true)]
     pub width: Option<u32>,
+    /// Output height in pixels.
     #[arg(long, allow_negative_numbers = true)]
     pub height: Option<u32>,
     /// Main depth buffer: d32 (the course's) or d32f-reversed (reversed-Z: far surfaces keep precision).
@@ -273,6 +311,7 @@ pub struct RenderArgs {
 pub struct WindowArgs {
     #[command(flatten)]
     pub scene: SceneArgs,
+    /// The view shown first (V cycles through them).
     #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
     pub view: View,
     /// Close after this many frames (for scripted runs and tests).

@@ -3,8 +3,10 @@
 //! "Arguments:", "Options:"), the built-in help and version lines, each command's summary and the
 //! options that `locales/ja.yml` translates (`help.about.PATH`, `help.arg.PATH.ID`, PATH the
 //! command's path such as `lesson` or `grade`); an option without a translation keeps its English.
+//! clap's own notes after an option ("[possible values: …]", "[default: …]", "[aliases: …]") are
+//! hidden and written again in Japanese.
 
-use clap::Command;
+use clap::{Arg, Command};
 use rust_i18n::t;
 
 /// The translation of `key`, if the locale files have one (English holds these keys empty).
@@ -57,7 +59,13 @@ fn localise(mut cmd: Command, path: &str, headings: Headings) -> Command {
             _ => translated(&format!("help.arg.{args_key}.{id}"))
                 .or_else(|| translated(&format!("help.arg.{id}"))),
         };
-        let mut a = a.help_heading(heading);
+        let notes = notes(&a);
+        let own = match (own, notes.is_empty()) {
+            (Some(text), false) => Some(format!("{text} {notes}")),
+            (None, false) => Some(notes),
+            (own, true) => own,
+        };
+        let mut a = hide_clap_notes(a.help_heading(heading));
         // Under a heading of its own clap lists positionals by name: keep their order.
         if let Some(index) = a.get_index() {
             a = a.display_order(index);
@@ -82,6 +90,61 @@ fn localise(mut cmd: Command, path: &str, headings: Headings) -> Command {
         cmd = cmd.mut_subcommand(&name, |s| localise(s, &sub, headings));
     }
     cmd
+}
+
+/// clap's notes after an option's help, in the current language: its possible values, default and
+/// visible aliases (only for options that take a value, as clap shows them).
+fn notes(a: &Arg) -> String {
+    let mut out = Vec::new();
+    let takes_value = a.get_action().takes_values();
+    if takes_value && !a.is_hide_possible_values_set() {
+        let values: Vec<String> = a
+            .get_possible_values()
+            .iter()
+            .filter(|v| !v.is_hide_set())
+            .map(|v| v.get_name().to_string())
+            .collect();
+        if !values.is_empty() {
+            out.push(t!("help.possible_values", values = values.join(", ")).into_owned());
+        }
+    }
+    if takes_value && !a.is_hide_default_value_set() && !a.get_default_values().is_empty() {
+        let value: Vec<String> = a
+            .get_default_values()
+            .iter()
+            .map(|v| v.to_string_lossy().into_owned())
+            .collect();
+        out.push(t!("help.default_value", value = value.join(", ")).into_owned());
+    }
+    let aliases: Vec<String> = a
+        .get_visible_aliases()
+        .unwrap_or_default()
+        .iter()
+        .map(|s| format!("--{s}"))
+        .collect();
+    if !aliases.is_empty() {
+        out.push(t!("help.aliases", aliases = aliases.join(", ")).into_owned());
+    }
+    out.join(" ")
+}
+
+/// `a` without clap's own (English) notes, which `notes` writes instead; its aliases keep working.
+fn hide_clap_notes(a: Arg) -> Arg {
+    let aliases: Vec<String> = a
+        .get_visible_aliases()
+        .unwrap_or_default()
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    let mut a = a.hide_possible_values(true).hide_default_value(true);
+    if !aliases.is_empty() {
+        a = a.visible_alias(None::<&str>);
+        // clap keeps names as `&'static str` (see `Headings`).
+        for alias in aliases {
+            a = a.alias(&*Box::leak(alias.into_boxed_str()));
+        }
+    }
+    a
 }
 
 /// The program's command tree with its help in Japanese.

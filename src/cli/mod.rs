@@ -58,9 +58,11 @@ pub enum Command {
     #[command(hide = true)]
     GradeStep(crate::tools::grade::GradeStepArgs),
     /// Run time against error of the AO methods, or `--stress` for numerical stability.
+    #[cfg(feature = "bench")]
     Bench(crate::tools::bench::BenchArgs),
     /// Search each AO method's free [ao] parameters on a scene's training cameras against the
     /// ray-traced truth; writes the best [ao] table and the held-out test cameras' PSNR.
+    #[cfg(feature = "bench")]
     Tune(crate::tools::tune::TuneArgs),
     /// Regenerate the demo meshes in Res/meshes (with --res DIR: in DIR/meshes).
     GenDemo,
@@ -104,6 +106,9 @@ pub fn run() -> Result<()> {
     let res = ResDirs::with_override(cli.res.as_deref());
     match cli.command {
         Some(Command::Render(args)) => render(&res, &args),
+        #[cfg(not(feature = "window"))]
+        Some(Command::Window(_)) => bail!("{}", t!("cli.no_window_feature")),
+        #[cfg(feature = "window")]
         Some(Command::Window(args)) => {
             if let Some(shot) = &args.screenshot {
                 OutFormat::of("--screenshot", shot, &[OutFormat::Png])?;
@@ -124,7 +129,9 @@ pub fn run() -> Result<()> {
             }
             Ok(())
         }
+        #[cfg(feature = "bench")]
         Some(Command::Bench(args)) => crate::tools::bench::run(&res, &args),
+        #[cfg(feature = "bench")]
         Some(Command::Tune(args)) => crate::tools::tune::run_cli(&res, &args),
         Some(Command::GradeStep(args)) => crate::tools::grade::run_step(cli.res.as_deref(), &args),
         Some(Command::GenDemo) => {
@@ -138,6 +145,7 @@ pub fn run() -> Result<()> {
             Ok(())
         }
         None => {
+            #[cfg(feature = "window")]
             if platform::display_available() {
                 let scene = load_scene(&SceneArgs::default(), &res)?;
                 match platform::window::run_with(
@@ -153,6 +161,8 @@ pub fn run() -> Result<()> {
             } else {
                 eprintln!("{}", t!("cli.no_display", path = "out/frame.png"));
             }
+            #[cfg(not(feature = "window"))]
+            eprintln!("{}", no_window_reason(Path::new("out/frame.png")));
             let args = RenderArgs {
                 scene: SceneArgs::default(),
                 view: RenderView::Engine(View::Composite),
@@ -194,6 +204,11 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     }
     engine.collect_stats = args.stats;
     write_view(&mut engine, view, &args.out)?;
+    let cut = engine.ao.cut_pixels(engine.ao_settings.method);
+    if cut > 0 {
+        let message = t!("render.rtao_cut", pixels = cut);
+        eprintln!("{}", t!("render.warning", message = message));
+    }
     let msg = t!(
         "render.wrote",
         path = args.out.display(),
@@ -269,16 +284,33 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     if args.classroom.is_some() && step != "start" {
         bail!("{}", t!("classroom.only_with_start", step = step));
     }
+    if args.pages.is_some() && step != "edition" {
+        bail!("{}", t!("edition.pages_only_with_edition", step = step));
+    }
+    if step == "edition" {
+        let dir = args.dir.as_ref().with_context(|| t!("edition.usage"))?;
+        let lang = crate::i18n::current();
+        let written = crate::tools::lesson_edition::write(dir, args.pages.as_deref(), lang)?;
+        crate::outln!(
+            "{}",
+            t!(
+                "edition.wrote",
+                count = written.pages,
+                withheld = written.withheld,
+                dir = dir.display()
+            )
+        );
+        return Ok(());
+    }
     if step == "start" {
         let dir = args
             .dir
             .as_ref()
-            .or(args.classroom.as_ref())
             .with_context(|| t!("lesson.start_usage"))?;
-        let files = match args.classroom {
-            Some(_) => crate::tools::classroom::start(dir)?,
-            None => crate::tools::lesson::start(dir, crate::i18n::current())?,
-        };
+        if let Some(kind) = args.classroom {
+            return classroom_start(dir, kind.into(), args);
+        }
+        let files = crate::tools::lesson::start(dir, crate::i18n::current())?;
         let shown = dir.display();
         crate::outln!(
             "{}",
@@ -299,18 +331,10 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
                 t!("lesson.start_some_stubs", stubs = stubs.join(", "))
             ),
         }
-        crate::outln!("  opengl3d lesson 2 --res {}", dir.display());
-        if args.classroom.is_some() {
-            let workflow = dir.join(crate::tools::classroom::WORKFLOW);
-            crate::outln!(
-                "{}",
-                t!(
-                    "classroom.wrote",
-                    workflow = workflow.display(),
-                    git = crate::tools::classroom::GRADER_GIT_PLACEHOLDER
-                )
-            );
-        }
+        crate::outln!(
+            "  opengl3d lesson 2 --res {}",
+            shell_word(&dir.display().to_string())
+        );
         return Ok(());
     }
     let n: u32 = step.parse().map_err(|_| {
@@ -333,7 +357,7 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
     let scene = load_scene(&args.scene, res)?;
     if args.headless || !platform::display_available() {
         if !args.headless {
-            eprintln!("{}", t!("cli.no_display", path = args.out.display()));
+            eprintln!("{}", no_window_reason(&args.out));
         }
         let ctx = HeadlessContext::new()?;
         let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
@@ -342,11 +366,94 @@ fn lesson(res: &ResDirs, student: Option<&Path>, args: &LessonArgs) -> Result<()
         crate::outln!("{}", t!("lesson.wrote", path = args.out.display()));
         Ok(())
     } else {
-        platform::window::run_with(res.clone(), scene, window_options(view, None, None))
+        #[cfg(feature = "window")]
+        return platform::window::run_with(res.clone(), scene, window_options(view, None, None));
+        #[cfg(not(feature = "window"))]
+        unreachable!("display_available() is false without the window")
+    }
+}
+
+/// `word` as one shell word: quoted when it holds anything but plain path characters.
+fn shell_word(word: &str) -> String {
+    let plain = !word.is_empty()
+        && word
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '/' | '.' | '_' | '-' | '+' | ':'));
+    if plain {
+        word.to_string()
+    } else {
+        format!("'{}'", word.replace('\'', "'\\''"))
+    }
+}
+
+/// `lesson start --classroom KIND DIR`.
+fn classroom_start(
+    dir: &Path,
+    kind: crate::tools::classroom::ClassroomKind,
+    args: &LessonArgs,
+) -> Result<()> {
+    use crate::tools::classroom::{self, ClassroomKind, ClassroomOptions};
+    let points = match &args.points {
+        Some(spec) => crate::tools::grade::points::Points::parse(spec)?,
+        None => Default::default(),
+    };
+    let grader_repo = args
+        .grader_repo
+        .clone()
+        .unwrap_or_else(|| classroom::GRADER_REPO_PLACEHOLDER.to_string());
+    classroom::check_grader_repo(&grader_repo)?;
+    let options = ClassroomOptions {
+        kind,
+        points,
+        grader_repo,
+        lang: crate::i18n::current(),
+    };
+    let files = classroom::start(dir, &options)?;
+    crate::outln!(
+        "{}",
+        t!(
+            "lesson.start_wrote",
+            count = files.len(),
+            dir = dir.display()
+        )
+    );
+    let key = match kind {
+        ClassroomKind::Classroom50 => "classroom.wrote_c50",
+        ClassroomKind::Actions => "classroom.wrote_actions",
+    };
+    crate::outln!(
+        "{}",
+        t!(
+            key,
+            dir = dir.display(),
+            version = classroom::GRADER_VERSION,
+            tag = classroom::grader_tag(),
+            repo = options.grader_repo
+        )
+    );
+    if args.grader_repo.is_none() {
+        crate::outln!(
+            "{}",
+            t!(
+                "classroom.placeholder_repo",
+                placeholder = classroom::GRADER_REPO_PLACEHOLDER
+            )
+        );
+    }
+    Ok(())
+}
+
+/// Why a picture is written to `path` instead of a window opening.
+fn no_window_reason(path: &Path) -> String {
+    if cfg!(feature = "window") {
+        t!("cli.no_display", path = path.display()).into_owned()
+    } else {
+        t!("cli.no_window_build", path = path.display()).into_owned()
     }
 }
 
 /// The window's options from the environment, with the CPU ray tracer behind its truth view (T).
+#[cfg(feature = "window")]
 fn window_options(
     view: View,
     frames: Option<u32>,
@@ -362,7 +469,13 @@ fn window_options(
 fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
     use crate::tools::reference::{load_or_render_cached, AoVariant, RefParams, Scene};
     let format = OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
-    let scene = load_scene(&args.scene, res)?;
+    let mut scene = load_scene(&args.scene, res)?;
+    // The engine's ranges, as `render` applies them: the truth traces what the methods are given.
+    let (ao, notes) = scene.ao.sanitized();
+    for note in notes {
+        eprintln!("{}", t!("render.warning", message = note));
+    }
+    scene.ao = ao;
     // Only the screen-space reference has a thickness: the ray tracer sees the real triangles.
     // `backface`: each pixel's slab reaches its back face, and where there is none it has vbao's
     // fixed thickness for this radius (`AoSettings::thickness_metres`: the scene's `[ao] thickness`
@@ -457,13 +570,7 @@ fn reference(res: &ResDirs, args: &ReferenceArgs) -> Result<()> {
             ..params
         };
         if args.gpu {
-            crate::tools::reference::load_or_render_gpu_cached(
-                &cache,
-                res,
-                &scene,
-                bvh.content_hash(),
-                &params,
-            )?
+            crate::tools::reference::load_or_render_gpu_cached(&cache, res, &scene, &bvh, &params)?
         } else {
             load_or_render_cached(&cache, &bvh, &cam, w, h, &params)
         }

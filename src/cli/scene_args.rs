@@ -6,7 +6,6 @@ use super::args::{OnOff, SceneArgs};
 use crate::res::ResDirs;
 use crate::scene::{Issue, SceneDesc, SceneFile};
 use anyhow::{bail, Context as _, Result};
-use glam::Vec3;
 use rust_i18n::t;
 
 /// Where the scene's values came from, for messages.
@@ -21,13 +20,13 @@ type FlagKeys = Vec<(&'static str, &'static str)>;
 
 /// Loads the scene the arguments describe, with overrides applied and checked.
 pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
-    let (mut desc, origin, bounds) = if let Some(obj) = &args.obj {
+    let (mut desc, origin, model) = if let Some(obj) = &args.obj {
         let path = obj
             .canonicalize()
             .with_context(|| t!("render.obj_not_found", path = obj.display()))?;
         let data = crate::gl::mesh::MeshData::load_model(&path)?;
         let desc = SceneDesc::single_obj(&path);
-        (desc, Origin::Obj(path.display().to_string()), data.bounds())
+        (desc, Origin::Obj(path.display().to_string()), Some(data))
     } else {
         let path = match &args.scene {
             Some(p) => p.clone(),
@@ -40,8 +39,8 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         (file.desc.clone(), Origin::File(Box::new(file)), None)
     };
     let flags = apply_flags(args, &mut desc)?;
-    if let Some((lo, hi)) = bounds {
-        frame_bounds(&mut desc, lo, hi, args);
+    if let Some(mesh) = &model {
+        frame_mesh(&mut desc, mesh, args);
     }
     for w in desc.clamp_values() {
         let message = describe(&w, &origin, &flags);
@@ -110,9 +109,9 @@ fn describe(issue: &Issue, origin: &Origin, flags: &FlagKeys) -> String {
     }
 }
 
-/// Frames the OBJ's bounds (`scene::framing`), keeping what the flags set, and says which AO
-/// radius it chose.
-fn frame_bounds(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, args: &SceneArgs) {
+/// Frames the model (`scene::framing`), keeping what the flags set, and says which AO radius it
+/// chose and at what scale it draws the model.
+fn frame_mesh(desc: &mut SceneDesc, mesh: &crate::gl::mesh::MeshData, args: &SceneArgs) {
     let fixed = crate::scene::framing::Fixed {
         eye: args.eye.is_some(),
         target: args.target.is_some(),
@@ -120,14 +119,18 @@ fn frame_bounds(desc: &mut SceneDesc, lo: Vec3, hi: Vec3, args: &SceneArgs) {
         far: args.far.is_some(),
         radius: args.radius.is_some(),
     };
-    if let Some(radius) = crate::scene::framing::frame_model(desc, lo, hi, fixed) {
+    let Some(framed) = crate::scene::framing::frame_mesh(desc, mesh, fixed) else {
+        return;
+    };
+    let size = format!("{:.4}", framed.size);
+    if framed.scale != 1.0 {
+        let scale = framed.scale;
+        eprintln!("{}", t!("render.obj_scaled", size = size, scale = scale));
+    }
+    if let Some(radius) = framed.radius {
         eprintln!(
             "{}",
-            t!(
-                "render.obj_radius",
-                radius = radius,
-                diagonal = format!("{:.4}", (hi - lo).length())
-            )
+            t!("render.obj_radius", radius = radius, diagonal = size)
         );
     }
 }

@@ -155,11 +155,11 @@ mod tests {
     #[test]
     fn common_errors_are_written_in_japanese_with_the_usage_line() {
         let e = japanese(&error(&["opengl3d", "rendr"])).unwrap();
-        assert!(e.contains("'rendr' というサブコマンドはありません"), "{e}");
+        assert!(e.contains("'rendr'というサブコマンドはありません"), "{e}");
         assert!(e.contains("'render'"), "{e}");
         assert!(e.contains("使い方: opengl3d"), "{e}");
         let e = japanese(&error(&["opengl3d", "render", "--bogus"])).unwrap();
-        assert!(e.contains("'--bogus' という引数はありません"), "{e}");
+        assert!(e.contains("'--bogus'という引数はありません"), "{e}");
         let e = japanese(&error(&["opengl3d", "render", "--out"])).unwrap();
         assert!(
             e.contains("'--out <OUT>'") && e.contains("値を指定してください"),

@@ -7,6 +7,7 @@ pub mod framebuffer;
 pub mod gltf_file;
 pub mod mesh;
 pub mod model;
+pub mod model_refs;
 pub mod obj;
 pub mod pass_state;
 pub mod preprocess;

@@ -291,21 +291,47 @@ fn include_cycle(
     if same(shader, included) {
         return Err(cycle(shader));
     }
-    // One level down is enough: the engine expands includes one level deep.
-    let Ok(inner) = ShaderSource::load(included) else {
+    // The chain of includes below it (a -> b -> a as well as a -> a), bounded in depth and files.
+    let (Ok(top), Ok(first)) = (shader.canonicalize(), included.canonicalize()) else {
         return Ok(());
     };
+    let mut chain = vec![top, first];
+    let mut budget = 256;
+    match leads_back(included, &mut chain, &mut budget) {
+        Some(target) => Err(cycle(&target)),
+        None => Ok(()),
+    }
+}
+
+/// The first file that `file`'s `#include` lines, followed down, lead back to while it is still on
+/// `chain` (the files being expanded, outermost first). `budget` bounds the files looked at.
+fn leads_back(file: &Path, chain: &mut Vec<PathBuf>, budget: &mut usize) -> Option<PathBuf> {
+    let inner = ShaderSource::load(file).ok()?;
     for (k, l) in inner.text.lines().enumerate() {
-        let Some(inner_name) = include_target(l) else {
+        let Some(name) = include_target(l) else {
             continue;
         };
-        if let Ok(target) = resolve_include(included, k + 1, inner_name) {
-            if same(&target, shader) || same(&target, included) {
-                return Err(cycle(&target));
-            }
+        let Ok(target) = resolve_include(file, k + 1, name) else {
+            continue;
+        };
+        let Ok(real) = target.canonicalize() else {
+            continue;
+        };
+        if chain.contains(&real) {
+            return Some(target);
+        }
+        if *budget == 0 || chain.len() >= 32 {
+            return None;
+        }
+        *budget -= 1;
+        chain.push(real);
+        let found = leads_back(&target, chain, budget);
+        chain.pop();
+        if found.is_some() {
+            return found;
         }
     }
-    Ok(())
+    None
 }
 
 /// Turns a driver log ("0:12(5): error: ...") into "path:12:5: error: ..." lines.
@@ -445,6 +471,19 @@ mod tests {
             "{e}"
         );
         assert!(e.contains("s.frag again: an #include cycle"), "{e}");
+        // Two files that include each other, below the shader: a -> b -> a.
+        std::fs::write(root.join("shaders/p.glsl"), "#include \"q.glsl\"\n").unwrap();
+        std::fs::write(
+            root.join("shaders/q.glsl"),
+            "float q;\n#include \"p.glsl\"\n",
+        )
+        .unwrap();
+        let e = build_with(&root, "#include \"p.glsl\"");
+        assert!(
+            e.contains("#include \"p.glsl\" includes")
+                && e.contains("p.glsl again: an #include cycle"),
+            "{e}"
+        );
         // An ordinary include still builds.
         assert_eq!(build_with(&root, "#include \"lib/ok.glsl\""), "");
         std::fs::remove_dir_all(&root).unwrap();

@@ -1,7 +1,7 @@
 //! The colour scale under a picture of differences: a gradient bar with labelled values under it
 //! and an optional marker over it (the grader's heat maps: 0 to 1 with the largest difference
-//! marked; the signed error maps: −range "too dark" to +range "too light"). The
-//! labels are drawn with a tiny built-in pixel font, so no font file is needed on the machine.
+//! marked; the signed error maps: −range to +range). The labels are numbers and signs only, so that
+//! they read the same in every language, drawn with a tiny built-in pixel font (no font file needed).
 
 use image::{Rgb, RgbImage};
 
@@ -21,6 +21,7 @@ fn glyph(c: char) -> Option<&'static [&'static str; 5]> {
         '.' => &[".", ".", ".", ".", "#"],
         '-' => &["...", "...", "###", "...", "..."],
         '+' => &["...", ".#.", "###", ".#.", "..."],
+        '>' => &["#..", ".#.", "..#", ".#.", "#.."],
         'e' => &["...", "###", "#.#", "##.", "###"],
         'm' => &[".....", ".....", "####.", "#.#.#", "#.#.#"],
         'a' => &["...", "...", ".##", "#.#", ".##"],
@@ -160,19 +161,19 @@ pub fn draw_scale(img: &mut RgbImage, top: u32, scale: &Scale, colour: impl Fn(f
     }
 }
 
-/// The heat maps' scale: the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1 full"
-/// (the step's full scale) under its ends, and above it a marker at `max` (the largest difference in
-/// the picture) labelled "max VALUE"; over 1 the marker stays at the right end and its label says
-/// "off scale", so "max 2 off scale" reads as twice the full scale.
+/// The heat maps' scale: the bar coloured by `heat` from 0 (left) to 1 (right), "0" and "1" (the
+/// step's full scale) under its ends, and above it a marker at `max` (the largest difference in the
+/// picture) labelled with its value; over 1 the marker stays at the right end and its label says
+/// "VALUE > 1", so "2 > 1" reads as twice the full scale.
 pub fn draw(img: &mut RgbImage, top: u32, max: f32, heat: impl Fn(f32) -> [u8; 3]) {
     let t = if max.is_finite() { max } else { 1.0 };
     let text = if max > 1.0 || !max.is_finite() {
-        format!("max {} off scale", label(max))
+        format!("{} > 1", label(max))
     } else {
-        format!("max {}", label(max))
+        label(max)
     };
     let scale = Scale {
-        ticks: &[(0.0, "0".into()), (1.0, "1 full".into())],
+        ticks: &[(0.0, "0".into()), (1.0, "1".into())],
         marker: Some((t, text)),
     };
     draw_scale(img, top, &scale, heat);
@@ -195,7 +196,7 @@ mod tests {
 
     #[test]
     fn every_label_character_has_a_glyph_of_five_even_rows() {
-        for c in "0123456789.-+emax toodarklight1 fullmax 2 off scale".chars() {
+        for c in "0123456789.-+e >".chars() {
             let g = glyph(c).unwrap_or_else(|| panic!("no glyph for {c:?}"));
             assert!(g.iter().all(|r| r.len() == g[0].len()), "{c:?}");
         }

@@ -98,6 +98,7 @@ impl PassTimer {
 }
 
 /// CPU time of the whole process (all threads), in seconds.
+#[cfg(unix)]
 pub fn process_cpu_seconds() -> f64 {
     let mut ts = libc::timespec {
         tv_sec: 0,
@@ -109,6 +110,17 @@ pub fn process_cpu_seconds() -> f64 {
         return 0.0;
     }
     ts.tv_sec as f64 + ts.tv_nsec as f64 * 1e-9
+}
+
+/// Elsewhere (Windows) the wall-clock time since the first call stands in for the CPU time: the
+/// per-pass figures then read as wall-clock milliseconds.
+#[cfg(not(unix))]
+pub fn process_cpu_seconds() -> f64 {
+    static START: std::sync::OnceLock<std::time::Instant> = std::sync::OnceLock::new();
+    START
+        .get_or_init(std::time::Instant::now)
+        .elapsed()
+        .as_secs_f64()
 }
 
 /// One texture the engine owns for AO (`Engine::ao_textures`).

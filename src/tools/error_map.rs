@@ -6,7 +6,7 @@
 
 use crate::io::scale_bar::{self, Scale};
 use crate::render::{Engine, View};
-use crate::tools::bench::metrics;
+use crate::tools::metrics;
 use anyhow::{bail, Result};
 use image::{Rgb, RgbImage};
 use rust_i18n::t;
@@ -177,14 +177,15 @@ pub fn picture(map: &ErrorMap, range: f32) -> RgbImage {
             scale_bar::label(v)
         }
     };
+    // Numbers only, in every language: the colours say which side is too dark.
     let ticks = [
-        (0.0, format!("{} too dark", signed(-range))),
+        (0.0, signed(-range)),
         (0.5, "0".to_string()),
-        (1.0, format!("too light {}", signed(range))),
+        (1.0, signed(range)),
     ];
     let scale = Scale {
         ticks: &ticks,
-        marker: Some((0.5 + 0.5 * worst / range, format!("max {}", signed(worst)))),
+        marker: Some((0.5 + 0.5 * worst / range, signed(worst))),
     };
     scale_bar::draw_scale(&mut img, h, &scale, |t| diverging(2.0 * t - 1.0));
     img

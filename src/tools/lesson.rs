@@ -79,8 +79,9 @@ pub fn begun_at_step(n: u32) -> Option<Begun> {
 
 /// Writes the starting folder: every shader and scene of `Res/`, with the lesson's five shaders
 /// replaced by stubs that compile, commented in `lang` and pointing to that language's lesson pages
-/// (`Res/lesson-stubs/`, `Res/lesson-stubs/ja/`). Existing files are never overwritten. Returns the
-/// files written.
+/// (`Res/lesson-stubs/`, `Res/lesson-stubs/ja/`). In Japanese every other file comes from its
+/// Japanese twin in `Res/lesson-stubs/ja/` where there is one (the same code, comments translated),
+/// so the student reads no English. Existing files are never overwritten. Returns the files written.
 pub fn start(dir: &Path, lang: Lang) -> Result<Vec<PathBuf>> {
     let res = project_res_dir();
     let stubs = match lang {
@@ -116,16 +117,27 @@ pub fn start(dir: &Path, lang: Lang) -> Result<Vec<PathBuf>> {
         if LESSON_SHADERS.contains(&name.as_str()) {
             copy(stubs.join(&name), dir.join(&name))?;
         } else {
-            copy(p.clone(), dir.join(&name))?;
+            copy(translated(&stubs, lang, &name, p), dir.join(&name))?;
         }
     }
     for p in list_dir(&res.join("scenes"))? {
-        if let Some(name) = p.file_name() {
-            copy(p.clone(), dir.join("scenes").join(name))?;
+        if let Some(name) = p.file_name().map(|n| n.to_string_lossy().into_owned()) {
+            let from = translated(&stubs, lang, &format!("scenes/{name}"), p);
+            copy(from, dir.join("scenes").join(name))?;
         }
     }
     written.sort();
     Ok(written)
+}
+
+/// The file to copy for `original` (at `rel` in `Res/`): its twin in the Japanese stubs' folder
+/// when `lang` is Japanese and one exists, else the original.
+fn translated(stubs: &Path, lang: Lang, rel: &str, original: PathBuf) -> PathBuf {
+    let twin = stubs.join(rel);
+    match lang {
+        Lang::Ja if twin.is_file() => twin,
+        _ => original,
+    }
 }
 
 /// The paths in folder `dir` (errors name the folder).

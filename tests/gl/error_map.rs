@@ -150,7 +150,7 @@ fn the_engine_against_itself_is_white_and_shifted_truths_get_their_sign() {
     );
     assert!(
         count([235, 235, 235]) > 200,
-        "the labels (-0.1 too dark, 0, too light +0.1, max)"
+        "the labels (-0.1, 0, +0.1 and the largest error)"
     );
 
     // The raw difference as PFM: −0.2 and +0.2 where shifted.
@@ -214,7 +214,7 @@ fn bad_truths_give_clear_errors() {
         &[
             "--lang", "ja", "render", "--view", "error", "--truth", m, "--out", o,
         ],
-        &["nothere.pfm", "正解画像"],
+        &["nothere.pfm", "リファレンス"],
     );
     fails_with(
         &["--lang", "en", "render", "--view", "error", "--out", o],

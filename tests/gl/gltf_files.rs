@@ -12,7 +12,7 @@ use serde_json::{json, Value};
 use std::path::{Path, PathBuf};
 
 /// A ground quad and a box standing on it: creases for AO, all triangles facing outwards.
-fn ground_and_box() -> MeshData {
+pub(super) fn ground_and_box() -> MeshData {
     let mut m = shapes::ground(1.2, 1);
     shapes::add_box(&mut m, Vec3::new(-0.5, 0.0, -0.5), Vec3::new(0.5, 1.0, 0.5));
     m
@@ -62,7 +62,7 @@ fn buffer_of(meshes: &[&MeshData]) -> (Vec<u8>, Value, Value, Value) {
 
 /// A glTF document over `meshes` with `nodes` (the scene holds `roots`); the buffer's `uri` (None:
 /// the `.glb`'s binary chunk). Returns the document and the buffer's bytes.
-fn document(
+pub(super) fn document(
     meshes: &[&MeshData],
     nodes: Value,
     roots: Value,
@@ -87,7 +87,7 @@ fn document(
 }
 
 /// A binary glTF: header, JSON chunk (padded with spaces), BIN chunk (padded with zeros).
-fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
+pub(super) fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     let mut json_bytes = serde_json::to_vec(doc).unwrap();
     while !json_bytes.len().is_multiple_of(4) {
         json_bytes.push(b' ');
@@ -108,7 +108,7 @@ fn glb(doc: &Value, bin: &[u8]) -> Vec<u8> {
     out
 }
 
-fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
+pub(super) fn write(dir: &Path, name: &str, bytes: impl AsRef<[u8]>) -> PathBuf {
     let p = dir.join(name);
     std::fs::write(&p, bytes).unwrap();
     p
@@ -342,7 +342,7 @@ fn a_mirroring_node_keeps_triangles_facing_out() {
 }
 
 /// A one-triangle document whose parts the malformed cases break.
-fn triangle_doc() -> (Value, Vec<u8>) {
+pub(super) fn triangle_doc() -> (Value, Vec<u8>) {
     let mut tri = MeshData::default();
     shapes::add_quad(
         &mut tri,

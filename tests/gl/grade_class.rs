@@ -170,9 +170,12 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "sao",
             "blur",
             "passed",
+            "level",
         ],
-        vec!["ada", "PASS", "PASS", "PASS", "PASS", "PASS", "5"],
-        vec![ODD_NAME, "PASS", "PASS", "PASS", "FAIL", "PASS", "4"],
+        vec!["ada", "PASS", "PASS", "PASS", "PASS", "PASS", "5", "lesson"],
+        vec![
+            ODD_NAME, "PASS", "PASS", "PASS", "FAIL", "PASS", "4", "lesson",
+        ],
         vec![
             "cleo",
             "not submitted",
@@ -181,6 +184,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "not submitted",
             "not submitted",
             "0",
+            "lesson",
         ],
         vec![
             "dan",
@@ -190,6 +194,7 @@ fn a_class_is_graded_into_csv_html_and_junit() {
             "FAIL",
             "not submitted",
             "0",
+            "lesson",
         ],
     ];
     assert_eq!(rows, expected, "{csv}\n{stdout}");
@@ -206,10 +211,10 @@ fn a_class_is_graded_into_csv_html_and_junit() {
 
     let html = std::fs::read_to_string(report.join("report.html")).unwrap();
     for name in ["ada", "cleo", "dan"] {
-        assert!(html.contains(&format!("<th>{name}</th>")), "{html}");
+        assert!(html.contains(&format!("\">{name}</a></th>")), "{html}");
     }
     assert!(
-        html.contains("<th>bob, &quot;&lt;b&gt;&quot; &amp; &#39;co&#39;</th>"),
+        html.contains("\">bob, &quot;&lt;b&gt;&quot; &amp; &#39;co&#39;</a></th>"),
         "{html}"
     );
     assert!(!html.contains("\"<b>\""), "{html}");
@@ -348,4 +353,54 @@ fn an_interrupted_grader_leaves_no_private_folder_behind() {
     let status = child.wait().unwrap();
     assert_eq!(status.code(), Some(130), "{status:?}");
     assert_eq!(ours(&tmp), Vec::<PathBuf>::new(), "left behind");
+}
+
+#[test]
+fn a_japanese_class_report_is_japanese_and_each_student_has_a_page() {
+    let class = temp_dir("class-ja");
+    student(&class, "ada", &["listing-restore"]);
+    student(&class, "bob", &["restore-max"]);
+    let out = temp_dir("class-ja-report");
+    let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args(["--lang", "ja", "grade", "--class"])
+        .arg(&class)
+        .args(["--step", "restore", "--points", "--jobs", "1", "--out"])
+        .arg(&out)
+        .output()
+        .expect("run opengl3d");
+    assert_eq!(o.status.code(), Some(1), "{}", crate::common::stderr(&o));
+    let csv = std::fs::read_to_string(out.join("results.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        rows[0], "学生,restore,restoreの点数,合格数,点数,満点,採点の基準",
+        "{csv}"
+    );
+    assert!(rows.contains(&"ada,合格,20,1,20,20,lesson"), "{csv}");
+    assert!(rows.contains(&"bob,不合格,0,0,0,20,lesson"), "{csv}");
+    let junit = std::fs::read_to_string(out.join("junit.xml")).unwrap();
+    assert!(junit.contains("type=\"不合格\""), "{junit}");
+    assert!(!junit.contains("failed"), "no English verdict: {junit}");
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    for (name, page) in [
+        ("ada", "students/001-ada.html"),
+        ("bob", "students/002-bob.html"),
+    ] {
+        assert!(
+            html.contains(&format!("href=\"{page}\">{name}</a>")),
+            "{html}"
+        );
+        let text = std::fs::read_to_string(out.join(page)).unwrap();
+        assert!(text.contains(&format!("{name}さんの採点結果")), "{text}");
+        // Every picture the page shows is there, one folder up.
+        for src in text.split("src=\"").skip(1) {
+            let rel = &src[..src.find('"').unwrap()];
+            assert!(out.join("students").join(rel).is_file(), "{page}: {rel}");
+        }
+    }
+    let bob = std::fs::read_to_string(out.join("students/002-bob.html")).unwrap();
+    assert!(
+        bob.contains("restore-difference.png") && bob.contains("不合格"),
+        "{bob}"
+    );
+    assert!(bob.contains("20点中0点"), "{bob}");
 }

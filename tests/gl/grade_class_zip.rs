@@ -91,14 +91,14 @@ fn zips_are_graded_as_folders_and_unsafe_ones_refused_with_the_reason() {
 
     let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
     let rows: Vec<String> = parse_csv(&csv).into_iter().map(|r| r.join(" ")).collect();
-    let fails = "FAIL FAIL FAIL FAIL FAIL 0";
+    let fails = "FAIL FAIL FAIL FAIL FAIL 0 lesson";
     assert_eq!(
         rows,
         [
-            "student restore down-sampling simple sao blur passed".to_string(),
-            "ada PASS PASS PASS PASS PASS 5".into(),
-            "bea PASS PASS PASS PASS PASS 5".into(),
-            "cid PASS PASS PASS not submitted PASS 4".into(),
+            "student restore down-sampling simple sao blur passed level".to_string(),
+            "ada PASS PASS PASS PASS PASS 5 lesson".into(),
+            "bea PASS PASS PASS PASS PASS 5 lesson".into(),
+            "cid PASS PASS PASS not submitted PASS 4 lesson".into(),
             format!("eve {fails}"),
             format!("kim {fails}"),
             format!("pat {fails}"),

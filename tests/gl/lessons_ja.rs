@@ -75,8 +75,17 @@ fn comment_start(lang: &str, line: &str) -> Option<usize> {
 }
 
 /// A code block without its comments: each line cut at its comment and trimmed at the end, lines
-/// left empty dropped (so a comment may take more or fewer lines in a translation).
+/// left empty dropped (so a comment may take more or fewer lines in a translation). A block without a
+/// language (formulas, diagrams) keeps only its symbols (`formula_symbols`): its words are translated.
 fn comment_free(lang: &str, body: &str) -> String {
+    if lang.is_empty() || lang == "text" {
+        return body
+            .lines()
+            .map(formula_symbols)
+            .filter(|l| !l.is_empty())
+            .map(|l| l + "\n")
+            .collect();
+    }
     let mut out = String::new();
     for line in body.lines() {
         let code = match comment_start(lang, line) {
@@ -89,6 +98,32 @@ fn comment_free(lang: &str, body: &str) -> String {
             out.push('\n');
         }
     }
+    out
+}
+
+/// What a translation of a formula line keeps: every symbol, number and one-letter variable, without
+/// spaces, words (two letters or more, hyphenated ones too) and Japanese.
+fn formula_symbols(line: &str) -> String {
+    let mut out = String::new();
+    let mut word = String::new();
+    let flush = |word: &mut String, out: &mut String| {
+        if word.chars().filter(char::is_ascii_alphabetic).count() < 2 {
+            out.push_str(word);
+        }
+        word.clear();
+    };
+    for c in line.chars() {
+        let joins = !word.is_empty() && c == '-';
+        if c.is_ascii_alphabetic() || joins {
+            word.push(c);
+            continue;
+        }
+        flush(&mut word, &mut out);
+        if !c.is_whitespace() && !is_japanese(c) {
+            out.push(c);
+        }
+    }
+    flush(&mut word, &mut out);
     out
 }
 
@@ -389,6 +424,61 @@ fn japanese_listings_comment_in_japanese() {
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }
 
+/// Lines of the formula blocks (no language) of a page with two English words or more in a row.
+fn english_in_formulas(text: &str) -> Vec<(usize, String)> {
+    let mut out = Vec::new();
+    let mut fence: Option<String> = None;
+    for (n, line) in text.lines().enumerate() {
+        let t = line.trim_start();
+        if t.starts_with("```") || t.starts_with("~~~") {
+            fence = match fence {
+                Some(_) => None,
+                None => Some(t[3..].trim().to_string()),
+            };
+            continue;
+        }
+        if !fence
+            .as_deref()
+            .is_some_and(|l| l.is_empty() || l == "text")
+        {
+            continue;
+        }
+        let words: Vec<bool> = line
+            .split(' ')
+            .filter(|w| !w.is_empty())
+            .map(|w| {
+                let w = w.trim_matches(|c: char| "(),:;".contains(c));
+                w.len() >= 2 && w.chars().all(|c| c.is_ascii_alphabetic() || c == '-')
+            })
+            .collect();
+        if words.windows(2).any(|p| p[0] && p[1]) {
+            out.push((n + 1, line.to_string()));
+        }
+    }
+    out
+}
+
+#[test]
+fn japanese_formulas_are_written_in_japanese() {
+    assert_eq!(
+        english_in_formulas(
+            "```\nd = A / (D' − B)\nD' = 2D − 1 (back to NDC z)\n```\nback to prose\n"
+        ),
+        [(3, "D' = 2D − 1 (back to NDC z)".to_string())]
+    );
+    let mut problems = Vec::new();
+    for page in pages(&root().join("lessons/ja"), "") {
+        let text = std::fs::read_to_string(root().join("lessons/ja").join(&page)).unwrap();
+        for (line, said) in english_in_formulas(&text) {
+            problems.push(format!(
+                "lessons/ja/{}:{line}: English: {said}",
+                page.display()
+            ));
+        }
+    }
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
 #[test]
 fn the_comment_check_tells_english_from_code_and_japanese() {
     let page = "```glsl\nfloat r = 1.0; // disc radius in pixels\nx = y; // x = y\n```\n\
@@ -449,8 +539,20 @@ fn comments_may_differ_but_code_may_not() {
         comment_free("sh", "cargo test   # everything\necho '#1'\n"),
         "cargo test\necho '#1'\n"
     );
-    // Formulas keep every character.
-    assert_eq!(comment_free("", "x = y // 2\n"), "x = y // 2\n");
+    // Formulas keep every symbol and variable; their words may be translated.
+    assert_eq!(comment_free("", "x = y // 2\n"), "x=y//2\n");
+    assert_eq!(
+        comment_free("", "D' = 2D − 1   (back to NDC z)\n"),
+        comment_free("", "D' = 2D − 1   (NDCのzに戻す)\n")
+    );
+    assert_ne!(
+        comment_free("", "D' = 2D − 1   (back to NDC z)\n"),
+        comment_free("", "D' = 2D + 1   (NDCのzに戻す)\n")
+    );
+    assert_eq!(
+        comment_free("", "AO: restore → down-sample → SAO\n"),
+        comment_free("", "AO: 復元 → 縮小 → SAO\n")
+    );
 }
 
 #[test]
@@ -473,164 +575,9 @@ fn the_outline_check_notices_a_dropped_code_block_and_a_moved_image() {
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
-/// The glossary's terms and, for each, the variants the Japanese text never uses: the rows of the
-/// table under `## 用語` in `lessons/ja/glossary.md` (first column the term, last the variants).
-fn glossary() -> Vec<(String, Vec<String>)> {
-    let text = std::fs::read_to_string(root().join("lessons/ja/glossary.md")).unwrap();
-    let table = text.split("## 用語\n").nth(1).expect("a 用語 section");
-    let mut out = Vec::new();
-    for line in table.lines().filter(|l| l.starts_with('|')).skip(2) {
-        let cells: Vec<&str> = line.trim_matches('|').split('|').map(str::trim).collect();
-        let variants = cells
-            .last()
-            .unwrap()
-            .split('、')
-            .map(str::trim)
-            .filter(|v| !v.is_empty())
-            .map(String::from)
-            .collect();
-        out.push((cells[0].to_string(), variants));
-    }
-    out
-}
-
-/// Each use of a variant in `text` (line number, variant, its term), except where the variant is part
-/// of a term written out (シェーダ inside シェーダー).
-fn variants_in(text: &str, glossary: &[(String, Vec<String>)]) -> Vec<(usize, String, String)> {
-    let mut found = Vec::new();
-    for (term, variants) in glossary {
-        for v in variants {
-            for (at, _) in text.match_indices(v.as_str()) {
-                let inside_a_term = glossary.iter().any(|(t, _)| {
-                    t.match_indices(v.as_str()).any(|(k, _)| {
-                        at >= k
-                            && text
-                                .get(at - k..)
-                                .is_some_and(|rest| rest.starts_with(t.as_str()))
-                    })
-                });
-                if !inside_a_term {
-                    let line = text[..at].matches('\n').count() + 1;
-                    found.push((line, v.clone(), term.clone()));
-                }
-            }
-        }
-    }
-    found.sort();
-    found
-}
-
-/// Japanese text, where a space between it and half-width text breaks the glossary's convention.
+/// Japanese text: kana, kanji, CJK punctuation and full-width forms.
 fn is_japanese(c: char) -> bool {
     matches!(c, '\u{3001}'..='\u{30ff}' | '\u{4e00}'..='\u{9fff}' | '\u{ff01}'..='\u{ffef}')
 }
 
-/// Lines of `text` (outside code blocks, inline code and quotations in 「」, which keep their
-/// source's wording) with a space between Japanese and a half-width letter, digit or code span.
-fn spaced_lines(text: &str) -> Vec<usize> {
-    let mut out = Vec::new();
-    let mut fenced = false;
-    for (n, line) in text.lines().enumerate() {
-        if line.trim_start().starts_with("```") {
-            fenced = !fenced;
-            continue;
-        }
-        if fenced || line.starts_with("    ") {
-            continue;
-        }
-        // Inline code becomes one backtick, so its inside is never looked at.
-        let mut code_free = String::new();
-        for (i, part) in line.split('`').enumerate() {
-            code_free.push_str(if i % 2 == 0 { part } else { "`" });
-        }
-        let mut plain = String::new();
-        let mut quoted = false;
-        for c in code_free.chars() {
-            match c {
-                '「' => quoted = true,
-                '」' => quoted = false,
-                _ if quoted => continue,
-                _ => {}
-            }
-            plain.push(c);
-        }
-        let chars: Vec<char> = plain.chars().collect();
-        let half_width = |c: char| c.is_ascii_alphanumeric() || c == '`';
-        let spaced = chars.windows(3).any(|w| {
-            w[1] == ' '
-                && ((is_japanese(w[0]) && half_width(w[2]))
-                    || (half_width(w[0]) && is_japanese(w[2])))
-        });
-        if spaced {
-            out.push(n + 1);
-        }
-    }
-    out
-}
-
-#[test]
-fn japanese_text_uses_the_glossary_terms_and_spacing() {
-    let glossary = glossary();
-    assert!(glossary.len() > 20, "{glossary:?}");
-    let mut files = vec![root().join("README.ja.md"), root().join("locales/ja.yml")];
-    let mut stack = vec![
-        root().join("lessons/ja"),
-        root().join("Res/lesson-stubs/ja"),
-    ];
-    while let Some(d) = stack.pop() {
-        for e in std::fs::read_dir(&d).unwrap() {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                stack.push(p);
-            } else if p.file_name().is_some_and(|n| n != "glossary.md") {
-                files.push(p);
-            }
-        }
-    }
-    let mut problems = Vec::new();
-    for f in &files {
-        if !f
-            .extension()
-            .is_some_and(|x| x == "md" || x == "frag" || x == "yml")
-        {
-            continue;
-        }
-        let text = std::fs::read_to_string(f).unwrap();
-        let name = f.strip_prefix(root()).unwrap().display().to_string();
-        for (line, variant, term) in variants_in(&text, &glossary) {
-            problems.push(format!(
-                "{name}:{line}: {variant} (the glossary says {term})"
-            ));
-        }
-        // The step pages, appendices and their index follow the spacing convention.
-        if f.parent() == Some(root().join("lessons/ja").as_path()) {
-            for line in spaced_lines(&text) {
-                problems.push(format!(
-                    "{name}:{line}: a space between Japanese and half-width text"
-                ));
-            }
-        }
-    }
-    assert!(problems.is_empty(), "{}", problems.join("\n"));
-}
-
-#[test]
-fn the_glossary_check_sees_a_variant_but_not_the_term_that_contains_it() {
-    let glossary = vec![
-        ("シェーダー".to_string(), vec!["シェーダ".to_string()]),
-        (
-            "講座".to_string(),
-            vec!["講義資料".to_string(), "講義".to_string()],
-        ),
-    ];
-    assert!(variants_in("シェーダーを書く", &glossary).is_empty());
-    let found = variants_in("一行目\nシェーダを書く。講義資料では", &glossary);
-    let said: Vec<_> = found.iter().map(|(l, v, _)| (*l, v.as_str())).collect();
-    assert_eq!(said, [(2, "シェーダ"), (2, "講義"), (2, "講義資料")]);
-    assert_eq!(
-        spaced_lines(
-            "レッスン 7 で\n`x`は\n```\nコード x\n```\n**結果:** 床\n「講座 2024 前期」の"
-        ),
-        [1]
-    );
-}
+// The glossary (terms, spacing, brackets) is checked by `tests/glossary.rs`, which reads it.

@@ -338,9 +338,9 @@ fn rtao_gpu_reference_agrees_with_the_cpu_reference_at_1024_rays() {
     assert!(psnr >= 45.0, "{psnr:.1} dB");
     // Through the cache: written once, then read back as it was rendered.
     let cache = dir.join("cache");
-    let hash = cpu_scene.content_hash();
     let cached = |p: &RefParams| {
-        opengl3d::tools::reference::load_or_render_gpu_cached(&cache, &res, &s, hash, p).unwrap()
+        opengl3d::tools::reference::load_or_render_gpu_cached(&cache, &res, &s, &cpu_scene, p)
+            .unwrap()
     };
     let few = RefParams { rays: 16, ..params };
     let first = cached(&few);

@@ -63,7 +63,7 @@ fn render_refuses_a_huge_array_by_file_and_line_in_bounded_memory() {
     ]);
     let e = stderr(&o);
     assert!(
-        !o.status.success() && e.contains(&place) && e.contains("4096 成分"),
+        !o.status.success() && e.contains(&place) && e.contains("4096成分"),
         "{e}"
     );
 }

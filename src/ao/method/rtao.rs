@@ -61,6 +61,8 @@ pub struct RtaoMethod {
     accumulation: Cell<Accumulation>,
     /// The running mean of the frames so far (RG32F, as the packed output it copies).
     history: RefCell<Option<Rc<Texture>>>,
+    /// The last pass's count of pixels whose rays the driver cut short (`RtaoStatus`).
+    status: RefCell<Option<StorageBuffer>>,
 }
 
 /// Identifies the objects' geometry: mesh names, triangle counts and model matrices.
@@ -116,6 +118,7 @@ impl RtaoMethod {
             builds: Cell::new(0),
             accumulation: Cell::new(Accumulation::default()),
             history: RefCell::new(None),
+            status: RefCell::new(None),
         })
     }
 
@@ -213,7 +216,12 @@ impl AoMethodPass for RtaoMethod {
         set_common_uniforms(inputs.gl, p, inputs, [s.rays as i32, 1]);
         p.set_mat4(loc::RTAO_VIEW_TO_WORLD, &inputs.camera.view().inverse());
         let rays = s.rays.max(1);
-        let first = since_reset.wrapping_mul(rays);
+        // The stratified lattice: this pass's share of it (`lattice_slice`), else all of it.
+        let (first, sequence) = match (s.stratified, s.lattice_slice) {
+            (true, (first, of)) if of > 0 => (first, of),
+            (true, _) => (0, rays),
+            (false, _) => (since_reset.wrapping_mul(rays), 0),
+        };
         let location = glow::NativeUniformLocation(loc::RTAO_FRAME as u32);
         // SAFETY: an ivec4 uniform at a location the interface test checks.
         unsafe {
@@ -223,7 +231,7 @@ impl AoMethodPass for RtaoMethod {
                 rays as i32,
                 first as i32,
                 in_history as i32,
-                s.stratified as i32,
+                sequence as i32,
             )
         };
         let bvh = self.bvh.borrow();
@@ -239,6 +247,9 @@ impl AoMethodPass for RtaoMethod {
         }
         bvh.nodes.bind(storage::BVH_NODES);
         bvh.triangles.bind(storage::BVH_TRIANGLES);
+        let status = StorageBuffer::new(inputs.gl, "rtao status", &[0])?;
+        status.bind(storage::RTAO_STATUS);
+        *self.status.borrow_mut() = Some(status);
         inputs.meshes.draw_plane_xy();
         if let (Some(h), Some(packed)) = (&history, self.packed.packed_texture()) {
             // SAFETY: copying between two live RG32F textures of the same size.
@@ -309,6 +320,15 @@ impl AoMethodPass for RtaoMethod {
     }
     fn accumulated_frames(&self) -> u32 {
         self.accumulation.get().averaged.max(1)
+    }
+    fn cut_pixels(&self) -> u32 {
+        let status = self.status.borrow();
+        let Some(buffer) = status.as_ref() else {
+            return 0;
+        };
+        // SAFETY: a barrier, so the shader's atomic writes are visible to the read below.
+        unsafe { self.gl.memory_barrier(glow::BUFFER_UPDATE_BARRIER_BIT) };
+        buffer.read_words().first().copied().unwrap_or(0)
     }
     fn restart_accumulation(&self) {
         self.accumulation.set(Accumulation::default());

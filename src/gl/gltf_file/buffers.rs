@@ -2,7 +2,7 @@
 //! the `.gltf`; and the bounds check every accessor passes before it is read, so that a file that
 //! lies about its sizes is an error naming the accessor rather than a read past the end.
 
-use anyhow::{bail, Context as _, Result};
+use anyhow::{bail, Result};
 use base64::Engine as _;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::Accessor;
@@ -17,7 +17,6 @@ pub fn load(
     limit: u64,
 ) -> Result<Vec<Vec<u8>>> {
     let shown = path.display().to_string();
-    let folder = path.parent().unwrap_or(Path::new(""));
     let mut blob = blob;
     let mut out = Vec::new();
     for buffer in doc.buffers() {
@@ -31,10 +30,22 @@ pub fn load(
                     anyhow::anyhow!("{}", t!("gltf.bad_data_uri", path = shown, index = index))
                 })?,
             gltf::buffer::Source::Uri(uri) => {
-                let file = folder.join(percent_decoded(uri));
-                crate::io::read_capped(&file, limit).with_context(|| {
-                    t!("gltf.buffer_file", path = shown, index = index, uri = uri)
-                })?
+                if let Some(scheme) = uri_scheme(uri) {
+                    let message = t!(
+                        "gltf.uri_scheme",
+                        path = shown,
+                        index = index,
+                        uri = uri,
+                        scheme = scheme
+                    );
+                    bail!("{message}");
+                }
+                // The declared length, and a little for the padding some writers add.
+                let cap = (buffer.length() as u64)
+                    .saturating_add(BIN_SLACK)
+                    .min(limit);
+                let what = t!("gltf.buffer_what", index = index);
+                crate::gl::model_refs::read_beside(path, &what, &percent_decoded(uri), cap)?
             }
         };
         if data.len() < buffer.length() {
@@ -51,6 +62,20 @@ pub fn load(
         out.push(data);
     }
     Ok(out)
+}
+
+/// Bytes a `.bin` may hold past its buffer's `byteLength` (alignment padding).
+const BIN_SLACK: u64 = 4096;
+
+/// The scheme of an absolute URI (`http`, `file`, …), which a model's buffer may not name; `None`
+/// for a relative reference. A one-letter "scheme" is a Windows drive (`C:`): absolute too.
+fn uri_scheme(uri: &str) -> Option<&str> {
+    let (scheme, _) = uri.split_once(':')?;
+    let mut chars = scheme.chars();
+    let first = chars.next()?;
+    let valid = first.is_ascii_alphabetic()
+        && chars.all(|c| c.is_ascii_alphanumeric() || matches!(c, '+' | '-' | '.'));
+    valid.then_some(scheme)
 }
 
 /// The bytes of a `data:[<type>];base64,<data>` URI (the only kind glTF writers embed).
@@ -157,5 +182,15 @@ mod tests {
         let uri = "data:application/octet-stream;base64,AAECAw==";
         assert_eq!(data_uri(uri), Some(vec![0, 1, 2, 3]));
         assert_eq!(data_uri("data:application/octet-stream,plain"), None);
+    }
+
+    #[test]
+    fn absolute_uris_are_told_from_relative_ones() {
+        assert_eq!(uri_scheme("http://example.com/a.bin"), Some("http"));
+        assert_eq!(uri_scheme("file:///etc/passwd"), Some("file"));
+        assert_eq!(uri_scheme("C:/models/a.bin"), Some("C"));
+        assert_eq!(uri_scheme("a.bin"), None);
+        assert_eq!(uri_scheme("sub/a:b.bin"), None);
+        assert_eq!(uri_scheme("../a.bin"), None);
     }
 }

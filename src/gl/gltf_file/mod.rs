@@ -7,6 +7,8 @@
 //! asks. Every error names the file and the accessor, buffer or node at fault.
 
 mod buffers;
+mod document;
+mod instances;
 
 use super::mesh::{MeshData, Vertex};
 use anyhow::{bail, Result};
@@ -33,17 +35,19 @@ pub fn is_gltf_path(path: &Path) -> bool {
         .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
 }
 
-/// Reads `path` as glTF 2.0 (the default scene's meshes merged into one, transforms applied).
+/// Reads `path` as glTF 2.0 (the default scene's meshes merged into one, transforms applied, each
+/// `EXT_mesh_gpu_instancing` instance drawn).
 pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
     let shown = path.display().to_string();
     let bytes = crate::io::read_capped(path, MAX_GLTF_BYTES)?;
     if bytes.is_empty() {
         bail!("{}", t!("obj.empty", path = shown));
     }
-    let gltf::Gltf { document, blob } = gltf::Gltf::from_slice(&bytes).map_err(|e| {
-        let problem = e.to_string();
-        anyhow::anyhow!("{}", t!("gltf.not_gltf", path = shown, problem = problem))
-    })?;
+    let document::Parsed {
+        document,
+        blob,
+        instancing,
+    } = document::parse(&bytes, &shown)?;
     drop(bytes);
     let buffers = buffers::load(&document, blob, path, MAX_GLTF_BYTES)?;
     let scene = document
@@ -54,14 +58,13 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
         shown: &shown,
         buffers: &buffers,
         mesh: MeshData::default(),
-        visited: vec![false; document.nodes().len()],
         skipped_modes: 0,
         flat: 0,
         primitives: 0,
+        morphed: 0,
+        non_finite: 0,
     };
-    for node in scene.nodes() {
-        out.node(&node, Mat4::IDENTITY)?;
-    }
+    out.walk(&document, &scene, &instancing)?;
     let mut warnings = Vec::new();
     if out.skipped_modes > 0 {
         let count = out.skipped_modes;
@@ -71,6 +74,14 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
         let count = out.flat;
         warnings.push(t!("gltf.no_area", path = shown, count = count).into_owned());
     }
+    if out.non_finite > 0 {
+        let count = out.non_finite;
+        warnings.push(t!("gltf.non_finite", path = shown, count = count).into_owned());
+    }
+    if out.morphed > 0 {
+        let count = out.morphed;
+        warnings.push(t!("gltf.morph_targets", path = shown, count = count).into_owned());
+    }
     if out.mesh.indices.is_empty() {
         let (primitives, skipped) = (out.primitives, out.skipped_modes);
         let message = t!(
@@ -79,7 +90,9 @@ pub fn read_gltf(path: &Path) -> Result<GltfMesh> {
             primitives = primitives,
             skipped = skipped
         );
-        bail!("{message}");
+        // What was skipped says why: every triangle without area, or with a corner not a number.
+        let why: Vec<String> = warnings.iter().map(|w| format!("\n  {w}")).collect();
+        bail!("{message}{}", why.concat());
     }
     Ok(GltfMesh {
         mesh: out.mesh,
@@ -92,43 +105,76 @@ struct Builder<'a> {
     shown: &'a str,
     buffers: &'a [Vec<u8>],
     mesh: MeshData,
-    /// Nodes already drawn: glTF's node hierarchy is a set of disjoint trees, and a node reached
-    /// twice (a cycle, or a shared child) would draw twice or forever.
-    visited: Vec<bool>,
     skipped_modes: usize,
     flat: usize,
     primitives: usize,
+    /// Primitives with morph targets, drawn in their base shape.
+    morphed: usize,
+    /// Triangles with a corner that is not a finite number.
+    non_finite: usize,
 }
 
 impl Builder<'_> {
-    fn node(&mut self, node: &gltf::Node, parent: Mat4) -> Result<()> {
-        let index = node.index();
-        if std::mem::replace(&mut self.visited[index], true) {
-            bail!(
-                "{}",
-                t!("gltf.node_twice", path = self.shown, index = index)
-            );
-        }
-        let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
-        if !world.is_finite() {
-            bail!(
-                "{}",
-                t!("gltf.bad_transform", path = self.shown, index = index)
-            );
-        }
-        if let Some(mesh) = node.mesh() {
-            for primitive in mesh.primitives() {
-                self.primitive(&primitive, world)?;
+    /// Visits the scene's nodes depth first with a stack of its own (a chain of nodes can be as deep
+    /// as the file is long; the call stack is not). A node reached twice is an error: glTF's node
+    /// hierarchy is a set of disjoint trees, and a cycle or a shared child would draw twice or
+    /// forever.
+    fn walk(
+        &mut self,
+        document: &gltf::Document,
+        scene: &gltf::Scene,
+        instancing: &[Option<document::Instancing>],
+    ) -> Result<()> {
+        let nodes: Vec<gltf::Node> = document.nodes().collect();
+        let mut visited = vec![false; nodes.len()];
+        let mut pending: Vec<(usize, Mat4)> =
+            scene.nodes().map(|n| (n.index(), Mat4::IDENTITY)).collect();
+        pending.reverse();
+        while let Some((index, parent)) = pending.pop() {
+            if std::mem::replace(&mut visited[index], true) {
+                bail!(
+                    "{}",
+                    t!("gltf.node_twice", path = self.shown, index = index)
+                );
             }
-        }
-        for child in node.children() {
-            self.node(&child, world)?;
+            let node = &nodes[index];
+            let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+            if !world.is_finite() {
+                bail!(
+                    "{}",
+                    t!("gltf.bad_transform", path = self.shown, index = index)
+                );
+            }
+            if let Some(mesh) = node.mesh() {
+                let instances = match instancing.get(index).copied().flatten() {
+                    Some(i) => instances::read(document, self.buffers, &i, index, self.shown)?,
+                    None => vec![Mat4::IDENTITY],
+                };
+                for instance in instances {
+                    let placed = world * instance;
+                    if !placed.is_finite() {
+                        bail!(
+                            "{}",
+                            t!("gltf.bad_transform", path = self.shown, index = index)
+                        );
+                    }
+                    for primitive in mesh.primitives() {
+                        self.primitive(&primitive, placed)?;
+                    }
+                }
+            }
+            let first_child = pending.len();
+            pending.extend(node.children().map(|c| (c.index(), world)));
+            pending[first_child..].reverse();
         }
         Ok(())
     }
 
     fn primitive(&mut self, primitive: &gltf::Primitive, world: Mat4) -> Result<()> {
         self.primitives += 1;
+        if primitive.morph_targets().next().is_some() {
+            self.morphed += 1;
+        }
         if matches!(
             primitive.mode(),
             Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip
@@ -155,7 +201,11 @@ impl Builder<'_> {
             buffers::check_accessor(acc, buffers, &f32_only, Dimensions::Vec3, "NORMAL", shown)?;
         }
         let texcoord_types = [DataType::F32, DataType::U8, DataType::U16];
-        let texcoords_acc = primitive.get(&gltf::Semantic::TexCoords(0));
+        // Texture coordinates of another shape or type are not drawn with: ignored, not refused.
+        let texcoords_acc = primitive
+            .get(&gltf::Semantic::TexCoords(0))
+            .filter(|acc| acc.dimensions() == Dimensions::Vec2 && acc.sparse().is_none())
+            .filter(|acc| texcoord_types.contains(&acc.data_type()));
         if let Some(acc) = &texcoords_acc {
             let dims = Dimensions::Vec2;
             buffers::check_accessor(acc, buffers, &texcoord_types, dims, "TEXCOORD_0", shown)?;
@@ -194,6 +244,10 @@ impl Builder<'_> {
             let [a, b, c] = if mirrored { [a, c, b] } else { [a, b, c] };
             let corners = [a, b, c].map(|i| i as usize);
             let p = corners.map(|i| world.transform_point3(positions[i]));
+            if !p.iter().all(|v| v.is_finite()) {
+                self.non_finite += 1;
+                continue;
+            }
             let face = (p[1] - p[0]).cross(p[2] - p[0]);
             let Some(face_normal) = face.try_normalize() else {
                 self.flat += 1;

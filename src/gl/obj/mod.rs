@@ -68,14 +68,8 @@ pub fn read_obj(path: &Path) -> Result<ObjMesh> {
         warnings.push(t!("obj.no_area", place = place, more = more).into_owned());
     }
     if mesh.indices.is_empty() {
-        let holds = t!(
-            "obj.holds",
-            vertices = obj.positions.len(),
-            lines = obj.lines.count,
-            points = obj.points.count,
-            short = obj.short_faces.count + flat.count
-        );
-        bail!("{}", t!("obj.no_faces", path = shown, holds = holds));
+        let place = format!("{shown}:{}", flat.first);
+        bail!("{}", t!("obj.all_flat", place = place, count = flat.count));
     }
     Ok(ObjMesh { mesh, warnings })
 }
@@ -125,12 +119,15 @@ fn check_mtllib(
         .map(|n| n.replace('\\', "/"))
         .collect();
     let mut found = HashSet::new();
-    for file in candidates.iter().map(|n| folder.join(n)) {
-        if file.is_file() && found.insert(file.clone()) {
+    for n in &candidates {
+        let file = folder.join(n);
+        // A name that exists is read, but only inside the OBJ's folder: one that leaves it (an
+        // absolute path, `..`, a link out) or is not a regular file is refused, never read.
+        let present = Path::new(n).has_root() || (file.exists() && !file.is_dir());
+        if present && found.insert(file.clone()) {
             let shown = file.display().to_string();
-            let obj = obj_path.display();
-            let bytes = crate::io::read_capped(&file, MAX_MTL_BYTES)
-                .with_context(|| t!("obj.mtl_error", path = shown, obj = obj))?;
+            let what = t!("obj.mtl_what");
+            let bytes = crate::gl::model_refs::read_beside(obj_path, &what, n, MAX_MTL_BYTES)?;
             mtl::check(&decode(&bytes), &shown)?;
         }
     }

@@ -12,7 +12,8 @@
 pub mod catalog;
 pub mod depth_formats;
 pub(crate) mod limits;
-pub mod metrics;
+/// The image metrics live beside the bench (the error map uses them too); the old path still works.
+pub use super::metrics;
 pub mod perf;
 pub(crate) mod progress;
 pub mod skips;

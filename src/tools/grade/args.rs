@@ -69,6 +69,14 @@ impl Step {
     }
 }
 
+/// `grade --format`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, ValueEnum)]
+pub enum GradeFormat {
+    Text,
+    Json,
+    Classroom50,
+}
+
 #[derive(Args, Debug, Clone)]
 pub struct GradeArgs {
     /// Grade the shaders lesson step N has written, as far as it has taught them (1: none yet;
@@ -84,6 +92,13 @@ pub struct GradeArgs {
     /// (`--lang ja`, or a ja locale) comes as "message_localised" too.
     #[arg(long)]
     pub json: bool,
+    /// How the verdicts are written: `text` (the default), `json` (as --json), or `classroom50`:
+    /// the text, and result.json in the working directory as a Classroom 50 autograder must leave
+    /// it (one test per graded step with its points, identity from the runner's CLASSROOM,
+    /// ASSIGNMENT, SUBMISSION_TAG, COMMIT_URL, RELEASE_URL and REVIEW_URL), the heat maps and
+    /// feedback.html in --out (default: grade-report); exits 0 once result.json is written.
+    #[arg(long, value_enum, conflicts_with_all = ["json", "class", "mutation_score"])]
+    pub format: Option<GradeFormat>,
     /// Folder for expected/actual/difference PNGs of each step; with --class, the folder for the
     /// class's report (results.csv, report.html, junit.xml; default: grade-report).
     #[arg(long, value_name = "DIR")]

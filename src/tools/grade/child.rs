@@ -6,6 +6,7 @@ use super::report::StepReport;
 use super::say::say;
 use crate::i18n::Text;
 use std::io::Read;
+#[cfg(unix)]
 use std::os::unix::process::CommandExt as _;
 use std::process::{Command, ExitStatus, Stdio};
 use std::thread::JoinHandle;
@@ -88,11 +89,13 @@ fn printed_verdict(out: &str) -> Option<Result<StepReport, String>> {
 /// be reserved, so 2 GiB leaves room while stopping a runaway shader long before 8 GiB fill (all
 /// four steps run at once: 8 GiB at most per student; `--class` grades `--jobs` students at once,
 /// so only runaway shaders in several of them together reach `--jobs` × 8 GiB).
+#[cfg(unix)]
 const STEP_ADDRESS_SPACE: u64 = 2 << 30;
 
 /// Runs in the forked child before it becomes `opengl3d grade-step`: only async-signal-safe calls.
 /// Limits its memory, and asks the kernel to kill it when the grader dies (else an endless shader
 /// would run on after a Ctrl-C).
+#[cfg(unix)]
 fn confine_step(grader: libc::pid_t) -> std::io::Result<()> {
     let limit = libc::rlimit {
         rlim_cur: STEP_ADDRESS_SPACE as libc::rlim_t,
@@ -113,6 +116,33 @@ fn confine_step(grader: libc::pid_t) -> std::io::Result<()> {
     Ok(())
 }
 
+/// Kills `child` and whatever it started. On Unix the whole process group: the step is its leader
+/// (`process_group(0)`), and not yet waited for, so its id still names the group.
+#[cfg(unix)]
+fn kill_tree(child: &mut std::process::Child) -> std::io::Result<()> {
+    let group = -(child.id() as libc::pid_t);
+    // SAFETY: a plain system call.
+    if unsafe { libc::kill(group, libc::SIGKILL) } != 0 {
+        return Err(std::io::Error::last_os_error());
+    }
+    Ok(())
+}
+
+/// Elsewhere (Windows, where a step has no memory limit and no process group) the step's process
+/// tree through `taskkill`, else the step alone.
+#[cfg(not(unix))]
+pub(super) fn kill_tree(child: &mut std::process::Child) -> std::io::Result<()> {
+    let tree = Command::new("taskkill")
+        .args(["/F", "/T", "/PID", &child.id().to_string()])
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .status();
+    match tree {
+        Ok(s) if s.success() => Ok(()),
+        _ => child.kill(),
+    }
+}
+
 impl Child {
     /// Starts `cmd` (the hidden `grade-step` command for `step`) with its output piped, in a
     /// process group of its own (so that the time limit kills it and anything it started), with a
@@ -120,12 +150,15 @@ impl Child {
     pub fn spawn(mut cmd: Command, step: Step) -> std::io::Result<Child> {
         cmd.stdin(Stdio::null())
             .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .process_group(0);
-        let grader = std::process::id() as libc::pid_t;
-        // SAFETY: `confine_step` only makes async-signal-safe system calls and allocates nothing.
-        unsafe {
-            cmd.pre_exec(move || confine_step(grader));
+            .stderr(Stdio::piped());
+        #[cfg(unix)]
+        {
+            cmd.process_group(0);
+            let grader = std::process::id() as libc::pid_t;
+            // SAFETY: `confine_step` only makes async-signal-safe system calls and allocates nothing.
+            unsafe {
+                cmd.pre_exec(move || confine_step(grader));
+            }
         }
         let mut child = cmd.spawn()?;
         super::interrupt::register_group(child.id());
@@ -174,15 +207,8 @@ impl Child {
             match self.child.try_wait() {
                 Ok(Some(status)) => return Ok(Some(status)),
                 Ok(None) if self.started.elapsed() >= timeout => {
-                    // The whole group: the step is its leader (`process_group(0)`), and not yet
-                    // waited for, so its id still names the group.
-                    let group = -(self.child.id() as libc::pid_t);
-                    // SAFETY: a plain system call.
-                    if unsafe { libc::kill(group, libc::SIGKILL) } != 0 {
-                        return Err(format!(
-                            "cannot stop the step after its time limit: {}",
-                            std::io::Error::last_os_error()
-                        ));
+                    if let Err(e) = kill_tree(&mut self.child) {
+                        return Err(format!("cannot stop the step after its time limit: {e}"));
                     }
                     self.child
                         .wait()

@@ -8,6 +8,7 @@
 
 use super::args::{GradeArgs, Step};
 use super::class_report::{self, StudentResult};
+use super::feedback;
 use super::points::Points;
 use super::report::StepReport;
 use super::student::{self, Grading};
@@ -251,7 +252,41 @@ fn grade_student(g: &Grading, report: &Path, s: &Student, steps: &[Step]) -> Stu
         reports,
         heat_maps,
         seconds: start.elapsed().as_secs_f64(),
+        page: student_page(s),
     }
+}
+
+/// Where a student's feedback page goes in the report (beside the class's table, one folder down).
+fn student_page(s: &Student) -> String {
+    let stem = s.pictures.rsplit('/').next().unwrap_or(&s.pictures);
+    format!("{STUDENT_PAGES}/{stem}.html")
+}
+
+/// The folder of the students' feedback pages in the report.
+const STUDENT_PAGES: &str = "students";
+
+/// Writes each student's feedback page (its pictures are one folder up from the page).
+fn write_student_pages(
+    out: &Path,
+    results: &[StudentResult],
+    points: Option<&Points>,
+) -> Result<()> {
+    crate::io::create_dir_all(&out.join(STUDENT_PAGES))?;
+    for r in results {
+        let entries: Vec<feedback::Entry> = r
+            .reports
+            .iter()
+            .zip(&r.heat_maps)
+            .map(|(report, stem)| feedback::Entry {
+                report,
+                pictures: stem.as_ref().map(|s| format!("../{s}")),
+            })
+            .collect();
+        let path = out.join(&r.page);
+        std::fs::write(&path, feedback::page(Some(&r.name), &entries, points))
+            .map_err(|e| crate::io::io_error(&path, "write", &e))?;
+    }
+    Ok(())
 }
 
 fn progress_bar(students: usize) -> ProgressBar {
@@ -347,6 +382,7 @@ pub fn run(
         "junit.xml",
         &class_report::to_junit(&title, &results, seconds, points),
     )?;
+    write_student_pages(&out, &results, points)?;
     for r in &results {
         let verdict = if r.all_passed() {
             t!("grade.pass")

@@ -4,6 +4,7 @@
 //! messages echoing their shaders) is quoted or escaped for the format it lands in.
 
 use super::args::Step;
+use super::feedback::html;
 use super::points::Points;
 use super::report::StepReport;
 use rust_i18n::t;
@@ -17,6 +18,8 @@ pub struct StudentResult {
     pub heat_maps: Vec<Option<String>>,
     /// Wall time spent grading the student.
     pub seconds: f64,
+    /// The student's own feedback page, relative to the report (`students/001-ada.html`).
+    pub page: String,
 }
 
 impl StudentResult {
@@ -28,15 +31,32 @@ impl StudentResult {
     }
 }
 
-/// PASS, FAIL, or "not submitted".
-fn verdict(r: &StepReport) -> &'static str {
+/// What became of a step.
+#[derive(Clone, Copy, PartialEq, Eq)]
+enum Outcome {
+    Pass,
+    Fail,
+    Missing,
+}
+
+fn outcome(r: &StepReport) -> Outcome {
     if r.passed {
-        "PASS"
+        Outcome::Pass
     } else if r.submitted {
-        "FAIL"
+        Outcome::Fail
     } else {
-        "not submitted"
+        Outcome::Missing
     }
+}
+
+/// The outcome in the chosen language (PASS, FAIL, not submitted in English).
+fn verdict(r: &StepReport) -> String {
+    match outcome(r) {
+        Outcome::Pass => t!("class.csv_pass"),
+        Outcome::Fail => t!("class.csv_fail"),
+        Outcome::Missing => t!("class.csv_not_submitted"),
+    }
+    .into_owned()
 }
 
 /// `field` as one CSV field (RFC 4180): quoted, with quotes doubled, when it holds a comma, a
@@ -74,26 +94,31 @@ fn csv_name(name: &str) -> String {
 
 /// results.csv: `student`, one column per step (PASS, FAIL, not submitted), `passed` (how many);
 /// with `points`, after each step's column the points it earned (`sao points`), and at the end
-/// `points` and `max points`.
+/// `points` and `max points`. Headings and verdicts are in the chosen language; the step names
+/// are the grader's (`--step` takes them).
 pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>) -> String {
-    let mut header = vec!["student".to_string()];
+    let mut header = vec![t!("class.csv_student").into_owned()];
     for s in steps {
         header.push(s.name().to_string());
         if points.is_some() {
-            header.push(format!("{} points", s.name()));
+            header.push(t!("class.csv_step_points", step = s.name()).into_owned());
         }
     }
-    header.push("passed".into());
+    header.push(t!("class.csv_passed").into_owned());
     if points.is_some() {
-        header.extend(["points".into(), "max points".into()]);
+        header.extend([
+            t!("class.csv_points").into_owned(),
+            t!("class.csv_max_points").into_owned(),
+        ]);
     }
+    header.push(t!("class.csv_level").into_owned());
     let mut csv = csv_row(&header);
     for r in results {
         let mut row = vec![csv_name(&r.name)];
         for s in &r.reports {
-            row.push(verdict(s).to_string());
+            row.push(verdict(s));
             if let Some(p) = points {
-                row.push(p.earned(&s.step, s.passed).to_string());
+                row.push(s.earned_points(p).to_string());
             }
         }
         row.push(r.passed().to_string());
@@ -101,35 +126,22 @@ pub fn to_csv(steps: &[Step], results: &[StudentResult], points: Option<&Points>
             let (earned, max) = student_points(p, r);
             row.extend([earned.to_string(), max.to_string()]);
         }
+        row.push(level_of(r).to_string());
         csv.push_str(&csv_row(&row));
     }
     csv
 }
 
+/// How strictly the student was graded (`--level`; every step of a class has the same).
+fn level_of(r: &StudentResult) -> &'static str {
+    r.reports.first().map_or("", |s| s.level.name())
+}
+
 /// What a student earned and could have earned.
 fn student_points(points: &Points, r: &StudentResult) -> (u32, u32) {
     r.reports.iter().fold((0, 0), |(e, m), s| {
-        (
-            e + points.earned(&s.step, s.passed),
-            m + points.of_name(&s.step),
-        )
+        (e + s.earned_points(points), m + s.max_points(points))
     })
-}
-
-/// `text` escaped for HTML text and quoted attribute values.
-fn html(text: &str) -> String {
-    let mut s = String::with_capacity(text.len());
-    for c in text.chars() {
-        match c {
-            '&' => s.push_str("&amp;"),
-            '<' => s.push_str("&lt;"),
-            '>' => s.push_str("&gt;"),
-            '"' => s.push_str("&quot;"),
-            '\'' => s.push_str("&#39;"),
-            c => s.push(c),
-        }
-    }
-    s
 }
 
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em}table{border-collapse:collapse}\
@@ -163,14 +175,18 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
     let mut h = String::new();
     h.push_str(&format!(
         "<!DOCTYPE html>\n<html lang=\"{lang}\">\n<head>\n<meta charset=\"utf-8\">\n\
-         <title>opengl3d grade: {t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
-         <h1>opengl3d grade: {t}</h1>\n<p>{summary}</p>\n<p><small>{legend}</small></p>\n\
+         <title>{t}</title>\n<style>{STYLE}</style>\n</head>\n<body>\n\
+         <h1>{t}</h1>\n<p>{summary}</p>\n<p>{level}</p>\n<p><small>{legend}</small></p>\n\
          <table>\n<thead><tr><th>{student}</th>",
         lang = crate::i18n::current().code(),
-        t = html(title),
+        t = html(&t!("class.html_title", title = title)),
         summary = html(&t!("class.html_summary", all = all, count = results.len())),
         legend = html(&t!("class.html_legend")),
         student = html(&t!("class.html_student")),
+        level = html(&t!(
+            "grade.level",
+            level = results.first().map_or("", level_of)
+        )),
     ));
     for s in steps {
         h.push_str(&format!(
@@ -184,12 +200,16 @@ pub fn to_html(title: &str, steps: &[Step], results: &[StudentResult]) -> String
         html(&t!("class.html_passed"))
     ));
     for r in results {
-        h.push_str(&format!("<tr><th>{}</th>", html(&r.name)));
+        h.push_str(&format!(
+            "<tr><th><a href=\"{}\">{}</a></th>",
+            html(&r.page),
+            html(&r.name)
+        ));
         for (i, s) in r.reports.iter().enumerate() {
-            let (class, shown) = match verdict(s) {
-                "PASS" => ("pass", t!("grade.pass")),
-                "FAIL" => ("fail", t!("grade.fail")),
-                _ => ("missing", t!("class.html_not_submitted")),
+            let (class, shown) = match outcome(s) {
+                Outcome::Pass => ("pass", t!("grade.pass")),
+                Outcome::Fail => ("fail", t!("grade.fail")),
+                Outcome::Missing => ("missing", t!("class.html_not_submitted")),
             };
             let picture = match r.heat_maps.get(i) {
                 Some(Some(stem)) => heat_map(&s.step, stem),
@@ -241,8 +261,8 @@ fn xml(text: &str) -> String {
 }
 
 /// junit.xml: a `<testsuite>` per student, a `<testcase>` per step, a `<failure>` with the reason
-/// for each step that did not pass ("not submitted" included); with `points`, `points` and
-/// `max_points` properties on each test case and each suite.
+/// for each step that did not pass ("not submitted" included), in the chosen language; with
+/// `points`, `points` and `max_points` properties on each test case and each suite.
 pub fn to_junit(
     title: &str,
     results: &[StudentResult],
@@ -272,9 +292,15 @@ pub fn to_junit(
             r.reports.len() - r.passed(),
             r.seconds
         ));
-        if let Some(p) = points {
-            let (earned, max) = student_points(p, r);
-            x.push_str(&format!("    {}\n", properties(earned, max)));
+        let level = format!("<property name=\"level\" value=\"{}\"/>", xml(level_of(r)));
+        match points {
+            Some(p) => {
+                let (earned, max) = student_points(p, r);
+                let props = properties(earned, max)
+                    .replace("</properties>", &format!("{level}</properties>"));
+                x.push_str(&format!("    {props}\n"));
+            }
+            None => x.push_str(&format!("    <properties>{level}</properties>\n")),
         }
         for s in &r.reports {
             x.push_str(&format!(
@@ -283,17 +309,13 @@ pub fn to_junit(
                 xml(&s.file)
             ));
             if let Some(p) = points {
-                x.push_str(&properties(p.earned(&s.step, s.passed), p.of_name(&s.step)));
+                x.push_str(&properties(s.earned_points(p), s.max_points(p)));
             }
-            let message = xml(&s.message);
+            let message = xml(s.shown_message());
             if s.passed {
                 x.push_str(&format!("<system-out>{message}</system-out>"));
             } else {
-                let kind = if s.submitted {
-                    "failed"
-                } else {
-                    "not submitted"
-                };
+                let kind = xml(&verdict(s));
                 x.push_str(&format!(
                     "<failure type=\"{kind}\" message=\"{message}\">{message}</failure>"
                 ));

@@ -10,8 +10,11 @@ use std::sync::{Mutex, MutexGuard, Once};
 /// none exists unregistered; the handler keeps the lock until the process ends, so that no thread
 /// registers (and then creates) another one meanwhile.
 static FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+/// A step's process group, named by its leader's process id.
+type GroupId = i32;
+
 /// Process groups of the running step processes (each step leads its own group).
-static GROUPS: Mutex<Vec<i32>> = Mutex::new(Vec::new());
+static GROUPS: Mutex<Vec<GroupId>> = Mutex::new(Vec::new());
 
 /// How many times the handler removes the folders while something still writes into them (20 ms
 /// apart: a killed step is gone well within that).
@@ -24,6 +27,23 @@ fn lock<T>(m: &Mutex<T>) -> MutexGuard<'_, T> {
     m.lock().unwrap_or_else(|e| e.into_inner())
 }
 
+/// Kills the step whose process group is `group` (its leader's id) and what it started.
+#[cfg(unix)]
+fn kill_group(group: GroupId) {
+    // SAFETY: a plain system call; the group's leader is a step not yet reaped.
+    unsafe { libc::kill(-(group as libc::pid_t), libc::SIGKILL) };
+}
+
+/// Elsewhere (Windows) the step's process tree, through `taskkill`.
+#[cfg(not(unix))]
+fn kill_group(group: GroupId) {
+    let _ = std::process::Command::new("taskkill")
+        .args(["/F", "/T", "/PID", &group.to_string()])
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::null())
+        .status();
+}
+
 fn install() {
     static INSTALL: Once = Once::new();
     INSTALL.call_once(|| {
@@ -32,8 +52,7 @@ fn install() {
         let _ = ctrlc::set_handler(|| {
             let folders = lock(&FOLDERS);
             for &group in lock(&GROUPS).iter() {
-                // SAFETY: a plain system call; the group's leader is a step not yet reaped.
-                unsafe { libc::kill(-group, libc::SIGKILL) };
+                kill_group(group);
             }
             // A killed step dies a moment after the signal, and the grader's own threads may be
             // copying into a folder while it is removed ("directory not empty", or recreated):

@@ -69,6 +69,8 @@ mod args;
 mod child;
 mod class;
 mod class_report;
+pub mod classroom50;
+pub mod feedback;
 mod interface;
 mod interrupt;
 mod measure;
@@ -91,7 +93,7 @@ mod submission;
 mod tol;
 mod unzip;
 
-pub use args::{selected_steps, GradeArgs, GradeStepArgs, Step};
+pub use args::{selected_steps, GradeArgs, GradeFormat, GradeStepArgs, Step};
 pub use report::StepReport;
 pub use run::run;
 pub use run_step::run_step;

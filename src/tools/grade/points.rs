@@ -143,6 +143,22 @@ impl Points {
             .map_or(0, |s| self.of(s))
     }
 
+    /// The `NAME=N,...` text that parses back to these points (what the class templates pass on):
+    /// a step graded as one by its name, a step graded in sub-steps by each sub-step's id.
+    pub fn spec(&self) -> String {
+        let mut pairs = Vec::new();
+        for s in Step::ALL {
+            let parts = parts_of(s);
+            if parts.is_empty() {
+                pairs.push(format!("{}={}", s.name(), self.of(s)));
+            }
+            for (id, _) in parts {
+                pairs.push(format!("{id}={}", self.of_part(id)));
+            }
+        }
+        pairs.join(",")
+    }
+
     /// What the step called `name` earned as a whole: its points when it passed. A step graded in
     /// sub-steps earns theirs (`StepReport::earned_points`).
     pub fn earned(&self, name: &str, passed: bool) -> u32 {
@@ -170,6 +186,7 @@ mod tests {
         assert_eq!(q.of_part("sao.normal"), 8, "sao=40 spreads 8 per sub-step");
         assert_eq!(q.of(Step::Restore), 20, "unnamed steps keep their default");
         assert_eq!(Points::parse("default").unwrap(), p);
+        assert_eq!(Points::parse(&q.spec()).unwrap(), q, "{}", q.spec());
     }
 
     #[test]

@@ -1,8 +1,10 @@
 //! `opengl3d grade`: grades the selected steps of one folder (`--res DIR`, or the project's own
 //! files) and prints their verdicts, or a whole class (`--class DIR`, see `class`).
 
-use super::args::{selected_steps, GradeArgs};
+use super::args::{selected_steps, GradeArgs, GradeFormat};
 use super::class;
+use super::classroom50;
+use super::feedback;
 use super::mutation_score;
 use super::points::Points;
 use super::report;
@@ -17,7 +19,24 @@ use std::time::Duration;
 /// code (0: every step passed).
 pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i32> {
     let steps = selected_steps(args)?;
-    let points = args.points.as_deref().map(Points::parse).transpose()?;
+    let mut points = args.points.as_deref().map(Points::parse).transpose()?;
+    let format = match (args.format, args.json) {
+        (Some(f), _) => f,
+        (None, true) => GradeFormat::Json,
+        (None, false) => GradeFormat::Text,
+    };
+    let json = format == GradeFormat::Json;
+    let classroom = format == GradeFormat::Classroom50;
+    if classroom && points.is_none() {
+        points = Some(Points::default());
+    }
+    // Classroom 50 attaches files it finds after grading: the pictures and the feedback page go
+    // to a folder with a fixed name unless one is given.
+    let out = match (&args.out, classroom) {
+        (Some(o), _) => Some(o.clone()),
+        (None, true) => Some(std::path::PathBuf::from(DEFAULT_CLASSROOM_OUT)),
+        (None, false) => None,
+    };
     if !(args.timeout > 0.0 && args.timeout.is_finite()) {
         bail!("{}", t!("grade.bad_timeout", value = args.timeout));
     }
@@ -35,7 +54,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if steps.is_empty() {
         // `--lesson 1`: that step is maths only, and the restore pass is still the stub it starts
         // from, so there is nothing to grade yet (and nothing has failed).
-        if args.json {
+        if json {
             println!("{}", report::to_json_at(&[], points.as_ref(), args.level)?);
         } else {
             let (lesson, first) = (
@@ -76,11 +95,11 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
             }
         }
     }
-    if let Some(out) = &args.out {
+    if let Some(out) = &out {
         std::fs::create_dir_all(out)
             .with_context(|| format!("cannot create folder {}", out.display()))?;
     }
-    if !args.json {
+    if !json {
         match student {
             Some(d) => crate::outln!(
                 "{}",
@@ -94,7 +113,7 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     }
     let grading = Grading {
         exe: &exe,
-        pictures: args.out.as_deref(),
+        pictures: out.as_deref(),
         timeout,
         lesson: super::args::lesson_of(args),
         level: args.level,
@@ -104,10 +123,60 @@ pub fn run(_res: &ResDirs, student: Option<&Path>, args: &GradeArgs) -> Result<i
     if args.verbose {
         report::print_metrics(&reports);
     }
-    if args.json {
+    if json {
         crate::outln!("{}", report::to_json(&reports, points.as_ref())?);
     } else {
-        report::print_text(&reports, args.out.as_deref());
+        report::print_text(&reports, out.as_deref());
+    }
+    if let Some(dir) = &out {
+        write_feedback(dir, &reports, points.as_ref())?;
+    }
+    if classroom {
+        let points = points.unwrap_or_default();
+        let cwd = std::env::current_dir().context("cannot read the working directory")?;
+        let env = |name: &str| std::env::var(name).ok();
+        let (result, missing) = classroom50::result(&reports, &points, &env, &cwd);
+        if !missing.is_empty() {
+            eprintln!(
+                "{}",
+                t!("classroom.result_missing_env", vars = missing.join(", "))
+            );
+        }
+        let path = classroom50::write(&cwd, &result)?;
+        crate::outln!(
+            "{}",
+            t!(
+                "classroom.result_wrote",
+                path = path.display(),
+                score = result.score,
+                max = result.max_score
+            )
+        );
+        // Pass or fail is in result.json: the autograder's exit status says only that it ran.
+        return Ok(0);
     }
     Ok(if passed { 0 } else { 1 })
+}
+
+/// Where `--format classroom50` puts the pictures and the feedback page without `--out`.
+pub const DEFAULT_CLASSROOM_OUT: &str = "grade-report";
+
+/// `dir/feedback.html`: the verdicts with the pictures of the failing steps that `dir` holds.
+fn write_feedback(
+    dir: &Path,
+    reports: &[report::StepReport],
+    points: Option<&Points>,
+) -> Result<()> {
+    let entries: Vec<feedback::Entry> = reports
+        .iter()
+        .map(|r| feedback::Entry {
+            report: r,
+            pictures: (!r.passed && dir.join(format!("{}-difference.png", r.step)).is_file())
+                .then(|| r.step.clone()),
+        })
+        .collect();
+    let path = dir.join("feedback.html");
+    std::fs::write(&path, feedback::page(None, &entries, points))
+        .map_err(|e| crate::io::io_error(&path, "write", &e))?;
+    Ok(())
 }

@@ -80,6 +80,24 @@ pub fn render_reference_watched(
     })
 }
 
+/// Pixel (x, y) of the image [`render_reference`] renders, alone: (ao, std_error, linear depth);
+/// `None` for a camera without a usable frame. The GPU reference's cross-check traces a sample of
+/// its pixels this way.
+pub(super) fn trace_pixel(
+    scene: &Scene,
+    cam: &Camera,
+    (x, y): (u32, u32),
+    (width, height): (u32, u32),
+    params: &RefParams,
+) -> Option<(f32, f32, f32)> {
+    let frame = camera::frame(cam)?;
+    Some(if params.supersample > 1 {
+        shade_footprint(scene, &frame, cam, x, y, width, height, params)
+    } else {
+        shade_pixel(scene, &frame, cam, x, y, width, height, params)
+    })
+}
+
 /// The mean over pixel (x, y)'s footprint ([`footprint_mean`]): the `n`×`n` pixels an image `n`
 /// times wider and taller has there, each traced as [`shade_pixel`] traces a pixel, with
 /// `rays / n²` rays (rounded up).

@@ -3,7 +3,7 @@
 
 use super::config::PerfConfig;
 use super::report::{Report, Row};
-use crate::tools::bench::metrics;
+use crate::tools::metrics;
 use std::collections::BTreeMap;
 use std::fmt::{self, Write as _};
 

@@ -2,7 +2,7 @@
 //! the run measured against. Serialised as `report.json`; `markdown.rs` and `chart.rs` render it.
 
 use crate::tools::bench::catalog::BenchCamera;
-use crate::tools::bench::metrics::{Fit, Metrics};
+use crate::tools::metrics::{Fit, Metrics};
 use serde::Serialize;
 use std::collections::BTreeMap;
 

@@ -7,8 +7,8 @@ use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
 use crate::render::{Engine, View};
 use crate::tools::bench::catalog::Setting;
-use crate::tools::bench::metrics::{self, Fit, Gray, Metrics};
 use crate::tools::bench::timing::median;
+use crate::tools::metrics::{self, Fit, Gray, Metrics};
 use anyhow::{bail, Result};
 use std::collections::BTreeMap;
 

@@ -166,6 +166,7 @@ pub fn ssim(a: Gray, b: Gray, mask: Option<&[bool]>) -> f64 {
     masked_mean(&ssim_map(a, b), mask)
 }
 
+#[cfg(feature = "bench")]
 fn to_srgb8_rgb(v: &[f32]) -> Vec<u8> {
     v.iter()
         .flat_map(|x| {
@@ -175,6 +176,7 @@ fn to_srgb8_rgb(v: &[f32]) -> Vec<u8> {
         .collect()
 }
 
+#[cfg(feature = "bench")]
 /// Per-pixel LDR-FLIP error map (NVIDIA ꟻLIP through the `nv-flip` crate), 67 pixels per degree.
 fn flip_map(reference: Gray, test: Gray) -> Vec<f32> {
     assert_eq!(
@@ -191,6 +193,7 @@ fn flip_map(reference: Gray, test: Gray) -> Vec<f32> {
 }
 
 /// Mean FLIP over the masked pixels.
+#[cfg(feature = "bench")]
 pub fn flip(reference: Gray, test: Gray, mask: Option<&[bool]>) -> f64 {
     let m: Vec<f64> = flip_map(reference, test)
         .iter()
@@ -201,6 +204,7 @@ pub fn flip(reference: Gray, test: Gray, mask: Option<&[bool]>) -> f64 {
 
 /// Every metric of `test` against `reference` on the masked pixels. `with_flip = false` skips FLIP
 /// (the slowest) and reports 0 for it.
+#[cfg(feature = "bench")]
 pub fn compare(reference: Gray, test: Gray, mask: Option<&[bool]>, with_flip: bool) -> Metrics {
     let (mse, mae, pixels) = mse_mae(reference.data, test.data, mask);
     Metrics {
