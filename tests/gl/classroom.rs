@@ -231,7 +231,7 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
         ("correct", vec![]),
         ("restore-2d-plus-1", vec!["restore-2d-plus-1"]),
         ("down-sampling-max", vec!["down-sampling-max"]),
-        ("smoothing-sign", vec!["sao-smoothing-wrong-sign"]),
+        ("smoothing-sign", vec!["sao-smoothing-sign-flipped"]),
         ("blur-no-clamp", vec!["blur-no-clamp"]),
         ("course-text", vec!["course-sao"]),
     ];
@@ -321,7 +321,9 @@ fn classroom50_grades_a_class_of_six_into_valid_results() {
     // that erratum does not touch, and the erratum named.
     let course = &results.iter().find(|r| r.0 == "course-text").unwrap().2;
     assert_eq!(unit("course-text", "sao.sampling"), 0);
-    assert!(score("course-text") >= 80, "{}", score("course-text"));
+    // At the default level (lesson) it also loses what the pages add to the listing (the edge
+    // guard) and the smoothing's derivatives inside a branch (appendix A #22): 20 of SAO's 50.
+    assert_eq!(score("course-text"), 70, "{course}");
     let sampling = course["tests"]
         .as_array()
         .unwrap()
@@ -489,7 +491,7 @@ fn the_actions_workflow_gives_each_step_its_verdict_from_result_json() {
     if !have("jq") {
         panic!("jq is needed to run the workflow's reading commands (GitHub's runners have it)");
     }
-    put(&dir, "listing-restore");
+    put(&dir, "lesson-restore");
     put(&dir, "down-sampling-max");
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .args([
@@ -527,7 +529,7 @@ fn the_actions_workflow_gives_each_step_its_verdict_from_result_json() {
 #[test]
 fn points_appear_in_json_csv_and_junit() {
     let student = temp_dir("points-student");
-    put(&student, "listing-restore");
+    put(&student, "lesson-restore");
     put(&student, "blur-no-clamp");
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("--res")
@@ -553,7 +555,7 @@ fn points_appear_in_json_csv_and_junit() {
     assert_eq!(steps[1]["max_points"].as_u64(), Some(7));
 
     let class = temp_dir("points-class");
-    for (name, from) in [("ada", "listing-restore"), ("bob", "restore-max")] {
+    for (name, from) in [("ada", "lesson-restore"), ("bob", "restore-max")] {
         std::fs::create_dir_all(class.join(name)).unwrap();
         put(&class.join(name), from);
     }

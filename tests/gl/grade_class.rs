@@ -35,14 +35,14 @@ fn student(class: &Path, name: &str, from: &[&str]) {
 }
 
 pub(crate) const CORRECT: [&str; 5] = [
-    "listing-restore",
+    "lesson-restore",
     "listing-down-sampling",
     "listing-simple",
-    "rewrite-sao",
+    "lesson-sao",
     "listing-blur",
 ];
 const BROKEN_SAO: [&str; 5] = [
-    "listing-restore",
+    "lesson-restore",
     "listing-down-sampling",
     "listing-simple",
     "sao-flipped-normal",
@@ -50,14 +50,11 @@ const BROKEN_SAO: [&str; 5] = [
 ];
 const ODD_NAME: &str = "bob, \"<b>\" & 'co'";
 
-/// `grade --class CLASS ARGS` at `--level course`: the classes here are made of the course's
-/// listings.
 pub(crate) fn grade_class(class: &Path, args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_opengl3d"))
         .arg("grade")
         .arg("--class")
         .arg(class)
-        .args(["--level", "course"])
         .args(args)
         .output()
         .expect("run opengl3d")
@@ -358,7 +355,7 @@ fn an_interrupted_grader_leaves_no_private_folder_behind() {
 #[test]
 fn a_japanese_class_report_is_japanese_and_each_student_has_a_page() {
     let class = temp_dir("class-ja");
-    student(&class, "ada", &["listing-restore"]);
+    student(&class, "ada", &["lesson-restore"]);
     student(&class, "bob", &["restore-max"]);
     let out = temp_dir("class-ja-report");
     let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))

@@ -59,7 +59,7 @@ fn zips_are_graded_as_folders_and_unsafe_ones_refused_with_the_reason() {
     // No sao.frag: "not submitted", naming the archive and its folder, not the private copy.
     let mut zip = zip::ZipWriter::new(std::fs::File::create(class.join("cid.zip")).unwrap());
     for m in [
-        "listing-restore",
+        "lesson-restore",
         "listing-down-sampling",
         "listing-simple",
         "listing-blur",
