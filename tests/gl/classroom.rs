@@ -437,7 +437,8 @@ fn the_actions_workflow_gives_each_step_its_verdict_from_result_json() {
         .find(|r| r.contains("cargo install"))
         .expect("a build step");
     assert!(
-        install.contains("--no-default-features") && install.contains("--tag \"$OPENGL3D_TAG\""),
+        install.contains("--profile grader --no-default-features")
+            && install.contains("--tag \"$OPENGL3D_TAG\""),
         "{install}"
     );
     let grade = steps

@@ -123,7 +123,7 @@ jobs:
         if: env.OPENGL3D_RELEASE == ''
         run: |
           if ! opengl3d --version 2>/dev/null | grep -qx \"opengl3d $OPENGL3D_VERSION\"; then
-            cargo install --locked --force --no-default-features --features grade --git \"$OPENGL3D_GIT\" --tag \"$OPENGL3D_TAG\" opengl3d
+            cargo install --locked --force --profile grader --no-default-features --features grade --git \"$OPENGL3D_GIT\" --tag \"$OPENGL3D_TAG\" opengl3d
           fi
       - name: Grade (result.json and {report}/)
         run: opengl3d --lang {lang} --res . grade --format classroom50 --points {points} --out {report}

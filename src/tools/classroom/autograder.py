@@ -96,7 +96,7 @@ def build(work):
         return None
     log(f"building opengl3d {GRADER_TAG} from {GRADER_GIT} (no prebuilt grader)")
     root = work / "cargo"
-    cmd = ["cargo", "install", "--locked", "--no-default-features", "--features", "grade",
+    cmd = ["cargo", "install", "--locked", "--profile", "grader", "--no-default-features", "--features", "grade",
            "--git", GRADER_GIT, "--tag", GRADER_TAG, "--root", str(root), "opengl3d"]
     if subprocess.run(cmd).returncode != 0:
         return None
