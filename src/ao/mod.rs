@@ -10,8 +10,9 @@ pub mod method;
 pub mod method_pass;
 pub mod packed;
 pub mod pipeline;
-pub mod resolution;
-pub mod settings;
+pub use crate::scene::ao_resolution as resolution;
+/// The settings live with the scene that carries them (its `[ao]` table), below this layer.
+pub use crate::scene::ao_settings as settings;
 pub mod slab_hierarchy;
 pub mod targets;
 pub mod upsample;

@@ -1,6 +1,6 @@
 //! What a scene holds: output, camera, light, AO, bloom and objects, as read from a scene file.
 
-use crate::ao::AoSettings;
+use super::ao_settings::AoSettings;
 use crate::math::camera as camera_defaults;
 use crate::res::ResDirs;
 use anyhow::{Context as _, Result};

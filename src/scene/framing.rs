@@ -65,7 +65,7 @@ pub fn frame_mesh(desc: &mut SceneDesc, mesh: &MeshData, fixed: Fixed) -> Option
 /// The power of 1000 that brings `radius` into the radius range (1 when it is in it already or not
 /// finite).
 fn unit_scale(radius: f32) -> f32 {
-    let (lo, hi) = crate::ao::settings::RADIUS_RANGE;
+    let (lo, hi) = super::ao_settings::RADIUS_RANGE;
     let mut scale = 1.0f64;
     let r = radius as f64;
     if !r.is_finite() || r <= 0.0 {
@@ -188,7 +188,7 @@ fn frame_sized(
     // The AO radius follows the model's size as the camera does: 1 m would be nothing on a model in
     // millimetres and everything on a terrain. A tenth of the diagonal darkens creases, feet and
     // gaps of a model without burying it.
-    let (lo_r, hi_r) = crate::ao::settings::RADIUS_RANGE;
+    let (lo_r, hi_r) = super::ao_settings::RADIUS_RANGE;
     let radius = (0.1 * size).clamp(lo_r, hi_r);
     let radius = (radius * 1e4).round() / 1e4;
     desc.ao.radius = if radius > 0.0 { radius } else { lo_r };

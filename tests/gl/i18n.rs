@@ -213,9 +213,7 @@ fn verdicts_and_hints_in_japanese_and_json_keeps_english() {
     assert_eq!(o.status.code(), Some(1), "{}", err(&o));
     let s = out(&o);
     assert!(
-        s.contains(
-            "不合格 sao_restore_depth.frag: 各2×2ブロックで最も遠いテクセルを残しています"
-        ),
+        s.contains("不合格 sao_restore_depth.frag: 各2×2ブロックで最も遠いテクセルを残しています"),
         "{s}"
     );
     assert!(s.contains("最も近い深度(min)を選んでください"), "{s}");

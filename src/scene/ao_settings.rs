@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use super::resolution::AoResolution;
+pub use super::ao_resolution::AoResolution;
 
 /// The AO methods, named as on the command line (`--method`) and in scene files.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
