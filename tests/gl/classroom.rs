@@ -759,3 +759,183 @@ fn the_class_edition_leaves_out_every_answer_listing() {
         "Japanese stub comments"
     );
 }
+
+/// A local HTTP server on loopback serving `dir` (python3's), stopped on drop.
+struct Server(std::process::Child, u16);
+
+impl Server {
+    fn start(dir: &Path) -> Server {
+        let port = {
+            let l = std::net::TcpListener::bind("127.0.0.1:0").unwrap();
+            l.local_addr().unwrap().port()
+        };
+        let child = Command::new("python3")
+            .args([
+                "-m",
+                "http.server",
+                "--bind",
+                "127.0.0.1",
+                &port.to_string(),
+            ])
+            .current_dir(dir)
+            .stdout(std::process::Stdio::null())
+            .stderr(std::process::Stdio::null())
+            .spawn()
+            .unwrap();
+        for _ in 0..100 {
+            if std::net::TcpStream::connect(("127.0.0.1", port)).is_ok() {
+                break;
+            }
+            std::thread::sleep(std::time::Duration::from_millis(50));
+        }
+        Server(child, port)
+    }
+    fn url(&self) -> String {
+        format!("http://127.0.0.1:{}", self.1)
+    }
+}
+
+impl Drop for Server {
+    fn drop(&mut self) {
+        let _ = self.0.kill();
+        let _ = self.0.wait();
+    }
+}
+
+#[test]
+fn the_prebuilt_grader_is_downloaded_checked_and_refused_when_its_checksum_differs() {
+    // The Release as grader-release.yml publishes it: the binary in a .tar.gz and its .sha256.
+    let release = outside_dir("release");
+    let staged = outside_dir("release-staged");
+    std::fs::copy(env!("CARGO_BIN_EXE_opengl3d"), staged.join("opengl3d")).unwrap();
+    let asset = "opengl3d-grader-x86_64-linux.tar.gz";
+    let tar = Command::new("tar")
+        .args(["-czf"])
+        .arg(release.join(asset))
+        .arg("-C")
+        .arg(&staged)
+        .arg("opengl3d")
+        .status()
+        .unwrap();
+    assert!(tar.success());
+    let sum = Command::new("sha256sum")
+        .arg(asset)
+        .current_dir(&release)
+        .output()
+        .unwrap();
+    std::fs::write(release.join(format!("{asset}.sha256")), &sum.stdout).unwrap();
+    let server = Server::start(&release);
+
+    let teacher = temp_dir("c50-download");
+    let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args([
+            "lesson",
+            "start",
+            "--classroom",
+            "classroom50",
+            "--grader-repo",
+            "school/opengl3d",
+        ])
+        .arg(&teacher)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let written = std::fs::read_to_string(teacher.join("autograder/autograder.py")).unwrap();
+    let github = format!(
+        "https://github.com/school/opengl3d/releases/download/v{}",
+        env!("CARGO_PKG_VERSION")
+    );
+    assert!(written.contains(&github), "the Release of the pinned tag");
+    // The same autograder pointed at the local copy of that Release, with no source fallback.
+    let bundle = outside_dir("c50-download-bundle");
+    let local = written.replace(&github, &server.url()).replace(
+        "GRADER_GIT = \"https://github.com/school/opengl3d\"",
+        "GRADER_GIT = \"\"",
+    );
+    std::fs::write(bundle.join("autograder.py"), &local).unwrap();
+    let class = outside_dir("c50-download-class");
+    let dir = student(&class, "ada", &teacher.join("template"), &[]);
+    let env = [
+        ("CLASSROOM", "cg"),
+        ("ASSIGNMENT", "ao"),
+        ("SUBMISSION_TAG", "submit/x"),
+        ("COMMIT_URL", "c"),
+        ("RELEASE_URL", "r"),
+        ("REVIEW_URL", "v"),
+    ];
+    let run = || {
+        Command::new("python3")
+            .arg(bundle.join("autograder.py"))
+            .current_dir(&dir)
+            .envs(env)
+            .env("XDG_CACHE_HOME", outside_dir("c50-download-cache"))
+            .output()
+            .unwrap()
+    };
+    let o = run();
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let r: Json =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("result.json")).unwrap()).unwrap();
+    check_contract(&r, &env);
+    // A corrupted or truncated download is refused, and nothing pretends to have graded.
+    std::fs::write(
+        release.join(format!("{asset}.sha256")),
+        format!("{} {asset}\n", "0".repeat(64)),
+    )
+    .unwrap();
+    let o = run();
+    let err = crate::common::stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{err}");
+    assert!(err.contains("does not match its .sha256"), "{err}");
+    assert!(
+        !dir.join("result.json").exists(),
+        "no result without a grader"
+    );
+
+    // The plain Actions workflow's download step, run by bash as the runner runs a `run:` step
+    // (`bash --noprofile --norc -eo pipefail`), against the same Release: refused while the checksum
+    // is wrong, installed once it is right.
+    let actions = temp_dir("actions-download");
+    let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .args(["lesson", "start", "--classroom", "actions"])
+        .arg(&actions)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let text = std::fs::read_to_string(actions.join(".github/workflows/classroom.yml")).unwrap();
+    let workflow: Value = serde_yaml::from_str(&text).unwrap();
+    let step = workflow["jobs"]["run-autograding-tests"]["steps"]
+        .as_sequence()
+        .unwrap()
+        .iter()
+        .find(|s| s.get("name").and_then(Value::as_str) == Some("Prebuilt grader"))
+        .expect("a download step");
+    let script = str_at(step, "run").to_string();
+    let home = outside_dir("actions-home");
+    let runner_temp = outside_dir("actions-temp");
+    let github_path = runner_temp.join("github_path");
+    let download = || {
+        Command::new("bash")
+            .args(["--noprofile", "--norc", "-eo", "pipefail", "-c", &script])
+            .env("OPENGL3D_RELEASE", server.url())
+            .env("HOME", &home)
+            .env("RUNNER_TEMP", &runner_temp)
+            .env("GITHUB_PATH", &github_path)
+            .output()
+            .unwrap()
+    };
+    let o = download();
+    assert!(!o.status.success(), "a wrong checksum passes");
+    assert!(!home.join(".local/bin/opengl3d").exists());
+    std::fs::write(release.join(format!("{asset}.sha256")), &sum.stdout).unwrap();
+    let o = download();
+    assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    let installed = Command::new(home.join(".local/bin/opengl3d"))
+        .arg("--version")
+        .output()
+        .unwrap();
+    let version = format!("opengl3d {}", env!("CARGO_PKG_VERSION"));
+    assert_eq!(String::from_utf8_lossy(&installed.stdout).trim(), version);
+    let path = std::fs::read_to_string(&github_path).unwrap();
+    assert!(path.contains(".local/bin"), "{path}");
+}

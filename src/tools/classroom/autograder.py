@@ -105,14 +105,15 @@ def build(work):
 
 
 def main():
+    # A result.json left in the checkout must never stand in for this run's.
+    result = Path("result.json")
+    if result.exists():
+        result.unlink()
     work = Path(tempfile.mkdtemp(prefix="opengl3d-grader-"))
     exe = beside() or download(work) or build(work)
     if exe is None:
         log("no opengl3d grader could be found, downloaded or built (see the lines above)")
         return 1
-    result = Path("result.json")
-    if result.exists():
-        result.unlink()
     cmd = [str(exe), "--lang", LANG, "--res", ".", "grade", "--format", "classroom50",
            "--points", POINTS, "--out", "grade-report"]
     log(" ".join(cmd))
