@@ -75,6 +75,25 @@ pub struct Subject<'a> {
     pub shown_dir: &'a Path,
 }
 
+impl Rig {
+    /// The project's SAO and the student's, on the same camera and depth (`passes::run_sao_pair`).
+    pub fn sao_pair(
+        &self,
+        camera: &Camera,
+        depth: &[f32],
+        params: &AoSettings,
+    ) -> Result<(Vec<f32>, Vec<f32>)> {
+        super::passes::run_sao_pair(
+            &self.reference,
+            &self.student,
+            &self.meshes,
+            camera,
+            depth,
+            params,
+        )
+    }
+}
+
 impl Subject<'_> {
     /// Replaces the private copy's path by the student's in an error message.
     fn rewrite(&self, msg: &str) -> String {

@@ -9,7 +9,6 @@
 use crate::ao::AoSettings;
 use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
-use crate::tools::grade::passes::run_sao_pair;
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{Aabb, SynthScene};
 use anyhow::Result;
@@ -71,14 +70,7 @@ fn spread(b: [f64; 4]) -> f64 {
 pub fn anisotropy(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64, bool)> {
     let scene = panel_scene(size);
     let depth = scene.depth();
-    let (r, s) = run_sao_pair(
-        &rig.reference,
-        &rig.student,
-        &rig.meshes,
-        &scene.camera,
-        &depth,
-        params,
-    )?;
+    let (r, s) = rig.sao_pair(&scene.camera, &depth, params)?;
     let student = bands(&s, &scene);
     Ok((
         spread(student),

@@ -7,7 +7,6 @@
 use crate::ao::AoSettings;
 use crate::math::Camera;
 use crate::tools::grade::measure::as_r8;
-use crate::tools::grade::passes::run_sao_pair;
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{floor, SynthScene};
 use anyhow::Result;
@@ -39,14 +38,7 @@ pub(super) fn low_floor(
 ) -> Result<((f64, f64), (f64, f64))> {
     let scene = low_floor_scene(size);
     let depth = scene.depth();
-    let (r, s) = run_sao_pair(
-        &rig.reference,
-        &rig.student,
-        &rig.meshes,
-        &scene.camera,
-        &depth,
-        params,
-    )?;
+    let (r, s) = rig.sao_pair(&scene.camera, &depth, params)?;
     let band = |lo: f32, hi: f32| {
         let (mut ss, mut rr, mut n) = (0.0f64, 0.0f64, 0usize);
         for i in (0..depth.len()).filter(|&i| (lo..hi).contains(&depth[i])) {

@@ -5,7 +5,7 @@
 
 use crate::ao::AoSettings;
 use crate::tools::grade::measure::{as_r8, block_means, rect_mean};
-use crate::tools::grade::passes::{run_sao, run_sao_pair, Mips};
+use crate::tools::grade::passes::{run_sao, Mips};
 use crate::tools::grade::picture::{Panel, Shade};
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{ProbeKind, SynthScene};
@@ -243,14 +243,7 @@ pub(super) fn measure(rig: &Rig, params: &AoSettings, scenes: &[SynthScene]) -> 
         let (w, h) = (scene.width as usize, scene.height as usize);
         let depth = scene.depth();
         let far = scene.camera.far;
-        let (r, raw) = run_sao_pair(
-            &rig.reference,
-            &rig.student,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            params,
-        )?;
+        let (r, raw) = rig.sao_pair(&scene.camera, &depth, params)?;
         let s: Vec<f32> = raw.iter().map(|v| as_r8(*v)).collect();
         let clean = clean_mask(&depth, w, h, far);
         let flat: Vec<bool> = (0..w * h)
@@ -434,14 +427,7 @@ pub(super) fn saturation(
     let mut got = Vec::new();
     for scene in scenes {
         let depth = scene.depth();
-        let (r, s) = run_sao_pair(
-            &rig.reference,
-            &rig.student,
-            &rig.meshes,
-            &scene.camera,
-            &depth,
-            &strong,
-        )?;
+        let (r, s) = rig.sao_pair(&scene.camera, &depth, &strong)?;
         got.extend(
             r.iter()
                 .zip(&s)

@@ -8,7 +8,6 @@
 use crate::ao::AoSettings;
 use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
-use crate::tools::grade::passes::run_sao_pair;
 use crate::tools::grade::rig::Rig;
 use crate::tools::grade::scene::{Aabb, SynthScene};
 use anyhow::Result;
@@ -39,14 +38,7 @@ fn post_scene((width, height): (u32, u32)) -> SynthScene {
 pub fn beside_a_near_post(rig: &Rig, params: &AoSettings, size: (u32, u32)) -> Result<(f64, f64)> {
     let scene = post_scene(size);
     let depth = scene.depth();
-    let (r, s) = run_sao_pair(
-        &rig.reference,
-        &rig.student,
-        &rig.meshes,
-        &scene.camera,
-        &depth,
-        params,
-    )?;
+    let (r, s) = rig.sao_pair(&scene.camera, &depth, params)?;
     let w = scene.width as usize;
     let (a, b) = (
         scene.project(Vec3::new(0.12, -1.5, -5.0)),
