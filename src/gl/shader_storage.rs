@@ -51,7 +51,7 @@ pub fn check(text: &str) -> Result<(), Refusal> {
 }
 
 /// `text` with `//` and `/* */` comments blanked, newlines kept so lines do not move.
-fn strip_comments(text: &str) -> String {
+pub fn strip_comments(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     let mut chars = text.chars().peekable();
     while let Some(c) = chars.next() {

@@ -133,6 +133,11 @@ fn three_forms(dir: &Path, mesh: &MeshData) -> Vec<PathBuf> {
 
 /// Renders `model` with `--obj` and returns the blurred AO view (visibility per pixel).
 fn render_ao(model: &Path, out: &Path) -> Vec<f32> {
+    render_ao_said(model, out).0
+}
+
+/// `render_ao`, with what the command said on stderr.
+pub(crate) fn render_ao_said(model: &Path, out: &Path) -> (Vec<f32>, String) {
     let o = run(&[
         "render",
         "--obj",
@@ -147,7 +152,7 @@ fn render_ao(model: &Path, out: &Path) -> Vec<f32> {
         out.to_str().unwrap(),
     ]);
     assert!(o.status.success(), "{}: {}", model.display(), stderr(&o));
-    opengl3d::io::read_pfm(out).unwrap().3
+    (opengl3d::io::read_pfm(out).unwrap().3, stderr(&o))
 }
 
 /// Ray-traces the reference AO of `model` (no cache, so each file is really traced).

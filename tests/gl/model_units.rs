@@ -3,7 +3,7 @@
 //! range (in metres) at a power of 1000 of its size, so the same boxes in metres and in
 //! millimetres give the same AO picture.
 
-use crate::common::{run, stderr, temp_dir};
+use crate::common::temp_dir;
 use glam::Vec3;
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::scene::shapes;
@@ -20,23 +20,9 @@ fn boxes(unit: f32) -> MeshData {
     m
 }
 
-/// `render --obj` of `model`: the raw AO (visibility per pixel) and what it said on stderr.
+/// `render --obj` of `model`: the AO view (visibility per pixel) and what it said on stderr.
 fn render(model: &Path, out: &Path) -> (Vec<f32>, String) {
-    let o = run(&[
-        "render",
-        "--obj",
-        model.to_str().unwrap(),
-        "--width",
-        "96",
-        "--height",
-        "64",
-        "--view",
-        "ao",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    assert!(o.status.success(), "{}: {}", model.display(), stderr(&o));
-    (opengl3d::io::read_pfm(out).unwrap().3, stderr(&o))
+    crate::gltf_files::render_ao_said(model, out)
 }
 
 #[test]

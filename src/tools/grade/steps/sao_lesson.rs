@@ -52,45 +52,12 @@ pub(super) fn low_floor(
     Ok((band(10.0, 40.0), band(1.0, 5.0)))
 }
 
-/// `source` without its comments (each replaced by spaces, newlines kept, so lines still count).
-fn without_comments(source: &str) -> String {
-    let mut out = String::with_capacity(source.len());
-    let mut chars = source.chars().peekable();
-    while let Some(c) = chars.next() {
-        match (c, chars.peek()) {
-            ('/', Some('/')) => {
-                for c in chars.by_ref() {
-                    if c == '\n' {
-                        out.push('\n');
-                        break;
-                    }
-                }
-            }
-            ('/', Some('*')) => {
-                chars.next();
-                let mut last = ' ';
-                for c in chars.by_ref() {
-                    if c == '\n' {
-                        out.push('\n');
-                    }
-                    if last == '*' && c == '/' {
-                        break;
-                    }
-                    last = c;
-                }
-            }
-            _ => out.push(c),
-        }
-    }
-    out
-}
-
 /// Where `source` first calls a derivative (`dFdx`, `dFdy`, `fwidth` and their fine and coarse
 /// forms) inside the body of an `if` or an `else`: (its line, from 1; whether it comes after the
 /// first `for` loop, i.e. in the smoothing rather than the normal). The condition of an `if` is
 /// evaluated before the branch, so a derivative there is not inside it.
 pub(super) fn derivative_in_branch(source: &str) -> Option<(usize, bool)> {
-    let text = without_comments(source);
+    let text = crate::gl::shader_storage::strip_comments(source);
     let bytes = text.as_bytes();
     let word_at = |i: usize, w: &str| {
         text[i..].starts_with(w)
