@@ -55,12 +55,36 @@ fn copy_tree(from: &Path, to: &Path) {
     }
 }
 
-/// A fresh folder outside the source tree (its binary must not find the tree's Res/).
-fn outside_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("opengl3d-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+/// A fresh folder outside the source tree (its binary must not find the tree's Res/), removed
+/// with everything in it when the test is done with it.
+struct OutsideDir(tempfile::TempDir);
+
+impl std::ops::Deref for OutsideDir {
+    type Target = Path;
+    fn deref(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<Path> for OutsideDir {
+    fn as_ref(&self) -> &Path {
+        self.0.path()
+    }
+}
+
+impl AsRef<std::ffi::OsStr> for OutsideDir {
+    fn as_ref(&self) -> &std::ffi::OsStr {
+        self.0.path().as_os_str()
+    }
+}
+
+fn outside_dir(name: &str) -> OutsideDir {
+    OutsideDir(
+        tempfile::Builder::new()
+            .prefix(&format!("opengl3d-{name}-"))
+            .tempdir()
+            .unwrap(),
+    )
 }
 
 fn have(program: &str) -> bool {
@@ -863,17 +887,26 @@ fn the_prebuilt_grader_is_downloaded_checked_and_refused_when_its_checksum_diffe
         ("RELEASE_URL", "r"),
         ("REVIEW_URL", "v"),
     ];
+    let runner_tmp = outside_dir("c50-download-tmp");
+    let download_cache = outside_dir("c50-download-cache");
     let run = || {
         Command::new("python3")
             .arg(bundle.join("autograder.py"))
             .current_dir(&dir)
             .envs(env)
-            .env("XDG_CACHE_HOME", outside_dir("c50-download-cache"))
+            .env("XDG_CACHE_HOME", &download_cache)
+            .env("TMPDIR", &runner_tmp)
             .output()
             .unwrap()
     };
     let o = run();
     assert!(o.status.success(), "{}", crate::common::stderr(&o));
+    // The downloaded grader lives only as long as the run.
+    let left: Vec<_> = std::fs::read_dir(&runner_tmp)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert!(left.is_empty(), "autograder.py left {left:?} in TMPDIR");
     let r: Json =
         serde_json::from_str(&std::fs::read_to_string(dir.join("result.json")).unwrap()).unwrap();
     check_contract(&r, &env);

@@ -109,15 +109,17 @@ def main():
     result = Path("result.json")
     if result.exists():
         result.unlink()
-    work = Path(tempfile.mkdtemp(prefix="opengl3d-grader-"))
-    exe = beside() or download(work) or build(work)
-    if exe is None:
-        log("no opengl3d grader could be found, downloaded or built (see the lines above)")
-        return 1
-    cmd = [str(exe), "--lang", LANG, "--res", ".", "grade", "--format", "classroom50",
-           "--points", POINTS, "--out", "grade-report"]
-    log(" ".join(cmd))
-    code = subprocess.run(cmd).returncode
+    # The downloaded or built grader (tens of MB) lives only as long as this run.
+    with tempfile.TemporaryDirectory(prefix="opengl3d-grader-") as tmp:
+        work = Path(tmp)
+        exe = beside() or download(work) or build(work)
+        if exe is None:
+            log("no opengl3d grader could be found, downloaded or built (see the lines above)")
+            return 1
+        cmd = [str(exe), "--lang", LANG, "--res", ".", "grade", "--format", "classroom50",
+               "--points", POINTS, "--out", "grade-report"]
+        log(" ".join(cmd))
+        code = subprocess.run(cmd).returncode
     if code != 0 or not result.is_file():
         log(f"the grader stopped (exit status {code}) without writing result.json")
         return 1
