@@ -3,10 +3,10 @@
 //!
 //! Layers, each using only those before it: `res`, `io` (files) → `gl` (GL object owners, shader
 //! preprocessor, pass state) → `math` (camera, depth conventions, frusta) → `shader_interface`
-//! (uniform locations and bindings) → `ao` (settings, targets, depth chain, blurs, composite, one
-//! module per method) → `scene` (scene files, demo shapes, game objects) → `render` (the Engine and
-//! its passes) → `platform` (headless EGL, the window) → `tools` (reference, bench, grader,
-//! lessons) → `cli`.
+//! (uniform locations and bindings) → `scene` (scene files with the AO settings they carry, demo
+//! shapes, game objects) → `ao` (targets, depth chain, blurs, composite, one module per method) →
+//! `render` (the Engine and its passes) → `platform` (headless EGL, the window) → `tools`
+//! (reference, bench, grader, lessons) → `cli`. `tests/layers.rs` holds the crate to this order.
 
 pub mod ao;
 pub mod cli;
