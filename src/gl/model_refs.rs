@@ -57,7 +57,7 @@ pub fn read_beside(model: &Path, what: &str, name: &str, limit: u64) -> Result<V
 }
 
 /// Whether a relative path stays in its folder as written: no `..` climbs above where it starts.
-fn stays_inside(relative: &Path) -> bool {
+pub fn stays_inside(relative: &Path) -> bool {
     use std::path::Component;
     let mut depth = 0usize;
     for c in relative.components() {

@@ -9,6 +9,7 @@ mod file;
 pub mod framing;
 pub mod furniture;
 pub mod game_object;
+pub mod method_file;
 mod places;
 mod primitives;
 pub mod shapes;
