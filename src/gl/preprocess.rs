@@ -21,6 +21,9 @@ pub struct ShaderSource {
     /// The encoding the file was decoded from (the GL compiler only takes ASCII; anything but UTF-8 is
     /// worth a warning so the student can re-save the file).
     pub encoding: TextEncoding,
+    /// Where an `#include` not found beside the shader is looked for next: the engine's own
+    /// headers (`Res/ao/`) for a method file's shader, which lives in the user's folder.
+    pub include_fallback: Option<PathBuf>,
 }
 
 impl ShaderSource {
@@ -52,6 +55,7 @@ impl ShaderSource {
             path: path.to_path_buf(),
             text,
             encoding,
+            include_fallback: None,
         })
     }
 }
@@ -199,6 +203,24 @@ pub fn resolve_include(shader: &Path, line: usize, name: &str) -> Result<PathBuf
     Ok(path)
 }
 
+/// `resolve_include`, then, for a file the shader's folder does not have, the source's fallback
+/// folder under the same rules.
+fn resolve_include_with_fallback(
+    src: &ShaderSource,
+    line: usize,
+    name: &str,
+) -> Result<PathBuf, ProgramError> {
+    let beside = resolve_include(&src.path, line, name);
+    match (&src.include_fallback, beside) {
+        (Some(folder), Err(ProgramError::Io { .. })) if folder.join(name).is_file() => {
+            // Resolved as if the shader were in that folder: the same confinement applies there.
+            let stand_in = folder.join(src.path.file_name().unwrap_or_default());
+            resolve_include(&stand_in, line, name)
+        }
+        (_, beside) => beside,
+    }
+}
+
 /// A float literal GLSL accepts, exact for f32 (Rust's shortest round-trip form plus a '.0' if needed).
 pub fn glsl_float(v: f32) -> String {
     let s = format!("{v:?}");
@@ -237,7 +259,7 @@ pub fn prepare_source_with_includes(
     for (i, line) in src.text.lines().enumerate() {
         let ascii = ascii_only(line);
         if let Some(name) = include_target(&ascii) {
-            let path = resolve_include(&src.path, i + 1, name)?;
+            let path = resolve_include_with_fallback(src, i + 1, name)?;
             include_cycle(&src.path, i + 1, name, &path)?;
             let inc = ShaderSource::load(&path)?;
             includes.push(path);
@@ -420,6 +442,46 @@ mod tests {
             Ok(_) => String::new(),
             Err(e) => e.to_string(),
         }
+    }
+
+    #[test]
+    fn an_include_the_folder_lacks_comes_from_the_fallback_under_the_same_rules() {
+        let root = scratch("fallback");
+        let engine = root.join("engine");
+        std::fs::create_dir_all(&engine).unwrap();
+        std::fs::write(engine.join("common.glsl"), "float fromEngine;").unwrap();
+        std::fs::write(root.join("shaders/lib/own.glsl"), "float own;").unwrap();
+        std::fs::write(engine.join("own.glsl"), "float engineOwn;").unwrap();
+        let shader = root.join("shaders/s.frag");
+        let expand = |include: &str, fallback: Option<&Path>| {
+            std::fs::write(
+                &shader,
+                format!("#version 450\n{include}\nvoid main() {{}}\n"),
+            )
+            .unwrap();
+            let mut src = ShaderSource::load(&shader).unwrap();
+            src.include_fallback = fallback.map(Path::to_path_buf);
+            prepare_source_with_includes(&src, &[]).map(|(text, _)| text)
+        };
+        let text = expand("#include \"common.glsl\"", Some(&engine)).unwrap();
+        assert!(text.contains("fromEngine"), "{text}");
+        // Without the fallback the same include is a missing file.
+        assert!(expand("#include \"common.glsl\"", None).is_err());
+        // The shader's own folder wins.
+        let text = expand("#include \"lib/own.glsl\"", Some(&engine)).unwrap();
+        assert!(
+            text.contains("float own;") && !text.contains("engineOwn"),
+            "{text}"
+        );
+        // Climbing out stays refused, in the fallback too.
+        for include in [
+            "#include \"../secret.glsl\"",
+            "#include \"../engine/common.glsl\"",
+        ] {
+            let e = expand(include, Some(&engine)).unwrap_err().to_string();
+            assert!(e.contains("'..'"), "{include}: {e}");
+        }
+        std::fs::remove_dir_all(&root).unwrap();
     }
 
     #[test]

@@ -19,6 +19,8 @@ pub struct ProgramObject {
     vert_path: PathBuf,
     frag_path: PathBuf,
     defines: Vec<(String, String)>,
+    /// Where `#include`s the fragment shader's folder lacks are found (a method file's shader).
+    include_fallback: Option<PathBuf>,
     stamp: Option<(SystemTime, SystemTime)>,
     /// Locations of the active uniforms: setting an absent location is a GL error, and a student's
     /// shader may lack this port's optional uniforms (or the compiler may have removed unused ones).
@@ -50,11 +52,28 @@ impl ProgramObject {
     ) -> Result<ProgramObject, ProgramError> {
         let vert_path = res.find(vert)?;
         let frag_path = res.find(frag)?;
+        ProgramObject::from_paths(gl, vert_path, frag_path, defines, None)
+    }
+
+    /// Builds a program from files given by path; `#include`s the fragment shader's folder lacks
+    /// are looked for in `include_fallback` (the engine's headers, for a shader outside `Res/`).
+    pub fn from_paths(
+        gl: &Gl,
+        vert_path: PathBuf,
+        frag_path: PathBuf,
+        defines: &[(&str, String)],
+        include_fallback: Option<PathBuf>,
+    ) -> Result<ProgramObject, ProgramError> {
         let defines: Vec<(String, String)> = defines
             .iter()
             .map(|(k, v)| (k.to_string(), v.clone()))
             .collect();
-        let id = build(gl, &vert_path, &frag_path, &defines)?;
+        let sources = Sources {
+            vert: &vert_path,
+            frag: &frag_path,
+            include_fallback: include_fallback.as_deref(),
+        };
+        let id = build(gl, &sources, &defines)?;
         let stamp = mtime(&vert_path).zip(mtime(&frag_path));
         let active = active_locations(gl, id);
         Ok(ProgramObject {
@@ -63,6 +82,7 @@ impl ProgramObject {
             vert_path,
             frag_path,
             defines,
+            include_fallback,
             stamp,
             active,
         })
@@ -71,7 +91,12 @@ impl ProgramObject {
     /// Rebuilds from the files; on failure the previous program stays in use and the error is returned.
     pub fn reload(&mut self) -> Result<(), ProgramError> {
         self.stamp = mtime(&self.vert_path).zip(mtime(&self.frag_path));
-        let id = build(&self.gl, &self.vert_path, &self.frag_path, &self.defines)?;
+        let sources = Sources {
+            vert: &self.vert_path,
+            frag: &self.frag_path,
+            include_fallback: self.include_fallback.as_deref(),
+        };
+        let id = build(&self.gl, &sources, &self.defines)?;
         unsafe { self.gl.delete_program(self.id) };
         self.id = id;
         self.active = active_locations(&self.gl, id);
@@ -202,13 +227,22 @@ impl ProgramObject {
     }
 }
 
+/// A program's two files, and where the fragment shader's missing includes are found.
+struct Sources<'a> {
+    vert: &'a Path,
+    frag: &'a Path,
+    include_fallback: Option<&'a Path>,
+}
+
 fn compile(
     gl: &glow::Context,
     kind: u32,
     path: &Path,
     defines: &[(String, String)],
+    include_fallback: Option<&Path>,
 ) -> Result<glow::Shader, ProgramError> {
-    let src = ShaderSource::load(path)?;
+    let mut src = ShaderSource::load(path)?;
+    src.include_fallback = include_fallback.map(Path::to_path_buf);
     if src.encoding != TextEncoding::Utf8 {
         log::warn!(
             "{}: decoded as {}; consider saving it as UTF-8",
@@ -278,12 +312,18 @@ fn check_storage(text: &str, path: &Path, includes: &[PathBuf]) -> Result<(), Pr
 
 fn build(
     gl: &glow::Context,
-    vert: &Path,
-    frag: &Path,
+    sources: &Sources,
     defines: &[(String, String)],
 ) -> Result<glow::Program, ProgramError> {
-    let vs = compile(gl, glow::VERTEX_SHADER, vert, defines)?;
-    let fs = match compile(gl, glow::FRAGMENT_SHADER, frag, defines) {
+    let (vert, frag) = (sources.vert, sources.frag);
+    let vs = compile(gl, glow::VERTEX_SHADER, vert, defines, None)?;
+    let fs = match compile(
+        gl,
+        glow::FRAGMENT_SHADER,
+        frag,
+        defines,
+        sources.include_fallback,
+    ) {
         Ok(fs) => fs,
         Err(e) => {
             unsafe { gl.delete_shader(vs) };
