@@ -57,6 +57,10 @@ impl AoInputs<'_> {
 /// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
 pub trait AoMethodPass {
     fn method(&self) -> AoMethod;
+    /// The name statistics and reports show when it is not the method's (a method file's own).
+    fn own_name(&self) -> Option<&'static str> {
+        None
+    }
     /// Every program it owns (hot reload, define updates).
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject>;
     /// Re-injects the compile-time constants that follow the camera and the settings.
@@ -177,8 +181,11 @@ pub struct ShaderMethod {
     blur: ProgramObject,
     packed: PackedOutput,
     /// (first, second) of `aoCounts` from the settings.
-    counts: fn(&AoSettings) -> [i32; 2],
+    counts: CountsFn,
 }
+
+/// How a method turns the settings into `aoCounts`.
+pub type CountsFn = Box<dyn Fn(&AoSettings) -> [i32; 2]>;
 
 impl ShaderMethod {
     pub fn build(
@@ -191,6 +198,19 @@ impl ShaderMethod {
     ) -> Result<ShaderMethod, ProgramError> {
         let defines = method_defines(camera);
         let program = ProgramObject::from_res(gl, res, "simple.vert", shader, &defines)?;
+        ShaderMethod::with_program(method, program, Box::new(counts), gl, res, camera)
+    }
+
+    /// A method whose occlusion program is already built (a method file's shader, outside `Res/`).
+    pub fn with_program(
+        method: AoMethod,
+        program: ProgramObject,
+        counts: CountsFn,
+        gl: &Gl,
+        res: &ResDirs,
+        camera: &Camera,
+    ) -> Result<ShaderMethod, ProgramError> {
+        let defines = method_defines(camera);
         let blur = ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &defines)?;
         Ok(ShaderMethod {
             method,
@@ -206,12 +226,12 @@ impl ShaderMethod {
         &mut self,
         camera: &Camera,
         settings: &AoSettings,
-        extra: &[(&'static str, String)],
+        extra: &[(&str, String)],
     ) -> Result<(), ProgramError> {
         let defines = method_defines(camera);
-        let mut own = defines.clone();
+        let mut own: Vec<(&str, String)> = defines.clone();
         own.push(normal_source_define(settings));
-        own.extend_from_slice(extra);
+        own.extend(extra.iter().cloned());
         self.program.set_defines(&own)?;
         self.blur.set_defines(&defines)
     }

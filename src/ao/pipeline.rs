@@ -119,6 +119,22 @@ impl AoPipeline {
         self.depth_chain.prepare(&self.gl, mode, resolution, camera)
     }
 
+    /// Runs a method file's method in the place of `user::HOST` from now on (`None`: the engine's
+    /// own method again, rebuilt on the next `prepare`).
+    pub fn set_user_method(&mut self, method: Option<super::method::user::UserMethod>) {
+        let host = super::method::user::HOST;
+        match method {
+            Some(m) => self.methods.insert(host, Box::new(m)),
+            None => self.methods.remove(&host),
+        };
+    }
+
+    /// The name `method`'s pass goes by: a method file's own name where one runs in its place.
+    pub fn name_of(&self, method: AoMethod) -> &'static str {
+        let own = self.methods.get(&method).and_then(|m| m.own_name());
+        own.unwrap_or(method.name())
+    }
+
     /// The method's passes; an error when `prepare` was not called for it.
     pub fn method(&self, method: AoMethod) -> Result<&dyn AoMethodPass> {
         self.methods

@@ -202,6 +202,10 @@ pub struct SceneArgs {
     /// AO method.
     #[arg(long, value_parser = choice(&AoMethod::ALL, AoMethod::name))]
     pub method: Option<AoMethod>,
+    /// A method of your own: a method file (TOML naming a GLSL shader beside it, what it reads, its
+    /// parameters; see docs/method-file.md), run where an engine method runs.
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "method")]
+    pub method_file: Option<PathBuf>,
     /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
     #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
     pub samples: Option<u32>,

@@ -189,6 +189,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let scene = load_scene(&args.scene, res)?;
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
+    scene_args::use_method_file(&mut engine, &args.scene)?;
     engine.view = view;
     if args.stats {
         // One frame first, unmeasured: the first frame compiles every shader (Mesa compiles on

@@ -30,6 +30,7 @@ pub fn run(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         .map_err(|e| anyhow::anyhow!("{}: {e}", truth_path.display()))?;
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
+    super::scene_args::use_method_file(&mut engine, &args.scene)?;
     let (ao, sky) = error_map::engine_view(&mut engine)?;
     let map = error_map::compare(&ao, &sky, (ew, eh), &truth, (tw, th))?;
     error_map::write(&args.out, &map, args.error_range)?;

@@ -34,6 +34,7 @@ use std::rc::Rc;
 mod ao_chain;
 mod guard;
 mod surface;
+mod user_method;
 
 pub struct Engine {
     gl: Gl,

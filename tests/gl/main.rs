@@ -33,6 +33,7 @@ mod inputs_limits;
 mod inputs_misread;
 mod layer2_back_faces;
 mod lessons_ja;
+mod method_file;
 mod methods;
 mod model_units;
 mod numerics;

@@ -104,7 +104,7 @@ impl Engine {
         };
         let (pass_name, blur_name) = match method {
             AoMethod::SaoLesson => ("sao", "sao blur"),
-            m => (m.name(), "separable blur"),
+            m => (self.ao.name_of(m), "separable blur"),
         };
         self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
         let blur = self.ao_settings.blur && view != View::AoRaw;
