@@ -140,10 +140,18 @@ impl<'ast> Visit<'ast> for Names {
     }
     fn visit_path(&mut self, path: &'ast syn::Path) {
         let segs: Vec<String> = path.segments.iter().map(|s| s.ident.to_string()).collect();
-        if segs.len() > 1 && matches!(segs[0].as_str(), "crate" | "super" | "self" | CRATE) {
+        // Every path of two or more names: those of other crates are dropped once the modules are
+        // known (`absolute_path`), those through a child module or a name a `use` bound are kept.
+        if segs.len() > 1 {
             self.uses.push((false, segs, String::new()));
         }
         syn::visit::visit_path(self, path);
+    }
+    fn visit_item_mod(&mut self, m: &'ast syn::ItemMod) {
+        // `mod x;` declares a child; it is not a use of the name the file re-exports.
+        if let Some((_, items)) = &m.content {
+            items.iter().for_each(|i| self.visit_item(i));
+        }
     }
     fn visit_ident(&mut self, ident: &'ast proc_macro2::Ident) {
         self.idents.insert(ident.to_string());

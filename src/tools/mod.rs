@@ -3,6 +3,8 @@
 
 #[cfg(feature = "bench")]
 pub mod bench;
+#[cfg(feature = "bench")]
+pub mod challenge;
 pub mod classroom;
 pub mod error_map;
 pub mod grade;

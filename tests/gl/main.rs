@@ -8,6 +8,7 @@ mod bench_model;
 mod bench_skips;
 mod bench_split;
 mod blur_stripes;
+mod challenge;
 mod classroom;
 mod cli;
 mod closed_pipe;

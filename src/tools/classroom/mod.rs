@@ -12,6 +12,9 @@
 
 pub mod actions;
 pub mod classroom50;
+mod write;
+
+pub use write::start;
 
 use crate::tools::grade::points::Points;
 use anyhow::{bail, Result};
@@ -133,16 +136,6 @@ pub(crate) fn student_readme(options: &ClassroomOptions) -> String {
         report = REPORT_DIR
     )
     .into_owned()
-}
-
-/// Writes what `options.kind` needs into `dir`; returns the files written.
-pub fn start(dir: &Path, options: &ClassroomOptions) -> Result<Vec<PathBuf>> {
-    let mut written = match options.kind {
-        ClassroomKind::Classroom50 => classroom50::start(dir, options)?,
-        ClassroomKind::Actions => actions::start(dir, options)?,
-    };
-    written.sort();
-    Ok(written)
 }
 
 #[cfg(test)]

@@ -150,6 +150,33 @@ pub struct GradeArgs {
     /// `lesson` (also what the pages teach beyond them); shown in every report.
     #[arg(long, value_enum, default_value_t = Level::Lesson)]
     pub level: Level,
+    /// A class challenge: rank the method files in DIR (and in its folders, one per student) by
+    /// their error against the ray-traced truth on the scenes' test cameras, among those whose AO
+    /// chain costs at most --budget times the lesson chain's; writes report.html to --out (default
+    /// challenge-report). See docs/grade/challenge.md.
+    #[arg(long, value_name = "DIR", conflicts_with_all = ["class", "mutation_score", "json", "format", "lesson", "step", "points"])]
+    pub challenge: Option<PathBuf>,
+    /// With --challenge: the most an entry's AO chain may cost, as a multiple of the lesson chain's.
+    #[arg(
+        long,
+        default_value_t = 1.0,
+        requires = "challenge",
+        allow_negative_numbers = true
+    )]
+    pub budget: f64,
+    /// With --challenge: the scenes (default: the demo scene); scenes of your own keep the cameras
+    /// unknown to the class.
+    #[arg(long, value_name = "FILE", requires = "challenge")]
+    pub scene: Vec<PathBuf>,
+    /// With --challenge: seconds each entry may take, all its scenes together.
+    #[arg(
+        long,
+        default_value_t = 600.0,
+        value_name = "SECONDS",
+        requires = "challenge",
+        allow_negative_numbers = true
+    )]
+    pub entry_timeout: f64,
 }
 
 /// The hidden child command: grades one step and prints its report as JSON.

@@ -147,21 +147,8 @@ impl Child {
     /// Starts `cmd` (the hidden `grade-step` command for `step`) with its output piped, in a
     /// process group of its own (so that the time limit kills it and anything it started), with a
     /// memory limit, and bound to die with the grader.
-    pub fn spawn(mut cmd: Command, step: Step) -> std::io::Result<Child> {
-        cmd.stdin(Stdio::null())
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped());
-        #[cfg(unix)]
-        {
-            cmd.process_group(0);
-            let grader = std::process::id() as libc::pid_t;
-            // SAFETY: `confine_step` only makes async-signal-safe system calls and allocates nothing.
-            unsafe {
-                cmd.pre_exec(move || confine_step(grader));
-            }
-        }
-        let mut child = cmd.spawn()?;
-        super::interrupt::register_group(child.id());
+    pub fn spawn(cmd: Command, step: Step) -> std::io::Result<Child> {
+        let mut child = spawn_confined(cmd)?;
         let stdout = drain(child.stdout.take());
         let stderr = drain(child.stderr.take());
         Ok(Child {
@@ -203,21 +190,52 @@ impl Child {
 
     /// The child's exit status, or `None` when it ran past `timeout` and was killed.
     fn wait(&mut self, timeout: Duration) -> Result<Option<ExitStatus>, String> {
-        loop {
-            match self.child.try_wait() {
-                Ok(Some(status)) => return Ok(Some(status)),
-                Ok(None) if self.started.elapsed() >= timeout => {
-                    if let Err(e) = kill_tree(&mut self.child) {
-                        return Err(format!("cannot stop the step after its time limit: {e}"));
-                    }
-                    self.child
-                        .wait()
-                        .map_err(|e| format!("cannot wait for the stopped step: {e}"))?;
-                    return Ok(None);
+        wait_or_kill(&mut self.child, self.started, timeout)
+    }
+}
+
+/// Starts `cmd` with its output piped, in a process group of its own (so that a time limit kills it
+/// and anything it started), with the step's memory limit, and bound to die with this process:
+/// how every child that runs a student's shader starts (the steps, the challenge's entries).
+pub(crate) fn spawn_confined(mut cmd: Command) -> std::io::Result<std::process::Child> {
+    cmd.stdin(Stdio::null())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped());
+    #[cfg(unix)]
+    {
+        cmd.process_group(0);
+        let grader = std::process::id() as libc::pid_t;
+        // SAFETY: `confine_step` only makes async-signal-safe system calls and allocates nothing.
+        unsafe {
+            cmd.pre_exec(move || confine_step(grader));
+        }
+    }
+    let child = cmd.spawn()?;
+    super::interrupt::register_group(child.id());
+    Ok(child)
+}
+
+/// Waits for `child` until `timeout` after `started`, killing its process tree then: its exit
+/// status, or `None` when it was killed.
+pub(crate) fn wait_or_kill(
+    child: &mut std::process::Child,
+    started: Instant,
+    timeout: Duration,
+) -> Result<Option<ExitStatus>, String> {
+    loop {
+        match child.try_wait() {
+            Ok(Some(status)) => return Ok(Some(status)),
+            Ok(None) if started.elapsed() >= timeout => {
+                if let Err(e) = kill_tree(child) {
+                    return Err(format!("cannot stop the step after its time limit: {e}"));
                 }
-                Ok(None) => std::thread::sleep(Duration::from_millis(10)),
-                Err(e) => return Err(format!("cannot wait for the step: {e}")),
+                child
+                    .wait()
+                    .map_err(|e| format!("cannot wait for the stopped step: {e}"))?;
+                return Ok(None);
             }
+            Ok(None) => std::thread::sleep(Duration::from_millis(10)),
+            Err(e) => return Err(format!("cannot wait for the step: {e}")),
         }
     }
 }
