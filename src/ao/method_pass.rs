@@ -57,8 +57,9 @@ impl AoInputs<'_> {
 /// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
 pub trait AoMethodPass {
     fn method(&self) -> AoMethod;
-    /// The name statistics and reports show when it is not the method's (a method file's own).
-    fn own_name(&self) -> Option<&'static str> {
+    /// The names statistics and reports give its pass and its blur when they are not the method's
+    /// (a method file's own).
+    fn own_labels(&self) -> Option<(&'static str, &'static str)> {
         None
     }
     /// Every program it owns (hot reload, define updates).

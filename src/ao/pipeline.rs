@@ -129,10 +129,9 @@ impl AoPipeline {
         };
     }
 
-    /// The name `method`'s pass goes by: a method file's own name where one runs in its place.
-    pub fn name_of(&self, method: AoMethod) -> &'static str {
-        let own = self.methods.get(&method).and_then(|m| m.own_name());
-        own.unwrap_or(method.name())
+    /// The names of a method file's pass and blur where one runs in `method`'s place.
+    pub fn own_labels(&self, method: AoMethod) -> Option<(&'static str, &'static str)> {
+        self.methods.get(&method).and_then(|m| m.own_labels())
     }
 
     /// The method's passes; an error when `prepare` was not called for it.

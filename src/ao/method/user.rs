@@ -21,9 +21,9 @@ const ENGINE_HEADER: &str = "ao/common.glsl";
 pub struct UserMethod {
     inner: ShaderMethod,
     file: MethodFile,
-    /// The file's name for the frame's statistics, which keep pass names for the whole run (a
-    /// few bytes per method file loaded).
-    name: &'static str,
+    /// The file's name for the pass and its blur in the frame's statistics, which keep pass names
+    /// for the whole run (a few bytes per method file loaded).
+    labels: (&'static str, &'static str),
 }
 
 impl UserMethod {
@@ -48,8 +48,16 @@ impl UserMethod {
         let counts =
             Box::new(move |s: &AoSettings| [rules[0].value(s.samples), rules[1].value(s.samples)]);
         let inner = ShaderMethod::with_program(HOST, program, counts, gl, res, camera)?;
-        let name = Box::leak(file.name.clone().into_boxed_str());
-        Ok(UserMethod { inner, file, name })
+        let leak = |s: String| -> &'static str { Box::leak(s.into_boxed_str()) };
+        let labels = (
+            leak(file.name.clone()),
+            leak(format!("{} packed blur", file.name)),
+        );
+        Ok(UserMethod {
+            inner,
+            file,
+            labels,
+        })
     }
 
     pub fn file(&self) -> &MethodFile {
@@ -79,8 +87,8 @@ impl AoMethodPass for UserMethod {
     fn method(&self) -> AoMethod {
         HOST
     }
-    fn own_name(&self) -> Option<&'static str> {
-        Some(self.name)
+    fn own_labels(&self) -> Option<(&'static str, &'static str)> {
+        Some(self.labels)
     }
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         self.inner.programs_mut()

@@ -102,9 +102,10 @@ impl Engine {
             objects: &self.objects,
             region,
         };
-        let (pass_name, blur_name) = match method {
-            AoMethod::SaoLesson => ("sao", "sao blur"),
-            m => (self.ao.name_of(m), "separable blur"),
+        let (pass_name, blur_name) = match (method, self.ao.own_labels(method)) {
+            (_, Some(labels)) => labels,
+            (AoMethod::SaoLesson, None) => ("sao", "sao blur"),
+            (m, None) => (m.name(), "separable blur"),
         };
         self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
         let blur = self.ao_settings.blur && view != View::AoRaw;
