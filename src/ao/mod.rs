@@ -16,6 +16,7 @@ pub use crate::scene::ao_settings as settings;
 pub mod slab_hierarchy;
 pub mod targets;
 pub mod upsample;
+pub mod user_method;
 
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;

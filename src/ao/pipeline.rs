@@ -121,8 +121,8 @@ impl AoPipeline {
 
     /// Runs a method file's method in the place of `user::HOST` from now on (`None`: the engine's
     /// own method again, rebuilt on the next `prepare`).
-    pub fn set_user_method(&mut self, method: Option<super::method::user::UserMethod>) {
-        let host = super::method::user::HOST;
+    pub fn set_user_method(&mut self, method: Option<super::user_method::UserMethod>) {
+        let host = super::user_method::HOST;
         match method {
             Some(m) => self.methods.insert(host, Box::new(m)),
             None => self.methods.remove(&host),

@@ -8,7 +8,6 @@ pub mod hemisphere;
 pub mod rtao;
 pub mod sao;
 pub mod sao_lesson;
-pub mod user;
 pub mod vbao;
 
 #[cfg(test)]

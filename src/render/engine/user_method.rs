@@ -2,7 +2,7 @@
 //! engine method that reads the most inputs, with the settings narrowed to what the file reads.
 
 use super::Engine;
-use crate::ao::method::user::{settings_for, UserMethod};
+use crate::ao::user_method::{settings_for, UserMethod};
 use crate::scene::method_file::MethodFile;
 use anyhow::Result;
 

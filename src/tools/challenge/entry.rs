@@ -4,7 +4,7 @@
 //! exactly what one of the engine's methods renders. Prints one JSON line.
 
 use super::protocol::ChallengeProtocol;
-use crate::ao::method::user::settings_for;
+use crate::ao::user_method::settings_for;
 use crate::ao::{AoMethod, AoSettings};
 use crate::platform::HeadlessContext;
 use crate::render::Engine;
