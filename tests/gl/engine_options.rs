@@ -442,8 +442,17 @@ fn packed_blur_equals_the_separable_blur(method: opengl3d::ao::AoMethod) {
         .read_f32(0, 1);
     common::assert_finite("packed blur", &packed);
     // The same raw occlusion through the plain blur (occlusion and depth from two textures).
-    eng.ao
-        .separable_blur
+    let separable = opengl3d::ao::blur::SeparableBlur::new(
+        opengl3d::gl::ProgramObject::from_res(
+            eng.gl(),
+            &opengl3d::res::ResDirs::default(),
+            "simple.vert",
+            "ao/blur_separable.frag",
+            &opengl3d::ao::method_pass::method_defines(&eng.camera),
+        )
+        .unwrap(),
+    );
+    separable
         .run(eng.gl(), eng.ao_targets().unwrap(), &eng.meshes, None)
         .unwrap();
     let plain = eng

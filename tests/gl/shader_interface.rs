@@ -3,6 +3,7 @@
 
 use crate::common;
 
+use opengl3d::ao::AoMethod;
 use opengl3d::gl::ProgramObject;
 use opengl3d::res::ResDirs;
 use opengl3d::shader_interface::{
@@ -15,7 +16,10 @@ fn every_program_matches_the_interface_table() {
     let res = ResDirs::default();
     let defines = build_defines();
     let mut problems = Vec::new();
-    for iface in PROGRAMS {
+    // The methods' rows hold their occlusion shaders' interfaces (the lesson's `sao.frag` is in
+    // `PROGRAMS` too, for the grader).
+    let methods = AoMethod::ALL.map(opengl3d::ao::method::interface);
+    for iface in PROGRAMS.iter().chain(&methods) {
         let p = ProgramObject::from_res(&ctx.gl, &res, iface.vert, iface.frag, &defines)
             .unwrap_or_else(|e| panic!("{} + {}: {e}", iface.vert, iface.frag));
         problems.extend(check_program(&ctx.gl, p.id(), iface));

@@ -2,13 +2,10 @@
 //! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
 //! `Res/ao/gtao.frag`; quality presets in `settings::GtaoQuality`.
 
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, ProgramError};
-use crate::math::Camera;
-use crate::res::ResDirs;
-
-pub const SHADER: &str = "ao/gtao.frag";
+use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 
 /// Slices when no preset is set: two (the XeGTAO "medium" count), the sample budget going to steps
 /// per side (each slice marches both sides: slices × 2 × steps ≈ samples).
@@ -26,6 +23,11 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
     ]
 }
 
-pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
-    ShaderMethod::build(AoMethod::Gtao, SHADER, counts, gl, res, camera)
-}
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| {
+        let pass = ShaderMethod::build(AoMethod::Gtao, counts, gl, res, camera)?;
+        Ok(Box::new(pass))
+    },
+    uniforms: AO_METHOD_UNIFORMS,
+    samplers: AO_METHOD_SAMPLERS,
+};

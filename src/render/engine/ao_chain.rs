@@ -3,7 +3,7 @@
 
 use super::Engine;
 use crate::ao::method_pass::AoInputs;
-use crate::ao::{AoMethod, AoResolution, AoTargets};
+use crate::ao::{AoResolution, AoTargets};
 use crate::gl::{PassState, Texture};
 use crate::math::Camera;
 use crate::render::frame::Frame;
@@ -102,10 +102,8 @@ impl Engine {
             objects: &self.objects,
             region,
         };
-        let (pass_name, blur_name) = match method {
-            AoMethod::SaoLesson => ("sao", "sao blur"),
-            m => (m.name(), "separable blur"),
-        };
+        let info = method.info();
+        let (pass_name, blur_name) = (info.pass_label, info.blur_label);
         self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
         let blur = self.ao_settings.blur && view != View::AoRaw;
         if blur {
