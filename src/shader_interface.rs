@@ -361,18 +361,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
     ),
 ];
 
-/// Every defines any program of `PROGRAMS` needs to compile (camera planes, the lesson's sample
-/// counts, the methods' mip offset), with the course's values.
-pub fn build_defines() -> Vec<(&'static str, String)> {
-    vec![
-        ("CAMERA_NEAR", "0.35".into()),
-        ("CAMERA_FAR", "1000.0".into()),
-        ("SAO_SAMPLE_COUNT", "11".into()),
-        ("SAO_SPIRAL_TURNS", "3".into()),
-        ("LOG_MAX_OFFSET", "3".into()),
-    ]
-}
-
 /// Differences between `program`'s active uniforms and `interface`: an active uniform the table
 /// lacks or places elsewhere, a sampler on another unit, and a declared uniform the program does
 /// not have (a typo in the table). Empty when they agree.

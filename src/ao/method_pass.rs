@@ -1,6 +1,7 @@
 //! What every AO method provides (`AoMethodPass`), the inputs a frame hands it, and the uniforms the
 //! engine's method shaders share through `Res/ao/common.glsl`.
 
+use super::blur::BLUR_REACH;
 use super::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{AoTargets, SAO_DEPTH_LEVELS};
@@ -100,11 +101,13 @@ pub fn max_radius_pixels(ao_width: u32, ao_height: u32) -> f32 {
     0.25 * (ao_width.max(ao_height) as f32).max(8.0)
 }
 
-/// The defines every method shader of `Res/ao/` reads.
+/// The defines every method shader of `Res/ao/` and its blur read: the one place they are written
+/// (the shaders have no fallback values that could disagree).
 pub fn method_defines(camera: &Camera) -> Vec<(&'static str, String)> {
     vec![
         ("CAMERA_FAR", glsl_float(camera.far)),
         ("LOG_MAX_OFFSET", LOG_MAX_OFFSET.to_string()),
+        ("BLUR_REACH", BLUR_REACH.to_string()),
     ]
 }
 

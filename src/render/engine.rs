@@ -422,7 +422,8 @@ impl Engine {
                     )
                 });
             } else if view == View::Composite {
-                self.pass("sao composite", "ao", || self.draw_ao_composite(occlusion));
+                let label = settings.method.info().composite_label;
+                self.pass(label, "ao", || self.draw_ao_composite(occlusion));
             }
             if view != View::Composite {
                 let second = self.second_layer_depth();
@@ -511,7 +512,7 @@ impl Engine {
     fn upsample_inputs<'a>(&'a self, targets: &'a AoTargets) -> Result<UpsampleInputs<'a>> {
         Ok(UpsampleInputs {
             occlusion: targets.result_texture(self.ao_settings.blur),
-            half_depth: &targets.tex_depth,
+            ao_depth: &targets.tex_depth,
             main_depth: self
                 .fbo_main
                 .depth_texture()

@@ -54,9 +54,9 @@ pub struct MethodInfo {
     /// The slab hierarchy (`slab_hierarchy`).
     pub slab_hierarchy: bool,
     /// Its quality presets as slices × steps per side; `None`: `samples` alone sets its taps.
-    pub presets: Option<fn(GtaoQuality) -> (u32, u32)>,
+    pub presets: Option<fn(SlicePreset) -> (u32, u32)>,
     /// The presets the bench runs besides its quick grid of samples.
-    pub bench_presets: &'static [GtaoQuality],
+    pub bench_presets: &'static [SlicePreset],
     /// Rays per pixel (`rays`) and frames accumulated (`accumulate`) instead of samples.
     pub rays: bool,
     /// The intensities `tune` searches; `None`: left at the scene's.
@@ -64,6 +64,8 @@ pub struct MethodInfo {
     /// Its occlusion pass and its blur in the frame's statistics (`render --stats`, the panel).
     pub pass_label: &'static str,
     pub blur_label: &'static str,
+    /// Its composite over the lit picture (the linear blend, when not up-sampled as it blends).
+    pub composite_label: &'static str,
 }
 
 /// A row with every input off, for the rows below to start from.
@@ -86,12 +88,14 @@ const PLAIN: MethodInfo = MethodInfo {
     tuned_intensity: None,
     pass_label: "",
     blur_label: "",
+    composite_label: "",
 };
 
 const SAO_LESSON: MethodInfo = MethodInfo {
     name: "sao-lesson",
     pass_label: "sao",
     blur_label: "sao blur",
+    composite_label: "sao composite",
     module: "sao_lesson",
     shader: "sao.frag",
     engine_chain: false,
@@ -105,6 +109,7 @@ const SAO: MethodInfo = MethodInfo {
     name: "sao",
     pass_label: "sao",
     blur_label: "sao packed blur",
+    composite_label: "sao composite",
     module: "sao",
     shader: "ao/sao.frag",
     bias: true,
@@ -115,6 +120,7 @@ const CRYTEK: MethodInfo = MethodInfo {
     name: "crytek",
     pass_label: "crytek",
     blur_label: "crytek packed blur",
+    composite_label: "crytek composite",
     module: "crytek",
     shader: "ao/crytek.frag",
     normals: NormalUse::None,
@@ -125,6 +131,7 @@ const HEMISPHERE: MethodInfo = MethodInfo {
     name: "hemisphere",
     pass_label: "hemisphere",
     blur_label: "hemisphere packed blur",
+    composite_label: "hemisphere composite",
     module: "hemisphere",
     shader: "ao/hemisphere.frag",
     bias: true,
@@ -134,6 +141,7 @@ const HBAO: MethodInfo = MethodInfo {
     name: "hbao",
     pass_label: "hbao",
     blur_label: "hbao packed blur",
+    composite_label: "hbao composite",
     module: "hbao",
     shader: "ao/hbao.frag",
     ..PLAIN
@@ -142,6 +150,7 @@ const ANGLE_BASED: MethodInfo = MethodInfo {
     name: "angle-based",
     pass_label: "angle-based",
     blur_label: "angle-based packed blur",
+    composite_label: "angle-based composite",
     module: "angle_based",
     shader: "ao/angle_based.frag",
     ..PLAIN
@@ -150,17 +159,19 @@ const GTAO: MethodInfo = MethodInfo {
     name: "gtao",
     pass_label: "gtao",
     blur_label: "gtao packed blur",
+    composite_label: "gtao composite",
     module: "gtao",
     shader: "ao/gtao.frag",
-    presets: Some(GtaoQuality::slices_steps),
+    presets: Some(SlicePreset::gtao_slices_steps),
     // "high" is the accurate end the report compares.
-    bench_presets: &[GtaoQuality::High, GtaoQuality::Ultra],
+    bench_presets: &[SlicePreset::High, SlicePreset::Ultra],
     ..PLAIN
 };
 const VBAO: MethodInfo = MethodInfo {
     name: "vbao",
     pass_label: "vbao",
     blur_label: "vbao packed blur",
+    composite_label: "vbao composite",
     module: "vbao",
     shader: "ao/vbao.frag",
     bias: true,
@@ -168,15 +179,16 @@ const VBAO: MethodInfo = MethodInfo {
     back_faces: true,
     second_layer: true,
     slab_hierarchy: true,
-    presets: Some(GtaoQuality::vbao_slices_steps),
+    presets: Some(SlicePreset::vbao_slices_steps),
     // Every preset: the report shows the cheapest one that reaches a given accuracy.
-    bench_presets: &GtaoQuality::ALL,
+    bench_presets: &SlicePreset::ALL,
     ..PLAIN
 };
 const RTAO: MethodInfo = MethodInfo {
     name: "rtao",
     pass_label: "rtao",
     blur_label: "rtao packed blur",
+    composite_label: "rtao composite",
     module: "rtao",
     shader: "ao/rtao.frag",
     reads_depth_occluders: false,
@@ -242,13 +254,14 @@ impl AoMethod {
     }
 }
 
-/// Slice-method quality presets (`--quality`, `[ao] quality`) for `gtao` and `vbao`: slices × steps
-/// per side (`gtao`'s below; `vbao` has its own, [`GtaoQuality::vbao_slices_steps`]). Every preset reads
-/// level 0 of the half-size linear-depth chain (GTAO's horizon search needs exact depths: the min
-/// mip chain would raise horizons); the sample count is what costs.
+/// Quality presets (`--quality`, `[ao] quality`) of the methods that march slices: slices × steps
+/// per side, each method's own (its row's `MethodInfo::presets`: `gtao_slices_steps`,
+/// `vbao_slices_steps`). Every preset reads level 0 of the AO-size linear-depth chain (a horizon
+/// search needs exact depths: the min mip chain would raise horizons); the sample count is what
+/// costs.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
 #[serde(rename_all = "kebab-case")]
-pub enum GtaoQuality {
+pub enum SlicePreset {
     /// `gtao` 1 slice × 4 steps (8 taps): the blur hides the 4×4 rotation tile; `vbao` the same.
     Low,
     /// `gtao` 2 slices × 4 steps (16 taps): the bench's default setting; `vbao` 1 × 8.
@@ -259,19 +272,20 @@ pub enum GtaoQuality {
     Ultra,
 }
 
-impl GtaoQuality {
-    pub const ALL: [GtaoQuality; 4] = [
-        GtaoQuality::Low,
-        GtaoQuality::Medium,
-        GtaoQuality::High,
-        GtaoQuality::Ultra,
+impl SlicePreset {
+    pub const ALL: [SlicePreset; 4] = [
+        SlicePreset::Low,
+        SlicePreset::Medium,
+        SlicePreset::High,
+        SlicePreset::Ultra,
     ];
-    pub fn slices_steps(self) -> (u32, u32) {
+    /// `gtao`'s slices × steps per side.
+    pub fn gtao_slices_steps(self) -> (u32, u32) {
         match self {
-            GtaoQuality::Low => (1, 4),
-            GtaoQuality::Medium => (2, 4),
-            GtaoQuality::High => (3, 6),
-            GtaoQuality::Ultra => (4, 8),
+            SlicePreset::Low => (1, 4),
+            SlicePreset::Medium => (2, 4),
+            SlicePreset::High => (3, 6),
+            SlicePreset::Ultra => (4, 8),
         }
     }
     /// `vbao`'s slices × steps per side: one slice, the steps doubling from preset to preset (8,
@@ -284,21 +298,21 @@ impl GtaoQuality {
     /// (docs/bench/vbao/steps-or-slices.md).
     pub fn vbao_slices_steps(self) -> (u32, u32) {
         match self {
-            GtaoQuality::Low => (1, 4),
-            GtaoQuality::Medium => (1, 8),
-            GtaoQuality::High => (1, 16),
-            GtaoQuality::Ultra => (1, 32),
+            SlicePreset::Low => (1, 4),
+            SlicePreset::Medium => (1, 8),
+            SlicePreset::High => (1, 16),
+            SlicePreset::Ultra => (1, 32),
         }
     }
     pub fn name(self) -> &'static str {
         match self {
-            GtaoQuality::Low => "low",
-            GtaoQuality::Medium => "medium",
-            GtaoQuality::High => "high",
-            GtaoQuality::Ultra => "ultra",
+            SlicePreset::Low => "low",
+            SlicePreset::Medium => "medium",
+            SlicePreset::High => "high",
+            SlicePreset::Ultra => "ultra",
         }
     }
-    pub fn from_name(name: &str) -> Option<GtaoQuality> {
-        GtaoQuality::ALL.into_iter().find(|q| q.name() == name)
+    pub fn from_name(name: &str) -> Option<SlicePreset> {
+        SlicePreset::ALL.into_iter().find(|q| q.name() == name)
     }
 }

@@ -3,7 +3,7 @@
 
 use serde::{Deserialize, Serialize};
 
-pub use super::ao_method::{AoMethod, GtaoQuality, MethodInfo, NormalUse, TunedIntensity};
+pub use super::ao_method::{AoMethod, MethodInfo, NormalUse, SlicePreset, TunedIntensity};
 pub use super::ao_resolution::AoResolution;
 
 /// Where the engine's methods take each pixel's normal from (`--normals`, `[ao] normals`);
@@ -174,8 +174,8 @@ pub struct AoSettings {
     pub tint: [f32; 3],
     /// Visibility is raised to this power before compositing (1 = as computed).
     pub power: f32,
-    /// GTAO/VBAO preset (slices × steps); when set it decides their sample counts instead of `samples`.
-    pub quality: Option<GtaoQuality>,
+    /// The preset of a method with presets (slices × steps); when set it decides its sample counts instead of `samples`.
+    pub quality: Option<SlicePreset>,
     /// How far behind each depth sample `vbao` takes the surface to extend: metres, or the back
     /// faces' depth; unset: a fraction of the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
     pub thickness: Option<Thickness>,
@@ -504,8 +504,8 @@ mod tests {
         for m in AoMethod::ALL {
             assert_eq!(AoMethod::from_name(m.name()), Some(m));
         }
-        for q in GtaoQuality::ALL {
-            assert_eq!(GtaoQuality::from_name(q.name()), Some(q));
+        for q in SlicePreset::ALL {
+            assert_eq!(SlicePreset::from_name(q.name()), Some(q));
         }
         for c in CompositeMode::ALL {
             assert_eq!(CompositeMode::from_name(c.name()), Some(c));

@@ -354,7 +354,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
 
 #[test]
 fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
-    use opengl3d::ao::{AoMethod, GtaoQuality};
+    use opengl3d::ao::{AoMethod, SlicePreset};
     let ctx = common::context();
     let dir = common::temp_dir("gtao-quality");
     let mut scene = common::crease_scene(
@@ -366,7 +366,7 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
     );
     scene.ao.method = AoMethod::Gtao;
     let mut raw = Vec::new();
-    for q in GtaoQuality::ALL {
+    for q in SlicePreset::ALL {
         scene.ao.quality = Some(q);
         let mut eng = common::engine(&ctx, &scene);
         let v = eng.render_values(View::AoRaw).unwrap();

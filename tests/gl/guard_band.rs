@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoResolution, GtaoQuality, GuardBand, NormalSource, Thickness};
+use opengl3d::ao::{AoMethod, AoResolution, GuardBand, NormalSource, SlicePreset, Thickness};
 use opengl3d::render::View;
 
 const W: u32 = 480;
@@ -23,7 +23,7 @@ fn the_inner_part_of_the_widened_depth_is_the_views_depth() {
         H,
     );
     scene.ao.method = AoMethod::Vbao;
-    scene.ao.quality = Some(GtaoQuality::Low);
+    scene.ao.quality = Some(SlicePreset::Low);
     // With surface passes the engine draws its own depth at the AO size with or without a margin.
     scene.ao.normals = NormalSource::Geometric;
     let mut eng = common::engine(&ctx, &scene);

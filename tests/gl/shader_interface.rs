@@ -6,9 +6,13 @@ use crate::common;
 use opengl3d::ao::AoMethod;
 use opengl3d::gl::ProgramObject;
 use opengl3d::res::ResDirs;
-use opengl3d::shader_interface::{
-    build_defines, check_program, ProgramInterface, Uniform, PROGRAMS,
-};
+use opengl3d::shader_interface::{check_program, ProgramInterface, Uniform, PROGRAMS};
+
+/// Every define the engine injects, with the default camera and settings.
+fn build_defines() -> Vec<(&'static str, String)> {
+    use opengl3d::ao::method::every_define;
+    every_define(&opengl3d::math::Camera::default(), &Default::default())
+}
 
 #[test]
 fn every_program_matches_the_interface_table() {

@@ -1,6 +1,6 @@
 //! Ground-truth-based AO (Jimenez et al. 2016): per slice, the two horizons found by marching the
 //! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
-//! `Res/ao/gtao.frag`; quality presets in `settings::GtaoQuality`.
+//! `Res/ao/gtao.frag`; quality presets in `settings::SlicePreset`.
 
 use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
@@ -14,7 +14,7 @@ pub const DEFAULT_SLICES: i32 = 2;
 /// `aoCounts` = (slices, steps per side): the preset's when one is set.
 pub fn counts(s: &AoSettings) -> [i32; 2] {
     if let Some(q) = s.quality {
-        let (slices, steps) = q.slices_steps();
+        let (slices, steps) = q.gtao_slices_steps();
         return [slices as i32, steps as i32];
     }
     [

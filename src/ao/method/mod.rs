@@ -12,7 +12,7 @@ pub mod sao;
 pub mod sao_lesson;
 pub mod vbao;
 
-use super::method_pass::AoMethodPass;
+use super::method_pass::{method_defines, AoMethodPass};
 use super::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, ProgramError};
 use crate::math::Camera;
@@ -68,6 +68,19 @@ pub const NEW_METHOD_FILES: [&str; 6] = [
     "lessons/ja/methods/NAME.md",
 ];
 
+/// Every define any program the engine builds reads, for `camera` and `settings`: the camera
+/// planes, the lesson's sample count and spiral turns, and `method_defines` (what a test builds
+/// every shader with).
+pub fn every_define(camera: &Camera, settings: &AoSettings) -> Vec<(&'static str, String)> {
+    let mut all = sao_lesson::sao_defines(camera, settings);
+    for d in method_defines(camera) {
+        if !all.iter().any(|(name, _)| *name == d.0) {
+            all.push(d);
+        }
+    }
+    all
+}
+
 /// `method`'s passes.
 pub fn build(
     method: AoMethod,
@@ -89,6 +102,33 @@ mod tests {
     fn read(path: &str) -> String {
         let root = Path::new(env!("CARGO_MANIFEST_DIR"));
         std::fs::read_to_string(root.join(path)).unwrap_or_else(|e| panic!("{path}: {e}"))
+    }
+
+    #[test]
+    fn every_define_comes_from_the_camera_the_settings_and_the_constants() {
+        let camera = crate::math::Camera {
+            near: 0.5,
+            far: 250.0,
+            ..Default::default()
+        };
+        let settings = AoSettings {
+            samples: 13,
+            spiral_turns: 5,
+            ..Default::default()
+        };
+        let d = super::every_define(&camera, &settings);
+        let value = |name: &str| {
+            let found: Vec<&String> = d.iter().filter(|(n, _)| *n == name).map(|v| &v.1).collect();
+            assert_eq!(found.len(), 1, "{name} once: {d:?}");
+            found[0].parse::<f32>().unwrap()
+        };
+        assert_eq!(value("CAMERA_NEAR"), 0.5);
+        assert_eq!(value("CAMERA_FAR"), 250.0);
+        assert_eq!(value("SAO_SAMPLE_COUNT"), 13.0);
+        assert_eq!(value("SAO_SPIRAL_TURNS"), 5.0);
+        let log = crate::ao::method_pass::LOG_MAX_OFFSET;
+        assert_eq!(value("LOG_MAX_OFFSET"), log as f32);
+        assert_eq!(value("BLUR_REACH"), crate::ao::blur::BLUR_REACH as f32);
     }
 
     #[test]

@@ -1,6 +1,6 @@
 //! Visibility-bitmask AO (Therrien et al. 2023): per slice, 32 sectors of equal cosine weight, each
 //! depth sample occluding the sectors its slab (surface to `thickness` behind, within the radius)
-//! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::GtaoQuality`).
+//! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::SlicePreset`).
 //! With the slab hierarchy (`AoSettings::uses_slab_hierarchy`) the taps read `ao::slab_hierarchy`'s
 //! levels instead of single texels.
 

@@ -16,8 +16,8 @@ use serde::Serialize;
 pub struct Setting {
     pub samples: u32,
     pub radius: f32,
-    /// A GTAO quality preset (slices × steps) instead of the sample count.
-    pub quality: Option<crate::ao::GtaoQuality>,
+    /// A slice preset (slices × steps, the method's own) instead of the sample count.
+    pub quality: Option<crate::ao::SlicePreset>,
 }
 
 impl Setting {
@@ -30,7 +30,7 @@ impl Setting {
     }
     /// A preset of a method that has presets (`MethodInfo::presets`); `samples` is its tap count
     /// (2 sides × slices × steps).
-    fn preset(method: AoMethod, q: crate::ao::GtaoQuality, radius: f32) -> Setting {
+    fn preset(method: AoMethod, q: crate::ao::SlicePreset, radius: f32) -> Setting {
         let slices_steps = method.info().presets.expect("a method with presets");
         let (slices, steps) = slices_steps(q);
         Setting {
@@ -74,7 +74,7 @@ pub(crate) fn settings_for(
     method: AoMethod,
     samples: &[u32],
     radii: &[f32],
-    qualities: &[crate::ao::GtaoQuality],
+    qualities: &[crate::ao::SlicePreset],
 ) -> Vec<Setting> {
     let grid = |s: &[u32], r: &[f32]| {
         let mut v = Vec::new();
@@ -211,7 +211,7 @@ mod tests {
         assert!(labels.contains(&"ultra r0.5".to_string()), "{labels:?}");
         let high = settings_for(AoMethod::Gtao, &[], &[], &[])
             .into_iter()
-            .find(|s| s.quality == Some(crate::ao::GtaoQuality::High))
+            .find(|s| s.quality == Some(crate::ao::SlicePreset::High))
             .unwrap();
         assert_eq!(high.samples, 2 * 3 * 6);
         assert!(settings_for(AoMethod::Gtao, &[16], &[], &[])
@@ -227,7 +227,7 @@ mod tests {
         for label in ["low r1", "medium r0.5", "high r0.5", "ultra r1"] {
             assert!(vbao.contains(&label.to_string()), "{vbao:?}");
         }
-        let low = crate::ao::GtaoQuality::Low;
+        let low = crate::ao::SlicePreset::Low;
         let chosen: Vec<String> = settings_for(AoMethod::Vbao, &[8], &[0.5, 1.0], &[low])
             .iter()
             .map(Setting::label)

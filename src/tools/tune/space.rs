@@ -9,7 +9,7 @@
 
 use crate::ao::settings::{MethodInfo, NormalUse, TunedIntensity};
 use crate::ao::{
-    AoMethod, AoResolution, AoSettings, GtaoQuality, GuardBand, NormalSource, Thickness,
+    AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
 };
 
 /// One value of one `[ao]` key.
@@ -24,7 +24,7 @@ pub enum Choice {
     GuardBand(GuardBand),
     Resolution(AoResolution),
     Samples(u32),
-    Quality(Option<GtaoQuality>),
+    Quality(Option<SlicePreset>),
     Rays(u32),
 }
 
@@ -102,7 +102,7 @@ pub fn starts(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<AoSet
     }
     // With those passes to pay for, the taps drop to the `medium` preset where there are presets.
     if info.presets.is_some() && (info.back_faces || info.second_layer) {
-        knows_most.quality = Some(GtaoQuality::Medium);
+        knows_most.quality = Some(SlicePreset::Medium);
     }
     if knows_most == *start {
         vec![*start]
@@ -125,7 +125,7 @@ pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
     let mut axes = Vec::new();
     if budgeted {
         if info.presets.is_some() {
-            let presets = GtaoQuality::ALL.map(Some);
+            let presets = SlicePreset::ALL.map(Some);
             axes.push(axis(
                 "quality",
                 Choice::Quality(start.quality),
@@ -247,7 +247,7 @@ fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
 
 #[cfg(test)]
 mod tests {
-    use crate::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality, NormalSource, Thickness};
+    use crate::ao::{AoMethod, AoResolution, AoSettings, NormalSource, SlicePreset, Thickness};
     use crate::tools::tune::space::{axes, cost_signature, starts, Choice};
 
     #[test]
@@ -325,6 +325,6 @@ mod tests {
         }
         let costly = |c: Choice| cost_signature(&c.apply(&start)) != cost_signature(&start);
         assert!(costly(Choice::Thickness(Some(Thickness::Backface))));
-        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(GtaoQuality::Ultra))));
+        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(SlicePreset::Ultra))));
     }
 }
