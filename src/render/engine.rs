@@ -12,9 +12,7 @@ use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
 use crate::ao::upsample::UpsampleInputs;
-use crate::ao::{
-    composite, AoMethod, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode,
-};
+use crate::ao::{composite, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::mesh::MeshData;
 use crate::gl::readback::{flip_rows, read_rgba8};
@@ -267,7 +265,7 @@ impl Engine {
         let camera = self.camera;
         let resolution = settings.effective_resolution();
         self.ao.prepare_depth_mode(mode, resolution, &camera)?;
-        if settings.method != AoMethod::SaoLesson {
+        if settings.method.info().engine_chain {
             self.ao
                 .prepare_depth_mode(mode, AoResolution::Full, &camera)?;
         }
@@ -504,7 +502,7 @@ impl Engine {
     /// keeps the course's linear filter, the raw view shows the half-size texels as they are).
     fn needs_upsample(&self, targets: &AoTargets, view: View) -> bool {
         targets.size() != self.size()
-            && self.ao_settings.method != AoMethod::SaoLesson
+            && self.ao_settings.method.info().engine_chain
             && view != View::AoRaw
             && !view.is_depth()
     }
@@ -545,7 +543,7 @@ impl Engine {
         let (gl, meshes, main) = (&self.gl, &self.meshes, &self.fbo_main);
         if s.composite == CompositeMode::Blend && s.power == 1.0 {
             let simple = &self.ao.composite_simple;
-            if s.method == AoMethod::Sao {
+            if s.method.info().blend_leaves_sky {
                 let farther = if self.depth_mode.reversed() {
                     glow::LESS
                 } else {

@@ -61,6 +61,9 @@ pub struct MethodInfo {
     pub rays: bool,
     /// The intensities `tune` searches; `None`: left at the scene's.
     pub tuned_intensity: Option<TunedIntensity>,
+    /// The lesson's linear blend leaves the sky out (the pixels at the far plane keep their colour),
+    /// where the method's occlusion is not up-sampled as it blends.
+    pub blend_leaves_sky: bool,
     /// Its occlusion pass and its blur in the frame's statistics (`render --stats`, the panel).
     pub pass_label: &'static str,
     pub blur_label: &'static str,
@@ -86,6 +89,7 @@ const PLAIN: MethodInfo = MethodInfo {
     bench_presets: &[],
     rays: false,
     tuned_intensity: None,
+    blend_leaves_sky: false,
     pass_label: "",
     blur_label: "",
     composite_label: "",
@@ -112,6 +116,7 @@ const SAO: MethodInfo = MethodInfo {
     composite_label: "sao composite",
     module: "sao",
     shader: "ao/sao.frag",
+    blend_leaves_sky: true,
     bias: true,
     spiral_turns: true,
     ..PLAIN
