@@ -1,7 +1,8 @@
 //! The Rust ↔ GLSL interface, written once: every uniform location and texture binding the engine
-//! sets, and for each program the uniforms and samplers it declares. A GL test
+//! sets, and for each program the uniforms and samplers it declares (`PROGRAMS`; each AO method's
+//! occlusion shader in its row, `ao::method::interface`). A GL test
 //! (`tests/gl/shader_interface.rs`) builds every program and checks its active uniforms against
-//! `PROGRAMS`, so a location typo on either side fails instead of being silently skipped.
+//! them, so a location typo on either side fails instead of being silently skipped.
 
 /// Uniform locations, mirroring the course's `layout(location=N)` table.
 pub mod loc {
@@ -136,10 +137,10 @@ pub struct ProgramInterface {
     pub samplers: &'static [Sampler],
 }
 
-const fn u(name: &'static str, location: i32) -> Uniform {
+pub const fn u(name: &'static str, location: i32) -> Uniform {
     Uniform { name, location }
 }
-const fn s(name: &'static str, binding: u32) -> Sampler {
+pub const fn s(name: &'static str, binding: u32) -> Sampler {
     Sampler { name, binding }
 }
 const fn fullscreen(
@@ -158,29 +159,36 @@ const fn fullscreen(
 use binding::*;
 use loc::*;
 
-const AO_METHOD_UNIFORMS: &[Uniform] = &[
+/// The uniforms of `ao/common.glsl` an engine method's shader reads.
+pub const AO_METHOD_UNIFORMS: &[Uniform] = &[
     u("aoInfo", AO_INFO),
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
     u("maxRadiusPixels", MAX_RADIUS_PIXELS),
     u("aoSurfaceNormals", AO_SURFACE_NORMALS),
 ];
-const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT), s("texNormal", SURFACE_NORMALS)];
+pub const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT), s("texNormal", SURFACE_NORMALS)];
 /// The hemisphere kernel's samples stay within the world radius: no screen clamp.
-const AO_UNCLAMPED_UNIFORMS: &[Uniform] = &[
+pub const AO_UNCLAMPED_UNIFORMS: &[Uniform] = &[
     u("aoInfo", AO_INFO),
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
     u("aoSurfaceNormals", AO_SURFACE_NORMALS),
 ];
 /// Crytek's sphere reads no normal, and no screen clamp either.
-const AO_SPHERE_UNIFORMS: &[Uniform] = &[
+pub const AO_SPHERE_UNIFORMS: &[Uniform] = &[
     u("aoInfo", AO_INFO),
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
 ];
 
-/// Every program the engine builds, with what it declares.
+/// The lesson's `sao.frag` (the course's locations); also the `sao-lesson` row's.
+pub const LESSON_SAO_UNIFORMS: &[Uniform] = &[u("saoInfo", SAO_INFO), u("ndcToView", NDC_TO_VIEW)];
+pub const LESSON_SAO_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT)];
+
+/// Every program the engine builds but the AO methods' occlusion shaders (their rows hold theirs),
+/// with what it declares; the lesson's `sao.frag` is here too, as the grader checks a student's
+/// against it.
 pub const PROGRAMS: &[ProgramInterface] = &[
     ProgramInterface {
         vert: "standard.vert",
@@ -245,11 +253,7 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[u("mipLevel", SAO_MIP_LEVEL)],
         &[s("texDepth", INPUT)],
     ),
-    fullscreen(
-        "sao.frag",
-        &[u("saoInfo", SAO_INFO), u("ndcToView", NDC_TO_VIEW)],
-        &[s("texDepth", INPUT)],
-    ),
+    fullscreen("sao.frag", LESSON_SAO_UNIFORMS, LESSON_SAO_SAMPLERS),
     fullscreen(
         "sao_blur.frag",
         &[],
@@ -305,47 +309,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[u("tint", AO_TINT), u("power", AO_TINT_POWER)],
         &[s("texOcclusion", INPUT)],
     ),
-    fullscreen("ao/sao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen(
-        "ao/crytek.frag",
-        AO_SPHERE_UNIFORMS,
-        &[s("texDepth", INPUT)],
-    ),
-    fullscreen(
-        "ao/hemisphere.frag",
-        AO_UNCLAMPED_UNIFORMS,
-        AO_METHOD_SAMPLERS,
-    ),
-    fullscreen("ao/hbao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen(
-        "ao/angle_based.frag",
-        AO_METHOD_UNIFORMS,
-        AO_METHOD_SAMPLERS,
-    ),
-    fullscreen("ao/gtao.frag", AO_METHOD_UNIFORMS, AO_METHOD_SAMPLERS),
-    fullscreen(
-        "ao/vbao.frag",
-        &[
-            u("aoInfo", AO_INFO),
-            u("ndcToView", NDC_TO_VIEW),
-            u("aoCounts", AO_COUNTS),
-            u("maxRadiusPixels", MAX_RADIUS_PIXELS),
-            u("aoThickness", AO_THICKNESS),
-            u("aoBackFaces", AO_BACK_FACES),
-            u("aoSurfaceNormals", AO_SURFACE_NORMALS),
-            u("aoLayers", AO_LAYERS),
-            u("aoLayerBackFaces", AO_LAYER_BACK_FACES),
-            u("aoSlabLevels", AO_SLAB_LEVELS),
-        ],
-        &[
-            s("texDepth", INPUT),
-            s("texBackDepth", SECOND_INPUT),
-            s("texNormal", SURFACE_NORMALS),
-            s("texSecondDepth", SECOND_LAYER),
-            s("texSecondBackDepth", SECOND_LAYER_BACK),
-            s("texSlabs", SLAB_HIERARCHY),
-        ],
-    ),
     fullscreen(
         "ao/slab_hierarchy.frag",
         &[
@@ -357,22 +320,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             s("texDepth", INPUT),
             s("texBackDepth", SECOND_INPUT),
             s("texSlabs", THIRD_INPUT),
-        ],
-    ),
-    fullscreen(
-        "ao/rtao.frag",
-        &[
-            u("aoInfo", AO_INFO),
-            u("ndcToView", NDC_TO_VIEW),
-            u("aoSurfaceNormals", AO_SURFACE_NORMALS),
-            u("viewToWorld", RTAO_VIEW_TO_WORLD),
-            u("rtaoFrame", RTAO_FRAME),
-            u("rtaoNodeCount", RTAO_NODE_COUNT),
-        ],
-        &[
-            s("texDepth", INPUT),
-            s("texNormal", SURFACE_NORMALS),
-            s("texHistory", RTAO_HISTORY),
         ],
     ),
     fullscreen(
@@ -413,18 +360,6 @@ pub const PROGRAMS: &[ProgramInterface] = &[
         &[s("texNormal", INPUT), s("texFrontDepth", SECOND_INPUT)],
     ),
 ];
-
-/// Every defines any program of `PROGRAMS` needs to compile (camera planes, the lesson's sample
-/// counts, the methods' mip offset), with the course's values.
-pub fn build_defines() -> Vec<(&'static str, String)> {
-    vec![
-        ("CAMERA_NEAR", "0.35".into()),
-        ("CAMERA_FAR", "1000.0".into()),
-        ("SAO_SAMPLE_COUNT", "11".into()),
-        ("SAO_SPIRAL_TURNS", "3".into()),
-        ("LOG_MAX_OFFSET", "3".into()),
-    ]
-}
 
 /// Differences between `program`'s active uniforms and `interface`: an active uniform the table
 /// lacks or places elsewhere, a sampler on another unit, and a declared uniform the program does

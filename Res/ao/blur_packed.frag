@@ -9,15 +9,13 @@ layout(binding=0) uniform sampler2D texPacked; // r = occlusion, g = linear dept
 
 layout(location=210) uniform ivec2 axis;       // (1,0) then (0,1)
 
-#ifndef CAMERA_FAR
-#define CAMERA_FAR 1000.0
-#endif
-
+// CAMERA_FAR and BLUR_REACH (texels read on either side) are injected by the engine
+// (`ao::method_pass::method_defines`); the Gaussian table holds BLUR_REACH + 1 weights.
 #include "blur_edge.glsl"
 
 layout(location=0) out vec2 outColor;
 
-const float gaussian[5] = float[5](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
+const float gaussian[BLUR_REACH + 1] = float[](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
 
 void main()
 {
@@ -33,7 +31,7 @@ void main()
                                   texelFetch(texPacked, clamp(uv + axis, ivec2(0), maxUV), 0).y);
   float sum = center.x * gaussian[0];
   float total = gaussian[0];
-  for (int r = -4; r <= 4; ++r) {
+  for (int r = -BLUR_REACH; r <= BLUR_REACH; ++r) {
     if (r == 0) {
       continue;
     }

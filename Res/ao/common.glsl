@@ -16,9 +16,8 @@ layout(location=203) uniform float maxRadiusPixels;
 layout(location=206) uniform int aoSurfaceNormals;
 layout(binding=2) uniform sampler2D texNormal; // octahedral view-space normals at the AO size
 
-#ifndef CAMERA_FAR
-#define CAMERA_FAR 1000.0
-#endif
+// CAMERA_FAR, LOG_MAX_OFFSET and BLUR_REACH come from the engine (`ao::method_pass::method_defines`),
+// without a fallback here: a program built without them fails to compile instead of disagreeing.
 
 #define AO_RADIUS (aoInfo.x)
 #define AO_BIAS (aoInfo.y)

@@ -8,13 +8,6 @@ out float outColor;
 
 layout(binding=0) uniform sampler2D texDepth;
 
-#ifndef CAMERA_NEAR
-#define CAMERA_NEAR 0.35
-#endif
-#ifndef CAMERA_FAR
-#define CAMERA_FAR 1000.0
-#endif
-
 void main()
 {
   ivec2 maxUV = textureSize(texDepth, 0) - 1;

@@ -9,13 +9,6 @@ out float outColor;
 
 layout(binding=0) uniform sampler2D texDepth;
 
-#ifndef CAMERA_NEAR
-#define CAMERA_NEAR 0.35
-#endif
-#ifndef CAMERA_FAR
-#define CAMERA_FAR 1000.0
-#endif
-
 void main()
 {
   // The nearest of the 2x2 texels is the LARGEST reversed depth.

@@ -7,10 +7,8 @@
 #include "common.glsl"
 
 // Samples 2^LOG_MAX_OFFSET pixels apart share a texel of the level they read (McGuire). The engine
-// injects it and sizes the depth chain so that the largest (clamped) disc finds its level.
-#ifndef LOG_MAX_OFFSET
-#define LOG_MAX_OFFSET 3
-#endif
+// injects it (`ao::method_pass::LOG_MAX_OFFSET`) and sizes the depth chain so that the largest
+// (clamped) disc finds its level.
 
 // (occlusion, linear depth) for the engine's packed blur (ao/blur_packed.frag): one fetch per blur tap.
 // Ignored when the target has no second attachment.

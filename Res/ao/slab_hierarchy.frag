@@ -22,10 +22,6 @@ layout(location=205) uniform int aoBackFaces;    // 1: each slab reaches texBack
 
 out vec4 outSlab; // (front, back, texel x, texel y)
 
-#ifndef CAMERA_FAR
-#define CAMERA_FAR 1000.0
-#endif
-
 vec4 OwnSlab(ivec2 p) {
   float z = texelFetch(texDepth, p, 0).x;
   if (z >= CAMERA_FAR) {

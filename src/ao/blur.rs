@@ -34,7 +34,8 @@ fn set_axis(gl: &Gl, program: &ProgramObject, axis: [i32; 2]) {
     unsafe { gl.program_uniform_2_i32(program.id(), Some(&location), axis[0], axis[1]) };
 }
 
-/// The separable blur's program and its half-size intermediate target (R8).
+/// The separable blur's program and its AO-size intermediate target (R8). The engine's methods
+/// blur with the packed blur; this one is the two-texture form tests compare it with.
 pub struct SeparableBlur {
     pub program: ProgramObject,
     /// Created on the first blur and dropped by `release_targets` (an engine with AO off owns no AO
@@ -75,7 +76,7 @@ impl SeparableBlur {
         let mut tmp = self.tmp.borrow_mut();
         if tmp.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
             *tmp = None;
-            *tmp = Some(half_size_target(gl, "FBO(ao blur tmp)", size, glow::R8)?);
+            *tmp = Some(ao_size_target(gl, "FBO(ao blur tmp)", size, glow::R8)?);
         }
         let fbo_tmp = tmp.as_ref().expect("created above");
         PassState::FULLSCREEN.with_scissor(region).apply(gl, None);
@@ -121,8 +122,8 @@ pub fn packed_blur(
     meshes.draw_plane_xy();
 }
 
-/// A one-level colour target of the half size.
-pub fn half_size_target(
+/// A one-level colour target of the AO size (`size`: half, full or quarter of the main image).
+pub fn ao_size_target(
     gl: &Gl,
     name: &str,
     (w, h): (u32, u32),
@@ -134,20 +135,21 @@ pub fn half_size_target(
 
 #[cfg(test)]
 mod tests {
-    use super::*;
-
     #[test]
-    fn blur_reach_is_the_shaders_loop() {
-        let r = BLUR_REACH;
-        let loop_header = format!("for (int r = -{r}; r <= {r}; ++r)");
+    fn the_blurs_read_their_reach_from_the_injected_define_only() {
         for shader in ["blur_separable.frag", "blur_packed.frag"] {
             let path = format!("{}/Res/ao/{shader}", env!("CARGO_MANIFEST_DIR"));
             let text = std::fs::read_to_string(&path).unwrap();
+            let loop_header = "for (int r = -BLUR_REACH; r <= BLUR_REACH; ++r)";
             assert!(
-                text.contains(&loop_header),
+                text.contains(loop_header),
                 "{shader} has no `{loop_header}`"
             );
             assert!(text.contains("axis * r"), "{shader}: taps one texel apart");
+            assert!(
+                !text.contains("#define BLUR_REACH") && !text.contains("#define CAMERA_FAR"),
+                "{shader} defines a value the engine injects"
+            );
         }
     }
 }

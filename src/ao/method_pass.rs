@@ -1,7 +1,7 @@
 //! What every AO method provides (`AoMethodPass`), the inputs a frame hands it, and the uniforms the
 //! engine's method shaders share through `Res/ao/common.glsl`.
 
-use super::blur::SeparableBlur;
+use super::blur::BLUR_REACH;
 use super::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{AoTargets, SAO_DEPTH_LEVELS};
@@ -10,11 +10,11 @@ use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject, Texture}
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::scene::bvh::BvhStats;
 use crate::scene::game_object::GameObject;
 use crate::shader_interface::{binding, loc};
 use anyhow::Result;
 use glow::HasContext;
+use std::any::Any;
 use std::rc::Rc;
 
 /// What a frame hands a method.
@@ -55,7 +55,9 @@ impl AoInputs<'_> {
 }
 
 /// One AO method: its programs, how it fills the occlusion target, and how its output is blurred.
-pub trait AoMethodPass {
+/// What only one method has (`rtao`'s BVH and running mean, `vbao`'s slab hierarchy) is asked of
+/// that method's own type (`AoPipeline::pass_of`).
+pub trait AoMethodPass: Any {
     fn method(&self) -> AoMethod;
     /// The names statistics and reports give its pass and its blur when they are not the method's
     /// (a method file's own).
@@ -70,41 +72,20 @@ pub trait AoMethodPass {
         camera: &Camera,
         settings: &AoSettings,
     ) -> Result<(), ProgramError>;
-    /// Levels of the linear-depth chain it reads, for a half-size buffer of `half`.
-    fn depth_levels(&self, _half: (u32, u32)) -> u32 {
+    /// Levels of the linear-depth chain it reads, for an AO buffer of `ao_size`.
+    fn depth_levels(&self, _ao_size: (u32, u32)) -> u32 {
         SAO_DEPTH_LEVELS
     }
     /// Writes occlusion into `inputs.targets.fbo_sao` (and whatever else the method keeps).
     fn compute(&self, inputs: &AoInputs) -> Result<()>;
-    /// Blurs the occlusion into `inputs.targets.fbo_blur`; the shared separable blur by default.
-    fn blur(&self, inputs: &AoInputs, separable: &SeparableBlur) -> Result<()> {
-        separable.run(inputs.gl, inputs.targets, inputs.meshes, inputs.region)
-    }
+    /// Blurs the occlusion into `inputs.targets.fbo_blur`.
+    fn blur(&self, inputs: &AoInputs) -> Result<()>;
     /// Size-dependent textures it owns now.
     fn textures(&self) -> Vec<Rc<Texture>> {
         Vec::new()
     }
     /// Drops size-dependent textures (re-created on next use).
     fn release_targets(&mut self) {}
-    /// The scene structure it traces, once built (`rtao`'s BVH).
-    fn bvh_stats(&self) -> Option<BvhStats> {
-        None
-    }
-    /// Frames averaged into its last output (`rtao` with `--accumulate`); 1 without accumulation.
-    fn accumulated_frames(&self) -> u32 {
-        1
-    }
-    /// Pixels of its last pass whose rays the driver ended before they were all traced (`rtao`: a
-    /// driver's loop limit); those pixels hold the mean of the rays that finished.
-    fn cut_pixels(&self) -> u32 {
-        0
-    }
-    /// Starts its running mean again at the next frame (the window, after any change of setting).
-    fn restart_accumulation(&self) {}
-    /// The slab hierarchy its last frame built (`vbao` with `[ao] slab_hierarchy`).
-    fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
-        None
-    }
 }
 
 /// The whole number of units (steps, directions' steps, pairs) whose `taps_per_unit` depth taps come
@@ -119,17 +100,19 @@ pub fn units_for_budget(samples: u32, taps_per_unit: u32) -> i32 {
 /// LOG_MAX_OFFSET): 2^3 = 8 samples share a texel of the level they read.
 pub const LOG_MAX_OFFSET: u32 = 3;
 
-/// Largest screen-space radius (pixels of the half-size buffer) a method's disc may have: near the
+/// Largest screen-space radius (pixels of the AO buffer, whatever its size) a method's disc may have: near the
 /// camera the disc could cover the screen (HBAO+ clamps it the same way, to a quarter of the view).
-pub fn max_radius_pixels(half_width: u32, half_height: u32) -> f32 {
-    0.25 * (half_width.max(half_height) as f32).max(8.0)
+pub fn max_radius_pixels(ao_width: u32, ao_height: u32) -> f32 {
+    0.25 * (ao_width.max(ao_height) as f32).max(8.0)
 }
 
-/// The defines every method shader of `Res/ao/` reads.
+/// The defines every method shader of `Res/ao/` and its blur read: the one place they are written
+/// (the shaders have no fallback values that could disagree).
 pub fn method_defines(camera: &Camera) -> Vec<(&'static str, String)> {
     vec![
         ("CAMERA_FAR", glsl_float(camera.far)),
         ("LOG_MAX_OFFSET", LOG_MAX_OFFSET.to_string()),
+        ("BLUR_REACH", BLUR_REACH.to_string()),
     ]
 }
 
@@ -145,7 +128,7 @@ pub fn normal_source_define(settings: &AoSettings) -> (&'static str, String) {
 pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, counts: [i32; 2]) {
     let (w, h) = inputs.targets.size();
     let fov = fov_scale(inputs.camera.fov_y_deg);
-    // Pixels (of the half-size buffer) per metre at 1 m distance.
+    // Pixels (of the AO buffer) per metre at 1 m distance.
     let proj_scale = 0.5 * h as f32 * fov;
     let s = inputs.settings;
     program.set_vec4(loc::AO_INFO, [s.radius, s.bias, s.intensity, proj_scale]);
@@ -189,15 +172,16 @@ pub struct ShaderMethod {
 pub type CountsFn = Box<dyn Fn(&AoSettings) -> [i32; 2]>;
 
 impl ShaderMethod {
+    /// `method`'s shader (`MethodInfo::shader`) and the packed blur, with `counts` for `aoCounts`.
     pub fn build(
         method: AoMethod,
-        shader: &str,
         counts: fn(&AoSettings) -> [i32; 2],
         gl: &Gl,
         res: &ResDirs,
         camera: &Camera,
     ) -> Result<ShaderMethod, ProgramError> {
         let defines = method_defines(camera);
+        let shader = method.info().shader;
         let program = ProgramObject::from_res(gl, res, "simple.vert", shader, &defines)?;
         ShaderMethod::with_program(method, program, Box::new(counts), gl, res, camera)
     }
@@ -241,6 +225,11 @@ impl ShaderMethod {
     pub fn program(&self) -> &ProgramObject {
         &self.program
     }
+
+    /// The (occlusion, depth) target it writes and blurs.
+    pub fn packed(&self) -> &PackedOutput {
+        &self.packed
+    }
 }
 
 impl AoMethodPass for ShaderMethod {
@@ -277,7 +266,7 @@ impl AoMethodPass for ShaderMethod {
         inputs.meshes.draw_plane_xy();
         Ok(())
     }
-    fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
+    fn blur(&self, inputs: &AoInputs) -> Result<()> {
         self.packed.blur(
             inputs.gl,
             inputs.targets,

@@ -1,5 +1,6 @@
-//! Ambient occlusion: settings, the shared half-size targets and depth chain, the blurs and the
-//! composite (with the bilateral up-sampling of half-size AO), and one module per method under `method/` (its shader beside it in `Res/ao/`).
+//! Ambient occlusion: settings, the shared AO-size targets and depth chain, the blurs and the
+//! composite (with the bilateral up-sampling of the AO to the main size), and one module per method
+//! under `method/` (its shader beside it in `Res/ao/`; its row in `method/mod.rs`).
 
 pub mod blur;
 pub mod composite;
@@ -21,7 +22,7 @@ pub mod user_method;
 pub use lesson::SaoLesson;
 pub use pipeline::AoPipeline;
 pub use settings::{
-    AoMethod, AoResolution, AoSettings, CompositeMode, GtaoQuality, GuardBand, NormalSource,
-    SlabHierarchy, Thickness, LAYER2_MIN_THICKNESS_OF_SET,
+    AoMethod, AoResolution, AoSettings, CompositeMode, GuardBand, NormalSource, SlabHierarchy,
+    SlicePreset, Thickness, LAYER2_MIN_THICKNESS_OF_SET,
 };
 pub use targets::AoTargets;

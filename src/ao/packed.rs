@@ -3,7 +3,7 @@
 //! (`WriteOcclusion` in `Res/ao/common.glsl`), so each tap of the blur (`Res/ao/blur_packed.frag`)
 //! is one fetch instead of two (McGuire packs the blur key beside the AO value the same way).
 
-use super::blur::{half_size_target, packed_blur};
+use super::blur::{ao_size_target, packed_blur};
 use super::targets::AoTargets;
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramObject, Texture};
 use anyhow::{bail, Result};
@@ -29,7 +29,7 @@ struct PackedTargets {
 impl PackedTargets {
     fn new(gl: &Gl, shared_sao: &Rc<Texture>) -> Result<PackedTargets> {
         let size = shared_sao.size_at(0);
-        let fbo = half_size_target(gl, "FBO(ao packed)", size, glow::RG32F)?;
+        let fbo = ao_size_target(gl, "FBO(ao packed)", size, glow::RG32F)?;
         let packed = fbo
             .color_texture()
             .cloned()
@@ -55,7 +55,7 @@ impl PackedTargets {
             shared_sao: shared_sao.clone(),
             packed,
             fbo_sao_and_packed: fbo,
-            fbo_tmp: half_size_target(gl, "FBO(ao packed blur tmp)", size, glow::RG32F)?,
+            fbo_tmp: ao_size_target(gl, "FBO(ao packed blur tmp)", size, glow::RG32F)?,
         })
     }
 }

@@ -2,10 +2,10 @@
 //! first use), its blur, and the composite programs; targets created on the first frame that needs
 //! AO. The engine decides the pass order; this type owns what the passes need.
 
-use super::blur::SeparableBlur;
 use super::depth_chain::DepthChain;
-use super::method::{angle_based, crytek, gtao, hbao, hemisphere, rtao, sao, sao_lesson, vbao};
-use super::method_pass::{method_defines, AoInputs, AoMethodPass};
+use super::method::rtao::RtaoMethod;
+use super::method::vbao::VbaoMethod;
+use super::method_pass::{AoInputs, AoMethodPass};
 use super::settings::AoResolution;
 use super::settings::{AoMethod, AoSettings};
 use super::targets::{ao_size, AoTargets, LazyAoTargets};
@@ -14,6 +14,7 @@ use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::res::ResDirs;
 use anyhow::{anyhow, Result};
+use std::any::Any;
 use std::collections::HashMap;
 use std::rc::Rc;
 
@@ -23,35 +24,11 @@ pub struct AoPipeline {
     pub targets: LazyAoTargets,
     pub depth_chain: DepthChain,
     methods: HashMap<AoMethod, Box<dyn AoMethodPass>>,
-    pub separable_blur: SeparableBlur,
     /// `simple.frag` (the lesson's composite) and `ao/composite_tint.frag`.
     pub composite_simple: ProgramObject,
     pub composite_tint: ProgramObject,
-    /// Half-size AO of the engine's methods → main size, depth-aware.
+    /// AO of the engine's methods at the AO size → main size, depth-aware.
     pub upsample: BilateralUpsample,
-}
-
-/// Builds `method`'s passes.
-fn build_method(
-    method: AoMethod,
-    gl: &Gl,
-    res: &ResDirs,
-    camera: &Camera,
-    settings: &AoSettings,
-) -> Result<Box<dyn AoMethodPass>, ProgramError> {
-    Ok(match method {
-        AoMethod::SaoLesson => Box::new(sao_lesson::SaoLessonMethod::build(
-            gl, res, camera, settings,
-        )?),
-        AoMethod::Sao => Box::new(sao::SaoMethod::build(gl, res, camera)?),
-        AoMethod::Crytek => Box::new(crytek::build(gl, res, camera)?),
-        AoMethod::Hemisphere => Box::new(hemisphere::build(gl, res, camera)?),
-        AoMethod::Hbao => Box::new(hbao::build(gl, res, camera)?),
-        AoMethod::AngleBased => Box::new(angle_based::build(gl, res, camera)?),
-        AoMethod::Gtao => Box::new(gtao::build(gl, res, camera)?),
-        AoMethod::Vbao => Box::new(vbao::VbaoMethod::build(gl, res, camera)?),
-        AoMethod::Rtao => Box::new(rtao::RtaoMethod::build(gl, res, camera)?),
-    })
 }
 
 impl AoPipeline {
@@ -74,10 +51,6 @@ impl AoPipeline {
             targets: LazyAoTargets::new(gl, size, depth_levels),
             depth_chain: DepthChain::new(gl, res, camera)?,
             methods: HashMap::new(),
-            separable_blur: SeparableBlur::new(fullscreen(
-                "ao/blur_separable.frag",
-                &method_defines(camera),
-            )?),
             composite_simple: fullscreen("simple.frag", &[])?,
             composite_tint: fullscreen("ao/composite_tint.frag", &[])?,
             upsample: BilateralUpsample::new(
@@ -102,7 +75,7 @@ impl AoPipeline {
         settings: &AoSettings,
     ) -> Result<(), ProgramError> {
         if !self.methods.contains_key(&method) {
-            let m = build_method(method, &self.gl, &self.res, camera, settings)?;
+            let m = super::method::build(method, &self.gl, &self.res, camera, settings)?;
             self.methods.insert(method, m);
         }
         Ok(())
@@ -165,7 +138,6 @@ impl AoPipeline {
     /// Drops every size-dependent texture (re-created at the right size on next use).
     pub fn release_targets(&mut self) {
         self.targets.release();
-        self.separable_blur.release_targets();
         self.upsample.release_targets();
         for m in self.methods.values_mut() {
             m.release_targets();
@@ -180,7 +152,6 @@ impl AoPipeline {
             out.push(t.sao_texture().clone());
             out.push(t.result_texture(true).clone());
         }
-        out.extend(self.separable_blur.textures());
         out.extend(self.upsample.textures());
         for m in self.methods.values() {
             out.extend(m.textures());
@@ -190,7 +161,6 @@ impl AoPipeline {
 
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         let mut v = self.depth_chain.programs_mut();
-        v.push(&mut self.separable_blur.program);
         v.push(&mut self.composite_simple);
         v.push(&mut self.composite_tint);
         v.push(&mut self.upsample.program);
@@ -222,9 +192,6 @@ impl AoPipeline {
         settings: &AoSettings,
     ) -> Result<(), ProgramError> {
         self.depth_chain.update_camera(camera)?;
-        self.separable_blur
-            .program
-            .set_defines(&method_defines(camera))?;
         for m in self.methods.values_mut() {
             m.update_defines(camera, settings)?;
         }
@@ -236,39 +203,47 @@ impl AoPipeline {
         self.method(method)?.compute(inputs)
     }
 
+    /// `method`'s passes as their own type `T`, when it is prepared and is one.
+    pub fn pass_of<T: AoMethodPass>(&self, method: AoMethod) -> Option<&T> {
+        let pass: &dyn Any = self.methods.get(&method)?.as_ref();
+        pass.downcast_ref::<T>()
+    }
+
     /// The BVH `method` traces, once built (`rtao`), with its build time and size.
     pub fn bvh_stats(&self, method: AoMethod) -> Option<crate::scene::bvh::BvhStats> {
-        self.methods.get(&method).and_then(|m| m.bvh_stats())
+        self.pass_of::<RtaoMethod>(method)?.bvh_stats()
     }
 
     /// Frames averaged into `method`'s last output (1 without accumulation).
     pub fn accumulated_frames(&self, method: AoMethod) -> u32 {
-        self.methods
-            .get(&method)
+        self.pass_of::<RtaoMethod>(method)
             .map_or(1, |m| m.accumulated_frames())
     }
 
-    /// Pixels of `method`'s last pass whose rays were cut short (see `AoMethodPass::cut_pixels`).
+    /// Pixels of `method`'s last pass whose rays were cut short (`RtaoMethod::cut_pixels`).
     pub fn cut_pixels(&self, method: AoMethod) -> u32 {
-        self.methods.get(&method).map_or(0, |m| m.cut_pixels())
+        self.pass_of::<RtaoMethod>(method)
+            .map_or(0, |m| m.cut_pixels())
     }
 
     /// Starts every method's running mean again at its next frame.
     pub fn restart_accumulation(&self) {
-        for m in self.methods.values() {
-            m.restart_accumulation();
+        for &method in self.methods.keys() {
+            if let Some(m) = self.pass_of::<RtaoMethod>(method) {
+                m.restart_accumulation();
+            }
         }
     }
 
-    /// `vbao`'s slab hierarchy from the last frame that built one.
+    /// The slab hierarchy from the last frame that built one (a method that reads it, `vbao`).
     pub fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
         self.methods
-            .get(&AoMethod::Vbao)
-            .and_then(|m| m.slab_hierarchy())
+            .keys()
+            .find_map(|&m| self.pass_of::<VbaoMethod>(m)?.slab_hierarchy())
     }
 
     /// Runs the method's blur.
     pub fn blur(&self, method: AoMethod, inputs: &AoInputs) -> Result<()> {
-        self.method(method)?.blur(inputs, &self.separable_blur)
+        self.method(method)?.blur(inputs)
     }
 }

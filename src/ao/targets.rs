@@ -1,4 +1,5 @@
-//! The half-size render targets every AO method shares: the linear-depth mip chain (`texSAODepth`),
+//! The AO-size render targets every AO method shares (half the main size as in the course, or full
+//! or quarter: `AoResolution`): the linear-depth mip chain (`texSAODepth`),
 //! the occlusion target (`texSAO`) and the blurred one (`texSAOBlur`); created lazily so that an engine
 //! that never runs AO owns no AO texture.
 
@@ -23,9 +24,9 @@ pub fn ao_size(width: u32, height: u32, resolution: AoResolution) -> (u32, u32) 
     ((width / d).max(1), (height / d).max(1))
 }
 
-/// The lesson's half-size targets (or full-size ones for `--ao-resolution full`).
+/// The AO-size targets (half size as in the lesson; full or quarter for `--ao-resolution`).
 pub struct AoTargets {
-    /// `texSAODepth`: R32F linear depth in metres, half size, one level per `fbo_depth` entry.
+    /// `texSAODepth`: R32F linear depth in metres at the AO size, one level per `fbo_depth` entry.
     pub tex_depth: Rc<Texture>,
     pub fbo_depth: Vec<FramebufferObject>,
     /// `texSAO`: occlusion (R8; the grader swaps in R32F to read exact values).
@@ -98,7 +99,7 @@ impl AoTargets {
         }
     }
 
-    /// (width, height) of the AO buffers (half or full size).
+    /// (width, height) of the AO buffers (the AO size).
     pub fn size(&self) -> (u32, u32) {
         (self.fbo_depth[0].width(), self.fbo_depth[0].height())
     }

@@ -1,11 +1,11 @@
-//! Joint bilateral up-sampling of the engine's half-size AO to the main size
+//! Joint bilateral up-sampling of the engine's AO (half, full or quarter size) to the main size
 //! (`Res/ao/bilateral_upsample.glsl`): silhouettes keep their own occlusion instead of the linear
 //! filter's blocky halo. The blended composites up-sample as they blend
 //! (`Res/ao/composite_bilateral.frag`, one full-size pass and one full-size texture fewer); the AO
 //! views and the ambient-only lighting read an up-sampled texture (`Res/ao/upsample_bilateral.frag`).
 //! The lesson's `sao-lesson` keeps the course's linear filter.
 
-use super::blur::half_size_target;
+use super::blur::ao_size_target;
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
 use crate::math::{Camera, DepthMode};
 use crate::shader_interface::{binding, loc};
@@ -32,7 +32,8 @@ pub struct BilateralUpsample {
 /// What one up-sampling reads.
 pub struct UpsampleInputs<'a> {
     pub occlusion: &'a Texture,
-    pub half_depth: &'a Texture,
+    /// Linear depth at the AO size.
+    pub ao_depth: &'a Texture,
     pub main_depth: &'a Texture,
     pub camera: &'a Camera,
     pub mode: DepthMode,
@@ -64,7 +65,7 @@ impl BilateralUpsample {
         if target.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
             *target = None;
             // Nearest filtering (the default): the composite reads it texel for texel.
-            *target = Some(half_size_target(gl, "FBO(ao upsampled)", size, glow::R8)?);
+            *target = Some(ao_size_target(gl, "FBO(ao upsampled)", size, glow::R8)?);
         }
         let fbo = target.as_ref().expect("created above");
         PassState::FULLSCREEN.apply(gl, None);
@@ -140,6 +141,6 @@ fn depth_planes(inputs: &UpsampleInputs) -> [f32; 3] {
 
 fn bind_inputs(inputs: &UpsampleInputs) {
     inputs.occlusion.bind(binding::INPUT);
-    inputs.half_depth.bind(binding::SECOND_INPUT);
+    inputs.ao_depth.bind(binding::SECOND_INPUT);
     inputs.main_depth.bind(binding::THIRD_INPUT);
 }

@@ -101,8 +101,8 @@ impl AoMethodPass for UserMethod {
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
         self.inner.compute(inputs)
     }
-    fn blur(&self, inputs: &AoInputs, separable: &crate::ao::blur::SeparableBlur) -> Result<()> {
-        self.inner.blur(inputs, separable)
+    fn blur(&self, inputs: &AoInputs) -> Result<()> {
+        self.inner.blur(inputs)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         self.inner.textures()

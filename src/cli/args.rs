@@ -4,7 +4,7 @@
 //! the flag) instead of clap reading `-3` as an unknown flag.
 
 use crate::ao::{
-    AoMethod, AoResolution, CompositeMode, GtaoQuality, GuardBand, NormalSource, SlabHierarchy,
+    AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, SlabHierarchy, SlicePreset,
     Thickness,
 };
 use crate::i18n::Lang;
@@ -211,8 +211,8 @@ pub struct SceneArgs {
     pub samples: Option<u32>,
     /// GTAO/VBAO quality preset (slices × steps per side): gtao low 1×4, medium 2×4, high 3×6, ultra
     /// 4×8; vbao 1×4, 1×8, 1×16, 1×32.
-    #[arg(long, value_parser = choice(&GtaoQuality::ALL, GtaoQuality::name))]
-    pub quality: Option<GtaoQuality>,
+    #[arg(long, value_parser = choice(&SlicePreset::ALL, SlicePreset::name))]
+    pub quality: Option<SlicePreset>,
     /// AO radius in metres.
     #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f32>,

@@ -5,7 +5,10 @@
 
 use crate::ao::method::vbao::feature_defines;
 use crate::ao::method_pass::normal_source_define;
-use crate::ao::settings::{AoSettings, SlabHierarchy, RAYS_RANGE};
+use crate::ao::settings::{
+    AoSettings, NormalUse, SlabHierarchy, POWER_RANGE, RAYS_RANGE, SAMPLES_RANGE,
+    SPIRAL_TURNS_RANGE,
+};
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::platform::window::accumulation::WINDOW_ACCUMULATE;
@@ -19,6 +22,14 @@ use std::collections::HashMap;
 const PANEL_WIDTH: f32 = 260.0;
 /// The panel never covers more than this share of the window, so the scene stays visible.
 const PANEL_MAX_SHARE: f32 = 0.6;
+/// Slider ends narrower than the ranges the settings accept (`ao::settings`), where a drag across
+/// the whole accepted range would leave no precision for the values scenes use: radius and
+/// thickness (m, logarithmic), bias (m), intensity; rays per frame.
+const RADIUS_SLIDER: (f32, f32) = (0.01, 10.0);
+const THICKNESS_SLIDER: (f32, f32) = (0.01, 10.0);
+const BIAS_SLIDER: (f32, f32) = (0.0, 0.2);
+const INTENSITY_SLIDER: (f32, f32) = (0.0, 50.0);
+const RAYS_SLIDER_MAX: u32 = 64;
 /// Weight of the newest frame in the smoothed pass times (single frames on llvmpipe jitter a lot).
 const TIME_SMOOTHING: f64 = 0.25;
 
@@ -131,9 +142,11 @@ impl Panel {
             });
         actions.sync_shader_constants |= p.method != before;
 
+        // What the method reads decides what the panel offers (`MethodInfo`).
+        let info = p.method.info();
         // The engine's methods can run at the main size; the lesson's SAO stays at half as taught.
         let resolution = p.resolution;
-        ui.add_enabled_ui(p.method != AoMethod::SaoLesson, |ui| {
+        ui.add_enabled_ui(info.engine_chain, |ui| {
             egui::ComboBox::from_label(tr("panel.resolution"))
                 .selected_text(p.resolution.name())
                 .show_ui(ui, |ui| {
@@ -143,7 +156,7 @@ impl Panel {
                 })
         });
         actions.sync_shader_constants |= p.resolution != resolution;
-        if p.method != AoMethod::SaoLesson && p.method != AoMethod::Crytek {
+        if info.normals == NormalUse::Chosen {
             let mut geometric = p.normals == NormalSource::Geometric;
             ui.checkbox(&mut geometric, tr("panel.geometric_normals"))
                 .on_hover_text(tr("panel.geometric_normals_help"));
@@ -152,6 +165,8 @@ impl Panel {
             } else {
                 NormalSource::Depth
             };
+        }
+        if info.engine_chain {
             let mut guard = p.guard_band != GuardBand::Off;
             ui.checkbox(&mut guard, tr("panel.guard_band"))
                 .on_hover_text(tr("panel.guard_band_help"));
@@ -161,18 +176,22 @@ impl Panel {
                 (true, g) => g,
             };
         }
-        if p.method == AoMethod::Vbao {
+        if info.second_layer {
             let mut second = p.layers >= 2;
             ui.checkbox(&mut second, tr("panel.second_layer"))
                 .on_hover_text(tr("panel.second_layer_help"));
             p.layers = if second { 2 } else { 1 };
+        }
+        if info.thickness {
             let mut back_faces = p.thickness == Some(Thickness::Backface);
-            ui.checkbox(&mut back_faces, tr("panel.backface"))
-                .on_hover_text(tr("panel.backface_help"));
+            if info.back_faces {
+                ui.checkbox(&mut back_faces, tr("panel.backface"))
+                    .on_hover_text(tr("panel.backface_help"));
+            }
             let mut metres = p.thickness_metres();
             let r = ui.add_enabled(
                 !back_faces,
-                egui::Slider::new(&mut metres, 0.01..=10.0)
+                egui::Slider::new(&mut metres, THICKNESS_SLIDER.0..=THICKNESS_SLIDER.1)
                     .logarithmic(true)
                     .suffix(" m")
                     .text(tr("panel.thickness")),
@@ -184,6 +203,8 @@ impl Panel {
             } else {
                 p.thickness
             };
+        }
+        if info.slab_hierarchy {
             // Shows what `auto` decided; a click sets it on or off explicitly.
             let mut hierarchy = p.uses_slab_hierarchy();
             if ui
@@ -221,7 +242,7 @@ impl Panel {
                 ui.label(tr("panel.tint"));
             });
             ui.add(
-                egui::Slider::new(&mut p.power, 0.05..=20.0)
+                egui::Slider::new(&mut p.power, POWER_RANGE.0..=POWER_RANGE.1)
                     .logarithmic(true)
                     .text(tr("panel.power")),
             );
@@ -229,19 +250,19 @@ impl Panel {
 
         ui.separator();
         ui.add(
-            egui::Slider::new(&mut p.radius, 0.01..=10.0)
+            egui::Slider::new(&mut p.radius, RADIUS_SLIDER.0..=RADIUS_SLIDER.1)
                 .logarithmic(true)
                 .suffix(" m")
                 .text(tr("panel.radius")),
         );
         ui.add(
-            egui::Slider::new(&mut p.bias, 0.0..=0.2)
+            egui::Slider::new(&mut p.bias, BIAS_SLIDER.0..=BIAS_SLIDER.1)
                 .suffix(" m")
                 .text(tr("panel.bias")),
         )
         .on_hover_text(tr("panel.bias_help"));
         ui.add(
-            egui::Slider::new(&mut p.intensity, 0.0..=50.0)
+            egui::Slider::new(&mut p.intensity, INTENSITY_SLIDER.0..=INTENSITY_SLIDER.1)
                 .logarithmic(true)
                 .text(tr("panel.intensity")),
         );
@@ -250,7 +271,7 @@ impl Panel {
         let mut samples = self.pending_samples.unwrap_or(p.samples);
         let r = ui
             .add(
-                egui::Slider::new(&mut samples, 1..=256)
+                egui::Slider::new(&mut samples, SAMPLES_RANGE.0..=SAMPLES_RANGE.1)
                     .logarithmic(true)
                     .text(tr("panel.samples")),
             )
@@ -264,13 +285,17 @@ impl Panel {
         }
         let turns = p.spiral_turns;
         ui.add_enabled(
-            matches!(p.method, AoMethod::SaoLesson | AoMethod::Sao),
-            egui::Slider::new(&mut p.spiral_turns, 1..=64).text(tr("panel.spiral_turns")),
+            info.spiral_turns,
+            egui::Slider::new(
+                &mut p.spiral_turns,
+                SPIRAL_TURNS_RANGE.0..=SPIRAL_TURNS_RANGE.1,
+            )
+            .text(tr("panel.spiral_turns")),
         )
         .on_hover_text(tr("panel.spiral_help"));
         actions.sync_shader_constants |= p.spiral_turns != turns;
         ui.checkbox(&mut p.blur, tr("panel.blur"));
-        if p.method == AoMethod::Rtao {
+        if info.rays {
             self.rtao_section(ui, engine, actions);
         }
 
@@ -304,7 +329,7 @@ impl Panel {
         let p = &mut engine.ao_settings;
         let mut rays = self.pending_rays.unwrap_or(p.rays);
         let r = ui.add(
-            egui::Slider::new(&mut rays, RAYS_RANGE.0..=64)
+            egui::Slider::new(&mut rays, RAYS_RANGE.0..=RAYS_SLIDER_MAX)
                 .logarithmic(true)
                 .text(tr("panel.rays")),
         );
@@ -324,7 +349,7 @@ impl Panel {
             (true, n) => n,
         };
         if accumulate {
-            let frames = engine.ao.accumulated_frames(AoMethod::Rtao);
+            let frames = engine.ao.accumulated_frames(p.method);
             ui.small(t!(
                 "panel.frames",
                 locale = code,
@@ -332,7 +357,7 @@ impl Panel {
                 max = p.accumulate
             ));
         }
-        if let Some(b) = engine.ao.bvh_stats(AoMethod::Rtao) {
+        if let Some(b) = engine.ao.bvh_stats(p.method) {
             let mib = format!("{:.2}", b.bytes as f64 / (1024.0 * 1024.0));
             let ms = format!("{:.1}", b.build_ms);
             ui.small(t!(

@@ -12,9 +12,7 @@ use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
 use crate::ao::upsample::UpsampleInputs;
-use crate::ao::{
-    composite, AoMethod, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode,
-};
+use crate::ao::{composite, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::mesh::MeshData;
 use crate::gl::readback::{flip_rows, read_rgba8};
@@ -268,7 +266,7 @@ impl Engine {
         let camera = self.camera;
         let resolution = settings.effective_resolution();
         self.ao.prepare_depth_mode(mode, resolution, &camera)?;
-        if settings.method != AoMethod::SaoLesson {
+        if settings.method.info().engine_chain {
             self.ao
                 .prepare_depth_mode(mode, AoResolution::Full, &camera)?;
         }
@@ -423,7 +421,8 @@ impl Engine {
                     )
                 });
             } else if view == View::Composite {
-                self.pass("sao composite", "ao", || self.draw_ao_composite(occlusion));
+                let label = settings.method.info().composite_label;
+                self.pass(label, "ao", || self.draw_ao_composite(occlusion));
             }
             if view != View::Composite {
                 let second = self.second_layer_depth();
@@ -504,7 +503,7 @@ impl Engine {
     /// keeps the course's linear filter, the raw view shows the half-size texels as they are).
     fn needs_upsample(&self, targets: &AoTargets, view: View) -> bool {
         targets.size() != self.size()
-            && self.ao_settings.method != AoMethod::SaoLesson
+            && self.ao_settings.method.info().engine_chain
             && view != View::AoRaw
             && !view.is_depth()
     }
@@ -512,7 +511,7 @@ impl Engine {
     fn upsample_inputs<'a>(&'a self, targets: &'a AoTargets) -> Result<UpsampleInputs<'a>> {
         Ok(UpsampleInputs {
             occlusion: targets.result_texture(self.ao_settings.blur),
-            half_depth: &targets.tex_depth,
+            ao_depth: &targets.tex_depth,
             main_depth: self
                 .fbo_main
                 .depth_texture()
@@ -545,7 +544,7 @@ impl Engine {
         let (gl, meshes, main) = (&self.gl, &self.meshes, &self.fbo_main);
         if s.composite == CompositeMode::Blend && s.power == 1.0 {
             let simple = &self.ao.composite_simple;
-            if s.method == AoMethod::Sao {
+            if s.method.info().blend_leaves_sky {
                 let farther = if self.depth_mode.reversed() {
                     glow::LESS
                 } else {

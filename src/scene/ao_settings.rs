@@ -3,125 +3,8 @@
 
 use serde::{Deserialize, Serialize};
 
+pub use super::ao_method::{AoMethod, MethodInfo, NormalUse, SlicePreset, TunedIntensity};
 pub use super::ao_resolution::AoResolution;
-
-/// The AO methods, named as on the command line (`--method`) and in scene files.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum AoMethod {
-    /// The lesson's SAO as taught (errata fixed, one 9×9 bilateral blur).
-    #[default]
-    SaoLesson,
-    /// The engine's SAO: round disc in view space, separable blur, small discs and sky skipped.
-    Sao,
-    /// Sphere sampling with depth comparison (Crytek).
-    Crytek,
-    /// Normal-oriented hemisphere kernel with range check.
-    Hemisphere,
-    /// Horizon-based AO (directions × steps).
-    Hbao,
-    /// UE4-style paired samples.
-    AngleBased,
-    /// Ground-truth-based AO (analytic cosine-weighted horizon integral).
-    Gtao,
-    /// Visibility bitmask: occluders of finite thickness, sectors of equal cosine weight.
-    Vbao,
-    /// Ray-traced AO: the scene's triangles in a BVH, a few cosine-weighted rays per pixel.
-    Rtao,
-}
-
-impl AoMethod {
-    pub const ALL: [AoMethod; 9] = [
-        AoMethod::SaoLesson,
-        AoMethod::Sao,
-        AoMethod::Crytek,
-        AoMethod::Hemisphere,
-        AoMethod::Hbao,
-        AoMethod::AngleBased,
-        AoMethod::Gtao,
-        AoMethod::Vbao,
-        AoMethod::Rtao,
-    ];
-
-    pub fn name(self) -> &'static str {
-        match self {
-            AoMethod::SaoLesson => "sao-lesson",
-            AoMethod::Sao => "sao",
-            AoMethod::Crytek => "crytek",
-            AoMethod::Hemisphere => "hemisphere",
-            AoMethod::Hbao => "hbao",
-            AoMethod::AngleBased => "angle-based",
-            AoMethod::Gtao => "gtao",
-            AoMethod::Vbao => "vbao",
-            AoMethod::Rtao => "rtao",
-        }
-    }
-
-    pub fn from_name(name: &str) -> Option<AoMethod> {
-        AoMethod::ALL.into_iter().find(|m| m.name() == name)
-    }
-}
-
-/// Slice-method quality presets (`--quality`, `[ao] quality`) for `gtao` and `vbao`: slices × steps
-/// per side (`gtao`'s below; `vbao` has its own, [`GtaoQuality::vbao_slices_steps`]). Every preset reads
-/// level 0 of the half-size linear-depth chain (GTAO's horizon search needs exact depths: the min
-/// mip chain would raise horizons); the sample count is what costs.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Serialize, Deserialize)]
-#[serde(rename_all = "kebab-case")]
-pub enum GtaoQuality {
-    /// `gtao` 1 slice × 4 steps (8 taps): the blur hides the 4×4 rotation tile; `vbao` the same.
-    Low,
-    /// `gtao` 2 slices × 4 steps (16 taps): the bench's default setting; `vbao` 1 × 8.
-    Medium,
-    /// `gtao` 3 slices × 6 steps (36 taps); `vbao` 1 × 16.
-    High,
-    /// `gtao` 4 slices × 8 steps (64 taps); `vbao` 1 × 32.
-    Ultra,
-}
-
-impl GtaoQuality {
-    pub const ALL: [GtaoQuality; 4] = [
-        GtaoQuality::Low,
-        GtaoQuality::Medium,
-        GtaoQuality::High,
-        GtaoQuality::Ultra,
-    ];
-    pub fn slices_steps(self) -> (u32, u32) {
-        match self {
-            GtaoQuality::Low => (1, 4),
-            GtaoQuality::Medium => (2, 4),
-            GtaoQuality::High => (3, 6),
-            GtaoQuality::Ultra => (4, 8),
-        }
-    }
-    /// `vbao`'s slices × steps per side: one slice, the steps doubling from preset to preset (8,
-    /// 16, 32 and 64 taps). At equal taps, steps beat slices: the blur already averages the slice
-    /// directions of neighbouring pixels, while a longer march leaves smaller gaps for thin slabs to
-    /// fall into. Summed over the bench's six training cameras at 1920×1080 against footprint truths
-    /// (R = 1 m; scene defaults / back faces with geometric normals and guard band / the same with two
-    /// layers), 64 taps: 4×8 128.99 / 150.77 / 167.52 dB, 2×16 132.09 / 161.55 / 183.70, 1×32
-    /// 132.31 / 165.03 / 184.66; 16 taps: 2×4 117.94 / 136.07 / 146.22, 1×8 128.18 / 149.09 / 163.64
-    /// (docs/bench/vbao/steps-or-slices.md).
-    pub fn vbao_slices_steps(self) -> (u32, u32) {
-        match self {
-            GtaoQuality::Low => (1, 4),
-            GtaoQuality::Medium => (1, 8),
-            GtaoQuality::High => (1, 16),
-            GtaoQuality::Ultra => (1, 32),
-        }
-    }
-    pub fn name(self) -> &'static str {
-        match self {
-            GtaoQuality::Low => "low",
-            GtaoQuality::Medium => "medium",
-            GtaoQuality::High => "high",
-            GtaoQuality::Ultra => "ultra",
-        }
-    }
-    pub fn from_name(name: &str) -> Option<GtaoQuality> {
-        GtaoQuality::ALL.into_iter().find(|q| q.name() == name)
-    }
-}
 
 /// Where the engine's methods take each pixel's normal from (`--normals`, `[ao] normals`);
 /// `sao-lesson` always rebuilds it from depth, as the course teaches.
@@ -291,8 +174,8 @@ pub struct AoSettings {
     pub tint: [f32; 3],
     /// Visibility is raised to this power before compositing (1 = as computed).
     pub power: f32,
-    /// GTAO/VBAO preset (slices × steps); when set it decides their sample counts instead of `samples`.
-    pub quality: Option<GtaoQuality>,
+    /// The preset of a method with presets (slices × steps); when set it decides its sample counts instead of `samples`.
+    pub quality: Option<SlicePreset>,
     /// How far behind each depth sample `vbao` takes the surface to extend: metres, or the back
     /// faces' depth; unset: a fraction of the radius (`DEFAULT_THICKNESS_OF_RADIUS`).
     pub thickness: Option<Thickness>,
@@ -475,9 +358,10 @@ pub const THICKNESS_RANGE: (f32, f32) = (1e-4, 1000.0);
 impl AoSettings {
     /// The resolution the selected method runs at: the lesson's SAO stays at half size as taught.
     pub fn effective_resolution(&self) -> AoResolution {
-        match self.method {
-            AoMethod::SaoLesson => AoResolution::Half,
-            _ => self.resolution,
+        if self.method.info().engine_chain {
+            self.resolution
+        } else {
+            AoResolution::Half
         }
     }
 
@@ -490,9 +374,10 @@ impl AoSettings {
         }
     }
 
-    /// Whether a frame needs the back-face depth pass: `vbao` with `thickness = "backface"`.
+    /// Whether a frame needs the back-face depth pass: a method that reads it (`vbao`) with
+    /// `thickness = "backface"`.
     pub fn uses_back_faces(&self) -> bool {
-        self.method == AoMethod::Vbao && self.thickness == Some(Thickness::Backface)
+        self.method.info().back_faces && self.thickness == Some(Thickness::Backface)
     }
 
     /// Whether `vbao`'s taps read the slab hierarchy (`SlabHierarchy::Auto` decided).
@@ -504,9 +389,10 @@ impl AoSettings {
         }
     }
 
-    /// Whether a frame needs the second depth layer: `vbao` with `layers = 2`.
+    /// Whether a frame needs the second depth layer: a method that reads it (`vbao`) with
+    /// `layers = 2`.
     pub fn uses_second_layer(&self) -> bool {
-        self.method == AoMethod::Vbao && self.layers >= 2
+        self.method.info().second_layer && self.layers >= 2
     }
 
     /// Whether a frame needs the second layer's back faces: both the back faces and the second
@@ -527,13 +413,14 @@ impl AoSettings {
         self.uses_back_faces() || self.uses_second_layer() || self.uses_surface_normals()
     }
 
-    /// Whether a frame needs the surface-normal pass: an engine method that reads a normal, with
-    /// `normals = "geometric"` (the lesson's SAO and Crytek's sphere read none); always for `rtao`,
-    /// whose rays leave the triangle's own plane.
+    /// Whether a frame needs the surface-normal pass: as the method's row says
+    /// (`MethodInfo::normals`), with `normals = "geometric"` where the method lets it choose.
     pub fn uses_surface_normals(&self) -> bool {
-        self.method == AoMethod::Rtao
-            || self.normals == NormalSource::Geometric
-                && !matches!(self.method, AoMethod::SaoLesson | AoMethod::Crytek)
+        match self.method.info().normals {
+            NormalUse::None => false,
+            NormalUse::Chosen => self.normals == NormalSource::Geometric,
+            NormalUse::Always => true,
+        }
     }
 
     /// Clamps absurd values into a range the shaders handle, and says what was changed (naming the
@@ -617,8 +504,8 @@ mod tests {
         for m in AoMethod::ALL {
             assert_eq!(AoMethod::from_name(m.name()), Some(m));
         }
-        for q in GtaoQuality::ALL {
-            assert_eq!(GtaoQuality::from_name(q.name()), Some(q));
+        for q in SlicePreset::ALL {
+            assert_eq!(SlicePreset::from_name(q.name()), Some(q));
         }
         for c in CompositeMode::ALL {
             assert_eq!(CompositeMode::from_name(c.name()), Some(c));

@@ -1,5 +1,6 @@
 //! Scene descriptions: small TOML files in `Res/scenes/`, their checks, and the demo meshes' generator.
 
+pub mod ao_method;
 pub mod ao_resolution;
 pub mod ao_settings;
 pub mod bvh;

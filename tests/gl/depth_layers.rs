@@ -5,7 +5,7 @@
 use crate::common::*;
 use crate::reference_screen::ref_camera;
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality};
+use opengl3d::ao::{AoMethod, AoResolution, AoSettings, SlicePreset};
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::render::View;
 use opengl3d::res::ResDirs;
@@ -54,7 +54,7 @@ pub fn plate_over(dir: &std::path::Path, lo: Vec3, hi: Vec3) -> SceneDesc {
     desc.bloom.enabled = false;
     desc.ao = AoSettings {
         method: AoMethod::Vbao,
-        quality: Some(GtaoQuality::Ultra),
+        quality: Some(SlicePreset::Ultra),
         resolution: AoResolution::Full,
         blur: false,
         radius: 1.0,

@@ -354,7 +354,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
 
 #[test]
 fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
-    use opengl3d::ao::{AoMethod, GtaoQuality};
+    use opengl3d::ao::{AoMethod, SlicePreset};
     let ctx = common::context();
     let dir = common::temp_dir("gtao-quality");
     let mut scene = common::crease_scene(
@@ -366,7 +366,7 @@ fn gtao_quality_presets_set_slices_and_steps_and_samples_still_work() {
     );
     scene.ao.method = AoMethod::Gtao;
     let mut raw = Vec::new();
-    for q in GtaoQuality::ALL {
+    for q in SlicePreset::ALL {
         scene.ao.quality = Some(q);
         let mut eng = common::engine(&ctx, &scene);
         let v = eng.render_values(View::AoRaw).unwrap();
@@ -442,8 +442,17 @@ fn packed_blur_equals_the_separable_blur(method: opengl3d::ao::AoMethod) {
         .read_f32(0, 1);
     common::assert_finite("packed blur", &packed);
     // The same raw occlusion through the plain blur (occlusion and depth from two textures).
-    eng.ao
-        .separable_blur
+    let separable = opengl3d::ao::blur::SeparableBlur::new(
+        opengl3d::gl::ProgramObject::from_res(
+            eng.gl(),
+            &opengl3d::res::ResDirs::default(),
+            "simple.vert",
+            "ao/blur_separable.frag",
+            &opengl3d::ao::method_pass::method_defines(&eng.camera),
+        )
+        .unwrap(),
+    );
+    separable
         .run(eng.gl(), eng.ao_targets().unwrap(), &eng.meshes, None)
         .unwrap();
     let plain = eng

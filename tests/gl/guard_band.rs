@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoResolution, GtaoQuality, GuardBand, NormalSource, Thickness};
+use opengl3d::ao::{AoMethod, AoResolution, GuardBand, NormalSource, SlicePreset, Thickness};
 use opengl3d::render::View;
 
 const W: u32 = 480;
@@ -23,7 +23,7 @@ fn the_inner_part_of_the_widened_depth_is_the_views_depth() {
         H,
     );
     scene.ao.method = AoMethod::Vbao;
-    scene.ao.quality = Some(GtaoQuality::Low);
+    scene.ao.quality = Some(SlicePreset::Low);
     // With surface passes the engine draws its own depth at the AO size with or without a margin.
     scene.ao.normals = NormalSource::Geometric;
     let mut eng = common::engine(&ctx, &scene);
@@ -145,12 +145,12 @@ fn assert_depths_agree(a: &[f32], b: &[f32]) {
 /// everything, and the rest of the margin is left undrawn.
 #[test]
 fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
-    use opengl3d::ao::blur::{SeparableBlur, BLUR_REACH};
+    use opengl3d::ao::blur::BLUR_REACH;
     use opengl3d::ao::guard_band::read_region;
     use opengl3d::ao::method::sao::SaoMethod;
-    use opengl3d::ao::method_pass::{method_defines, AoInputs, AoMethodPass};
+    use opengl3d::ao::method_pass::{AoInputs, AoMethodPass};
     use opengl3d::ao::{AoSettings, AoTargets};
-    use opengl3d::gl::{MeshBuffer, ProgramObject};
+    use opengl3d::gl::MeshBuffer;
     use opengl3d::math::Camera;
     use opengl3d::res::ResDirs;
 
@@ -169,16 +169,6 @@ fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
     let meshes = MeshBuffer::new(&ctx.gl).unwrap();
     let res = ResDirs::default();
     let sao = SaoMethod::build(&ctx.gl, &res, &cam).unwrap();
-    let unused_blur = SeparableBlur::new(
-        ProgramObject::from_res(
-            &ctx.gl,
-            &res,
-            "simple.vert",
-            "ao/blur_separable.frag",
-            &method_defines(&cam),
-        )
-        .unwrap(),
-    );
     // A bumpy surface 2–4 m away: occlusion that varies from texel to texel, which the blur mixes.
     let depth_at = |x: f32, y: f32| 3.0 + 0.6 * (x * 0.7).sin() * (y * 0.5).cos();
     let blurred = |region: Option<[i32; 4]>| {
@@ -205,8 +195,7 @@ fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
             region,
         };
         sao.compute(&inputs).unwrap();
-        // The engine's SAO blurs with its own packed blur; the shared one is not read.
-        sao.blur(&inputs, &unused_blur).unwrap();
+        sao.blur(&inputs).unwrap();
         targets.result_texture(true).read_f32(0, 1)
     };
     let region = read_region(guarded, view, offset);

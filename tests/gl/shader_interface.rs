@@ -3,11 +3,16 @@
 
 use crate::common;
 
+use opengl3d::ao::AoMethod;
 use opengl3d::gl::ProgramObject;
 use opengl3d::res::ResDirs;
-use opengl3d::shader_interface::{
-    build_defines, check_program, ProgramInterface, Uniform, PROGRAMS,
-};
+use opengl3d::shader_interface::{check_program, ProgramInterface, Uniform, PROGRAMS};
+
+/// Every define the engine injects, with the default camera and settings.
+fn build_defines() -> Vec<(&'static str, String)> {
+    use opengl3d::ao::method::every_define;
+    every_define(&opengl3d::math::Camera::default(), &Default::default())
+}
 
 #[test]
 fn every_program_matches_the_interface_table() {
@@ -15,7 +20,10 @@ fn every_program_matches_the_interface_table() {
     let res = ResDirs::default();
     let defines = build_defines();
     let mut problems = Vec::new();
-    for iface in PROGRAMS {
+    // The methods' rows hold their occlusion shaders' interfaces (the lesson's `sao.frag` is in
+    // `PROGRAMS` too, for the grader).
+    let methods = AoMethod::ALL.map(opengl3d::ao::method::interface);
+    for iface in PROGRAMS.iter().chain(&methods) {
         let p = ProgramObject::from_res(&ctx.gl, &res, iface.vert, iface.frag, &defines)
             .unwrap_or_else(|e| panic!("{} + {}: {e}", iface.vert, iface.frag));
         problems.extend(check_program(&ctx.gl, p.id(), iface));

@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, GtaoQuality, GuardBand, NormalSource};
+use opengl3d::ao::{AoMethod, GuardBand, NormalSource, SlicePreset};
 use opengl3d::render::View;
 
 const W: u32 = 480;
@@ -21,7 +21,7 @@ fn crease(dir: &std::path::Path) -> opengl3d::scene::SceneDesc {
         H,
     );
     s.ao.method = AoMethod::Vbao;
-    s.ao.quality = Some(GtaoQuality::Low);
+    s.ao.quality = Some(SlicePreset::Low);
     // At the view's size (a guard band widens the targets; guard_band.rs tests it).
     s.ao.guard_band = GuardBand::Off;
     s.ao.normals = NormalSource::Geometric;

@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality, Thickness};
+use opengl3d::ao::{AoMethod, AoResolution, AoSettings, SlicePreset, Thickness};
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::math::DepthMode;
 use opengl3d::render::{Engine, View};
@@ -23,7 +23,7 @@ fn raw_vbao(
 ) -> (Engine, Vec<f32>) {
     scene.ao.method = AoMethod::Vbao;
     if scene.ao.samples == AoSettings::default().samples {
-        scene.ao.quality = Some(GtaoQuality::Ultra);
+        scene.ao.quality = Some(SlicePreset::Ultra);
     }
     scene.ao.blur = false;
     scene.bloom.enabled = false;

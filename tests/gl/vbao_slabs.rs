@@ -5,7 +5,7 @@
 use crate::common;
 
 use glam::Vec3;
-use opengl3d::ao::{AoMethod, GtaoQuality, SlabHierarchy, Thickness};
+use opengl3d::ao::{AoMethod, SlabHierarchy, SlicePreset, Thickness};
 use opengl3d::gl::mesh::MeshData;
 use opengl3d::render::{Engine, View};
 use opengl3d::scene::shapes;
@@ -35,7 +35,7 @@ fn fin_scene(dir: &std::path::Path, hierarchy: SlabHierarchy) -> SceneDesc {
     s.ao.blur = false;
     s.ao.thickness = Some(Thickness::Backface);
     // One slice of four steps per side: taps far apart, as in the presets' outer steps.
-    s.ao.quality = Some(GtaoQuality::Low);
+    s.ao.quality = Some(SlicePreset::Low);
     s.ao.slab_hierarchy = hierarchy;
     s
 }

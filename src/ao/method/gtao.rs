@@ -1,14 +1,11 @@
 //! Ground-truth-based AO (Jimenez et al. 2016): per slice, the two horizons found by marching the
 //! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
-//! `Res/ao/gtao.frag`; quality presets in `settings::GtaoQuality`.
+//! `Res/ao/gtao.frag`; quality presets in `settings::SlicePreset`.
 
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, ProgramError};
-use crate::math::Camera;
-use crate::res::ResDirs;
-
-pub const SHADER: &str = "ao/gtao.frag";
+use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 
 /// Slices when no preset is set: two (the XeGTAO "medium" count), the sample budget going to steps
 /// per side (each slice marches both sides: slices × 2 × steps ≈ samples).
@@ -17,7 +14,7 @@ pub const DEFAULT_SLICES: i32 = 2;
 /// `aoCounts` = (slices, steps per side): the preset's when one is set.
 pub fn counts(s: &AoSettings) -> [i32; 2] {
     if let Some(q) = s.quality {
-        let (slices, steps) = q.slices_steps();
+        let (slices, steps) = q.gtao_slices_steps();
         return [slices as i32, steps as i32];
     }
     [
@@ -26,6 +23,11 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
     ]
 }
 
-pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
-    ShaderMethod::build(AoMethod::Gtao, SHADER, counts, gl, res, camera)
-}
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| {
+        let pass = ShaderMethod::build(AoMethod::Gtao, counts, gl, res, camera)?;
+        Ok(Box::new(pass))
+    },
+    uniforms: AO_METHOD_UNIFORMS,
+    samplers: AO_METHOD_SAMPLERS,
+};

@@ -1,13 +1,10 @@
 //! Horizon-based AO (Bavoil, Sainz and Dimitrov 2008): marches screen-space directions, keeps the highest horizon per
 //! direction. Shader: `Res/ao/hbao.frag`.
 
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, ProgramError};
-use crate::math::Camera;
-use crate::res::ResDirs;
-
-pub const SHADER: &str = "ao/hbao.frag";
+use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 
 /// Four directions (the fewest that cover both screen axes both ways); the rest of the sample
 /// budget goes to steps per direction, so directions × steps ≈ samples.
@@ -18,6 +15,11 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
     [DIRECTIONS, units_for_budget(s.samples, DIRECTIONS as u32)]
 }
 
-pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<ShaderMethod, ProgramError> {
-    ShaderMethod::build(AoMethod::Hbao, SHADER, counts, gl, res, camera)
-}
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| {
+        let pass = ShaderMethod::build(AoMethod::Hbao, counts, gl, res, camera)?;
+        Ok(Box::new(pass))
+    },
+    uniforms: AO_METHOD_UNIFORMS,
+    samplers: AO_METHOD_SAMPLERS,
+};

@@ -6,18 +6,15 @@
 //! while the camera and the scene stand still, by a running mean over `accumulate` frames; from
 //! `UNBLURRED_FROM_RAYS` rays per pixel on, the mean alone.
 
-use crate::ao::blur::SeparableBlur;
-use crate::ao::method_pass::{
-    method_defines, normal_source_define, set_common_uniforms, AoInputs, AoMethodPass,
-};
-use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
+use crate::ao::method::MethodRow;
+use crate::ao::method_pass::{AoInputs, AoMethodPass, ShaderMethod};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::scene::bvh::{BvhStats, FlatBvh};
 use crate::scene::game_object::GameObject;
-use crate::shader_interface::{binding, loc, storage};
+use crate::shader_interface::{binding, loc, s, storage, u, Sampler, Uniform};
 use anyhow::Result;
 use glam::Vec3;
 use glow::HasContext;
@@ -26,7 +23,30 @@ use std::collections::hash_map::DefaultHasher;
 use std::hash::{Hash, Hasher};
 use std::rc::Rc;
 
-pub const SHADER: &str = "ao/rtao.frag";
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| Ok(Box::new(RtaoMethod::build(gl, res, camera)?)),
+    uniforms: UNIFORMS,
+    samplers: SAMPLERS,
+};
+
+const UNIFORMS: &[Uniform] = &[
+    u("aoInfo", loc::AO_INFO),
+    u("ndcToView", loc::NDC_TO_VIEW),
+    u("aoSurfaceNormals", loc::AO_SURFACE_NORMALS),
+    u("viewToWorld", loc::RTAO_VIEW_TO_WORLD),
+    u("rtaoFrame", loc::RTAO_FRAME),
+    u("rtaoNodeCount", loc::RTAO_NODE_COUNT),
+];
+const SAMPLERS: &[Sampler] = &[
+    s("texDepth", binding::INPUT),
+    s("texNormal", binding::SURFACE_NORMALS),
+    s("texHistory", binding::RTAO_HISTORY),
+];
+
+/// `aoCounts` = (rays per pixel and frame, unused).
+pub fn counts(s: &AoSettings) -> [i32; 2] {
+    [s.rays as i32, 1]
+}
 
 /// Rays per pixel (frames averaged × rays per frame) from which the output is left unblurred: on the
 /// bench's three scenes at 960×540 (R = 1 m), 11 rays in one frame were 0.1–0.8 dB closer to the
@@ -51,11 +71,10 @@ struct Accumulation {
     averaged: u32,
 }
 
+/// The shared skeleton, tracing the BVH, with its running mean.
 pub struct RtaoMethod {
     gl: Gl,
-    program: ProgramObject,
-    blur: ProgramObject,
-    packed: PackedOutput,
+    pass: ShaderMethod,
     bvh: RefCell<Option<GpuBvh>>,
     builds: Cell<u32>,
     accumulation: Cell<Accumulation>,
@@ -108,12 +127,9 @@ pub fn world_triangles(objects: &[GameObject], meshes: &crate::gl::MeshBuffer) -
 
 impl RtaoMethod {
     pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<RtaoMethod, ProgramError> {
-        let defines = method_defines(camera);
         Ok(RtaoMethod {
             gl: gl.clone(),
-            program: ProgramObject::from_res(gl, res, "simple.vert", SHADER, &defines)?,
-            blur: ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &defines)?,
-            packed: PackedOutput::default(),
+            pass: ShaderMethod::build(AoMethod::Rtao, counts, gl, res, camera)?,
             bvh: RefCell::new(None),
             builds: Cell::new(0),
             accumulation: Cell::new(Accumulation::default()),
@@ -179,19 +195,44 @@ impl RtaoMethod {
     }
 }
 
+impl RtaoMethod {
+    /// The BVH it traces, once built, with its build time and size.
+    pub fn bvh_stats(&self) -> Option<BvhStats> {
+        self.bvh.borrow().as_ref().map(|b| b.stats)
+    }
+
+    /// Frames averaged into its last output (`accumulate`); 1 without accumulation.
+    pub fn accumulated_frames(&self) -> u32 {
+        self.accumulation.get().averaged.max(1)
+    }
+
+    /// Pixels of its last pass whose rays the driver ended before they were all traced (a driver's
+    /// loop limit); those pixels hold the mean of the rays that finished.
+    pub fn cut_pixels(&self) -> u32 {
+        let status = self.status.borrow();
+        let Some(buffer) = status.as_ref() else {
+            return 0;
+        };
+        // SAFETY: a barrier, so the shader's atomic writes are visible to the read below.
+        unsafe { self.gl.memory_barrier(glow::BUFFER_UPDATE_BARRIER_BIT) };
+        buffer.read_words().first().copied().unwrap_or(0)
+    }
+
+    /// Starts its running mean again at the next frame (the window, after any change of setting).
+    pub fn restart_accumulation(&self) {
+        self.accumulation.set(Accumulation::default());
+    }
+}
+
 impl AoMethodPass for RtaoMethod {
     fn method(&self) -> AoMethod {
         AoMethod::Rtao
     }
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
-        vec![&mut self.program, &mut self.blur]
+        self.pass.programs_mut()
     }
     fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
-        let defines = method_defines(camera);
-        let mut own = defines.clone();
-        own.push(normal_source_define(s));
-        self.program.set_defines(&own)?;
-        self.blur.set_defines(&defines)
+        self.pass.update_defines(camera, s)
     }
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
         let bvh_key = self.ensure_bvh(inputs)?;
@@ -212,8 +253,7 @@ impl AoMethodPass for RtaoMethod {
         };
         // The mean's weight stops at 1 / accumulate: beyond, an exponential mean of that length.
         let in_history = since_reset.min(s.accumulate.saturating_sub(1));
-        let p = &self.program;
-        set_common_uniforms(inputs.gl, p, inputs, [s.rays as i32, 1]);
+        let p = self.pass.program();
         p.set_mat4(loc::RTAO_VIEW_TO_WORLD, &inputs.camera.view().inverse());
         let rays = s.rays.max(1);
         // The stratified lattice: this pass's share of it (`lattice_slice`), else all of it.
@@ -237,11 +277,6 @@ impl AoMethodPass for RtaoMethod {
         let bvh = self.bvh.borrow();
         let bvh = bvh.as_ref().expect("built above");
         p.set_i32(loc::RTAO_NODE_COUNT, bvh.stats.nodes as i32);
-        inputs.pass_state().apply(inputs.gl, None);
-        p.use_program();
-        self.packed.bind_for_method(inputs.gl, inputs.targets)?;
-        inputs.targets.tex_depth.bind(binding::INPUT);
-        inputs.bind_normals();
         if let Some(h) = &history {
             h.bind(binding::RTAO_HISTORY);
         }
@@ -250,8 +285,9 @@ impl AoMethodPass for RtaoMethod {
         let status = StorageBuffer::new(inputs.gl, "rtao status", &[0])?;
         status.bind(storage::RTAO_STATUS);
         *self.status.borrow_mut() = Some(status);
-        inputs.meshes.draw_plane_xy();
-        if let (Some(h), Some(packed)) = (&history, self.packed.packed_texture()) {
+        // The skeleton's pass: common uniforms, targets, depth and normals, one draw.
+        self.pass.compute(inputs)?;
+        if let (Some(h), Some(packed)) = (&history, self.pass.packed().packed_texture()) {
             // SAFETY: copying between two live RG32F textures of the same size.
             unsafe {
                 inputs.gl.copy_image_sub_data(
@@ -275,13 +311,10 @@ impl AoMethodPass for RtaoMethod {
         }
         Ok(())
     }
-    fn blur(&self, inputs: &AoInputs, _: &SeparableBlur) -> Result<()> {
+    fn blur(&self, inputs: &AoInputs) -> Result<()> {
         let rays_so_far = self.accumulated_frames() * inputs.settings.rays.max(1);
         if rays_so_far < UNBLURRED_FROM_RAYS {
-            let (gl, targets, meshes) = (inputs.gl, inputs.targets, inputs.meshes);
-            return self
-                .packed
-                .blur(gl, targets, meshes, &self.blur, inputs.region);
+            return self.pass.blur(inputs);
         }
         let t = inputs.targets;
         let (w, h) = t.size();
@@ -306,31 +339,13 @@ impl AoMethodPass for RtaoMethod {
         Ok(())
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
-        let mut t = self.packed.textures();
+        let mut t = self.pass.textures();
         t.extend(self.history.borrow().iter().cloned());
         t
     }
     fn release_targets(&mut self) {
-        self.packed.release();
+        self.pass.release_targets();
         *self.history.get_mut() = None;
-        self.accumulation.set(Accumulation::default());
-    }
-    fn bvh_stats(&self) -> Option<BvhStats> {
-        self.bvh.borrow().as_ref().map(|b| b.stats)
-    }
-    fn accumulated_frames(&self) -> u32 {
-        self.accumulation.get().averaged.max(1)
-    }
-    fn cut_pixels(&self) -> u32 {
-        let status = self.status.borrow();
-        let Some(buffer) = status.as_ref() else {
-            return 0;
-        };
-        // SAFETY: a barrier, so the shader's atomic writes are visible to the read below.
-        unsafe { self.gl.memory_barrier(glow::BUFFER_UPDATE_BARRIER_BIT) };
-        buffer.read_words().first().copied().unwrap_or(0)
-    }
-    fn restart_accumulation(&self) {
         self.accumulation.set(Accumulation::default());
     }
 }

@@ -1,23 +1,18 @@
 //! The engine's SAO (`Res/ao/sao.frag`): the lesson's algorithm with a round disc in view space, the
 //! screen radius clamped, sky and sub-pixel discs skipped, as many mip levels as its largest disc
-//! needs, and the packed separable blur every engine method uses (`ao::packed`).
+//! needs, and the packed separable blur every engine method uses (`ao::packed`), on the shared skeleton (`ShaderMethod`).
 
-use crate::ao::blur::SeparableBlur;
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{
-    max_radius_pixels, method_defines, normal_source_define, set_common_uniforms, AoInputs,
-    AoMethodPass, LOG_MAX_OFFSET,
+    max_radius_pixels, AoInputs, AoMethodPass, ShaderMethod, LOG_MAX_OFFSET,
 };
-use crate::ao::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::texture::max_levels;
-use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
+use crate::gl::{ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
-use crate::res::ResDirs;
-use crate::shader_interface::binding;
+use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 use anyhow::Result;
 use std::rc::Rc;
-
-pub const SHADER: &str = "ao/sao.frag";
 
 /// `aoCounts` = (samples, spiral turns).
 pub fn counts(s: &AoSettings) -> [i32; 2] {
@@ -26,27 +21,32 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
 
 /// Levels of the linear-depth chain the engine's SAO reads: its samples lie within the clamped
 /// screen radius, so the farthest reads level floor(log2(max radius)) − LOG_MAX_OFFSET; capped by
-/// what the half-size texture can hold.
-pub fn depth_levels(half_width: u32, half_height: u32) -> u32 {
-    let radius = max_radius_pixels(half_width, half_height) as u32;
+/// what the AO-size texture can hold.
+pub fn depth_levels(ao_width: u32, ao_height: u32) -> u32 {
+    let radius = max_radius_pixels(ao_width, ao_height) as u32;
     let top = (31 - radius.max(1).leading_zeros()).saturating_sub(LOG_MAX_OFFSET);
-    (top + 1).min(max_levels(half_width, half_height))
+    (top + 1).min(max_levels(ao_width, ao_height))
 }
 
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| Ok(Box::new(SaoMethod::build(gl, res, camera)?)),
+    uniforms: AO_METHOD_UNIFORMS,
+    samplers: AO_METHOD_SAMPLERS,
+};
+
+/// The shared skeleton, with as many depth levels as its largest disc reads.
 pub struct SaoMethod {
-    program: ProgramObject,
-    blur: ProgramObject,
-    packed: PackedOutput,
+    pass: ShaderMethod,
 }
 
 impl SaoMethod {
-    pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<SaoMethod, ProgramError> {
-        let d = method_defines(camera);
-        Ok(SaoMethod {
-            program: ProgramObject::from_res(gl, res, "simple.vert", SHADER, &d)?,
-            blur: ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &d)?,
-            packed: PackedOutput::default(),
-        })
+    pub fn build(
+        gl: &crate::gl::Gl,
+        res: &crate::res::ResDirs,
+        camera: &Camera,
+    ) -> Result<SaoMethod, ProgramError> {
+        let pass = ShaderMethod::build(AoMethod::Sao, counts, gl, res, camera)?;
+        Ok(SaoMethod { pass })
     }
 }
 
@@ -55,37 +55,25 @@ impl AoMethodPass for SaoMethod {
         AoMethod::Sao
     }
     fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
-        vec![&mut self.program, &mut self.blur]
+        self.pass.programs_mut()
     }
     fn update_defines(&mut self, camera: &Camera, s: &AoSettings) -> Result<(), ProgramError> {
-        let d = method_defines(camera);
-        let mut own = d.clone();
-        own.push(normal_source_define(s));
-        self.program.set_defines(&own)?;
-        self.blur.set_defines(&d)
+        self.pass.update_defines(camera, s)
     }
     fn depth_levels(&self, (w, h): (u32, u32)) -> u32 {
         depth_levels(w, h)
     }
-    fn compute(&self, i: &AoInputs) -> Result<()> {
-        set_common_uniforms(i.gl, &self.program, i, counts(i.settings));
-        i.pass_state().apply(i.gl, None);
-        self.program.use_program();
-        self.packed.bind_for_method(i.gl, i.targets)?;
-        i.targets.tex_depth.bind(binding::INPUT);
-        i.bind_normals();
-        i.meshes.draw_plane_xy();
-        Ok(())
+    fn compute(&self, inputs: &AoInputs) -> Result<()> {
+        self.pass.compute(inputs)
     }
-    fn blur(&self, i: &AoInputs, _: &SeparableBlur) -> Result<()> {
-        self.packed
-            .blur(i.gl, i.targets, i.meshes, &self.blur, i.region)
+    fn blur(&self, inputs: &AoInputs) -> Result<()> {
+        self.pass.blur(inputs)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
-        self.packed.textures()
+        self.pass.textures()
     }
     fn release_targets(&mut self) {
-        self.packed.release();
+        self.pass.release_targets();
     }
 }
 

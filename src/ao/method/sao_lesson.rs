@@ -2,8 +2,9 @@
 //! `SAO_SAMPLE_COUNT` taps in a disc, reading deeper mip levels for farther taps, then the lesson's
 //! 9×9 bilateral blur (`Res/sao_blur.frag`).
 
-use crate::ao::blur::{lesson_blur, SeparableBlur};
+use crate::ao::blur::lesson_blur;
 use crate::ao::depth_chain::camera_defines;
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{AoInputs, AoMethodPass};
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::ao::targets::AoTargets;
@@ -11,11 +12,18 @@ use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject};
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::shader_interface::{binding, loc};
+use crate::shader_interface::{binding, loc, LESSON_SAO_SAMPLERS, LESSON_SAO_UNIFORMS};
 use anyhow::Result;
 
-pub const SHADER: &str = "sao.frag";
 pub const BLUR_SHADER: &str = "sao_blur.frag";
+
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, settings| {
+        Ok(Box::new(SaoLessonMethod::build(gl, res, camera, settings)?))
+    },
+    uniforms: LESSON_SAO_UNIFORMS,
+    samplers: LESSON_SAO_SAMPLERS,
+};
 
 /// Camera planes plus the sample count and spiral turns, compile-time constants of `sao.frag`.
 pub fn sao_defines(camera: &Camera, settings: &AoSettings) -> Vec<(&'static str, String)> {
@@ -73,7 +81,7 @@ impl SaoLessonMethod {
                 gl,
                 res,
                 "simple.vert",
-                SHADER,
+                AoMethod::SaoLesson.info().shader,
                 &sao_defines(camera, settings),
             )?,
             blur: ProgramObject::from_res(
@@ -106,7 +114,7 @@ impl AoMethodPass for SaoLessonMethod {
         compute_sao(i.gl, &self.sao, i.targets, i.meshes, i.camera, i.settings);
         Ok(())
     }
-    fn blur(&self, i: &AoInputs, _: &SeparableBlur) -> Result<()> {
+    fn blur(&self, i: &AoInputs) -> Result<()> {
         lesson_blur(i.gl, &self.blur, i.targets, i.meshes);
         Ok(())
     }

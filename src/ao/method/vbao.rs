@@ -1,10 +1,10 @@
 //! Visibility-bitmask AO (Therrien et al. 2023): per slice, 32 sectors of equal cosine weight, each
 //! depth sample occluding the sectors its slab (surface to `thickness` behind, within the radius)
-//! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::GtaoQuality`).
+//! covers. Shader: `Res/ao/vbao.frag`; quality presets shared with `gtao` (`settings::SlicePreset`).
 //! With the slab hierarchy (`AoSettings::uses_slab_hierarchy`) the taps read `ao::slab_hierarchy`'s
 //! levels instead of single texels.
 
-use crate::ao::blur::SeparableBlur;
+use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{
     method_defines, units_for_budget, AoInputs, AoMethodPass, ShaderMethod,
 };
@@ -13,11 +13,9 @@ use crate::ao::slab_hierarchy::SlabLevels;
 use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::shader_interface::{binding, loc};
+use crate::shader_interface::{binding, loc, s, u, Sampler, Uniform};
 use anyhow::Result;
 use std::rc::Rc;
-
-pub const SHADER: &str = "ao/vbao.frag";
 
 /// Slices when no preset is set: two, as `gtao`, so `--samples N` buys both methods the same depth
 /// taps (slices × 2 sides × steps ≈ N).
@@ -50,6 +48,33 @@ pub fn feature_defines(settings: &AoSettings) -> Vec<(&'static str, String)> {
     ]
 }
 
+pub const ROW: MethodRow = MethodRow {
+    build: |gl, res, camera, _| Ok(Box::new(VbaoMethod::build(gl, res, camera)?)),
+    uniforms: UNIFORMS,
+    samplers: SAMPLERS,
+};
+
+const UNIFORMS: &[Uniform] = &[
+    u("aoInfo", loc::AO_INFO),
+    u("ndcToView", loc::NDC_TO_VIEW),
+    u("aoCounts", loc::AO_COUNTS),
+    u("maxRadiusPixels", loc::MAX_RADIUS_PIXELS),
+    u("aoThickness", loc::AO_THICKNESS),
+    u("aoBackFaces", loc::AO_BACK_FACES),
+    u("aoSurfaceNormals", loc::AO_SURFACE_NORMALS),
+    u("aoLayers", loc::AO_LAYERS),
+    u("aoLayerBackFaces", loc::AO_LAYER_BACK_FACES),
+    u("aoSlabLevels", loc::AO_SLAB_LEVELS),
+];
+const SAMPLERS: &[Sampler] = &[
+    s("texDepth", binding::INPUT),
+    s("texBackDepth", binding::SECOND_INPUT),
+    s("texNormal", binding::SURFACE_NORMALS),
+    s("texSecondDepth", binding::SECOND_LAYER),
+    s("texSecondBackDepth", binding::SECOND_LAYER_BACK),
+    s("texSlabs", binding::SLAB_HIERARCHY),
+];
+
 /// The occlusion pass and, when the settings ask for it, the slab hierarchy it reads.
 pub struct VbaoMethod {
     pass: ShaderMethod,
@@ -59,9 +84,16 @@ pub struct VbaoMethod {
 impl VbaoMethod {
     pub fn build(gl: &Gl, res: &ResDirs, camera: &Camera) -> Result<VbaoMethod, ProgramError> {
         Ok(VbaoMethod {
-            pass: ShaderMethod::build(AoMethod::Vbao, SHADER, counts, gl, res, camera)?,
+            pass: ShaderMethod::build(AoMethod::Vbao, counts, gl, res, camera)?,
             slabs: SlabLevels::new(gl, res, &method_defines(camera))?,
         })
+    }
+}
+
+impl VbaoMethod {
+    /// The slab hierarchy from the last frame that built one.
+    pub fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
+        self.slabs.texture()
     }
 }
 
@@ -90,8 +122,8 @@ impl AoMethodPass for VbaoMethod {
         self.pass.program().set_i32(loc::AO_SLAB_LEVELS, levels);
         self.pass.compute(inputs)
     }
-    fn blur(&self, inputs: &AoInputs, separable: &SeparableBlur) -> Result<()> {
-        self.pass.blur(inputs, separable)
+    fn blur(&self, inputs: &AoInputs) -> Result<()> {
+        self.pass.blur(inputs)
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
         let mut v = self.pass.textures();
@@ -101,8 +133,5 @@ impl AoMethodPass for VbaoMethod {
     fn release_targets(&mut self) {
         self.pass.release_targets();
         self.slabs.release();
-    }
-    fn slab_hierarchy(&self) -> Option<Rc<Texture>> {
-        self.slabs.texture()
     }
 }

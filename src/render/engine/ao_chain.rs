@@ -3,7 +3,7 @@
 
 use super::Engine;
 use crate::ao::method_pass::AoInputs;
-use crate::ao::{AoMethod, AoResolution, AoTargets};
+use crate::ao::{AoResolution, AoTargets};
 use crate::gl::{PassState, Texture};
 use crate::math::Camera;
 use crate::render::frame::Frame;
@@ -102,11 +102,11 @@ impl Engine {
             objects: &self.objects,
             region,
         };
-        let (pass_name, blur_name) = match (method, self.ao.own_labels(method)) {
-            (_, Some(labels)) => labels,
-            (AoMethod::SaoLesson, None) => ("sao", "sao blur"),
-            (m, None) => (m.name(), "separable blur"),
-        };
+        let info = method.info();
+        let (pass_name, blur_name) = self
+            .ao
+            .own_labels(method)
+            .unwrap_or((info.pass_label, info.blur_label));
         self.pass(pass_name, "ao", || self.ao.compute(method, &inputs))?;
         let blur = self.ao_settings.blur && view != View::AoRaw;
         if blur {

@@ -12,7 +12,7 @@
 
 use super::Engine;
 use crate::ao::guard_band::{ao_offset, crop, guard_band_pixels, read_region, widen, GuardFrame};
-use crate::ao::{AoMethod, AoTargets};
+use crate::ao::AoTargets;
 use crate::render::frame::Frame;
 use crate::render::view::View;
 use anyhow::Result;
@@ -22,7 +22,7 @@ impl Engine {
     /// course renders the view only) and for the depth views.
     pub fn guard_frame(&self, view: View) -> Option<GuardFrame> {
         let s = &self.ao_settings;
-        if s.method == AoMethod::SaoLesson || view.is_depth() {
+        if !s.method.info().engine_chain || view.is_depth() {
             return None;
         }
         let px = guard_band_pixels(s.guard_band, &self.camera, self.size(), s.radius);

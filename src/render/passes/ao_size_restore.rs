@@ -4,7 +4,7 @@
 //! these passes at the AO size itself (`render/engine/guard.rs`), a block of one texel; the tools'
 //! read-backs of the layers draw them at the main size.
 
-use crate::ao::blur::half_size_target;
+use crate::ao::blur::ao_size_target;
 use crate::gl::{FramebufferObject, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
 use crate::shader_interface::{binding, loc};
@@ -80,7 +80,7 @@ impl DepthLayer {
             let label = format!("FBO({} linear depth)", self.name);
             *slot = Some(LayerTargets {
                 depth: FramebufferObject::new(f.gl, None, Some(depth), 0, 0)?,
-                linear: half_size_target(f.gl, &label, ao_size, glow::R32F)?,
+                linear: ao_size_target(f.gl, &label, ao_size, glow::R32F)?,
                 key,
             });
         }

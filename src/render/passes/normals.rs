@@ -6,7 +6,7 @@
 //! (`AoSettings::uses_surface_normals`).
 
 use super::ao_size_restore::restore_at_ao_size;
-use crate::ao::blur::half_size_target;
+use crate::ao::blur::ao_size_target;
 use crate::gl::{FramebufferObject, Gl, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
 use crate::res::ResDirs;
@@ -78,7 +78,7 @@ impl NormalPass {
                 restored: if ao_size == f.size {
                     None
                 } else {
-                    Some(half_size_target(
+                    Some(ao_size_target(
                         f.gl,
                         "FBO(surface normals, AO size)",
                         ao_size,

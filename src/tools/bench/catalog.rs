@@ -1,8 +1,8 @@
 //! What the benchmark runs: the AO methods by name with their quality settings, and the fixed
 //! cameras of each scene (some train the fit of a method's intensity/contrast, the others test it).
 //!
-//! A method is any `AoMethod` the engine knows: adding one to `AoMethod::ALL` (with its name and
-//! shader) makes it available here as `--methods NAME`; its settings come from `settings_for`.
+//! A method is any `AoMethod` the engine knows: its row (`AoMethod::info`) makes it available here
+//! as `--methods NAME`; its settings come from `settings_for`, which reads the row.
 
 use crate::ao::AoMethod;
 use crate::math::Camera;
@@ -16,8 +16,8 @@ use serde::Serialize;
 pub struct Setting {
     pub samples: u32,
     pub radius: f32,
-    /// A GTAO quality preset (slices × steps) instead of the sample count.
-    pub quality: Option<crate::ao::GtaoQuality>,
+    /// A slice preset (slices × steps, the method's own) instead of the sample count.
+    pub quality: Option<crate::ao::SlicePreset>,
 }
 
 impl Setting {
@@ -28,12 +28,11 @@ impl Setting {
             quality: None,
         }
     }
-    /// A `gtao` or `vbao` preset; `samples` is its tap count (2 sides × slices × steps).
-    fn preset(method: AoMethod, q: crate::ao::GtaoQuality, radius: f32) -> Setting {
-        let (slices, steps) = match method {
-            AoMethod::Vbao => q.vbao_slices_steps(),
-            _ => q.slices_steps(),
-        };
+    /// A preset of a method that has presets (`MethodInfo::presets`); `samples` is its tap count
+    /// (2 sides × slices × steps).
+    fn preset(method: AoMethod, q: crate::ao::SlicePreset, radius: f32) -> Setting {
+        let slices_steps = method.info().presets.expect("a method with presets");
+        let (slices, steps) = slices_steps(q);
         Setting {
             samples: 2 * slices * steps,
             radius,
@@ -63,18 +62,19 @@ pub fn method_by_name(name: &str) -> Result<AoMethod> {
     }
 }
 
-/// Settings of `method`. `samples` / `radii` override the defaults when not empty (then the grid of
-/// both is run); for the methods with presets (gtao, vbao) `qualities` does, as the grid of presets
-/// and radii (1 m when none is given). Defaults: the lesson's SAO runs the full grid LESSON_SAMPLES × LESSON_RADII; the
-/// other methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost
-/// grows with samples the same way, and the radius mostly moves their error); GTAO also runs its
-/// high and ultra presets at 1 m and 0.5 m, VBAO all four presets at both; `rtao` 1/2/4 rays per
-/// pixel at 1 m and 2 rays at 0.5/2 m (its samples are rays).
+/// Settings of `method`, from its row (`MethodInfo`). `samples` / `radii` override the defaults
+/// when not empty (then the grid of both is run); for the methods with presets `qualities` does, as
+/// the grid of presets and radii (1 m when none is given). Defaults: the lesson's SAO (the one
+/// method on the lesson's chain) runs the full grid LESSON_SAMPLES × LESSON_RADII; the other
+/// methods run samples 4/8/16 at radius 1 m and radii 0.5/2 m at 8 samples (their cost grows with
+/// samples the same way, and the radius mostly moves their error), and their `bench_presets` at 1 m
+/// and 0.5 m; a method that traces rays 1/2/4 rays per pixel at 1 m and 2 rays at 0.5/2 m (its
+/// samples are rays).
 pub(crate) fn settings_for(
     method: AoMethod,
     samples: &[u32],
     radii: &[f32],
-    qualities: &[crate::ao::GtaoQuality],
+    qualities: &[crate::ao::SlicePreset],
 ) -> Vec<Setting> {
     let grid = |s: &[u32], r: &[f32]| {
         let mut v = Vec::new();
@@ -85,7 +85,8 @@ pub(crate) fn settings_for(
         }
         v
     };
-    let has_presets = matches!(method, AoMethod::Gtao | AoMethod::Vbao);
+    let info = method.info();
+    let has_presets = info.presets.is_some();
     if has_presets && !qualities.is_empty() {
         let r: &[f32] = if radii.is_empty() { &[1.0] } else { radii };
         return r
@@ -110,45 +111,26 @@ pub(crate) fn settings_for(
         };
         return grid(&s, &r);
     }
-    match method {
-        AoMethod::SaoLesson => grid(&LESSON_SAMPLES, &LESSON_RADII),
-        AoMethod::Gtao => {
-            // Its presets too: "high" is the accurate end the report compares.
-            let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
-            for radius in [1.0, 0.5] {
-                v.push(Setting::preset(
-                    method,
-                    crate::ao::GtaoQuality::High,
-                    radius,
-                ));
-                v.push(Setting::preset(
-                    method,
-                    crate::ao::GtaoQuality::Ultra,
-                    radius,
-                ));
-            }
-            v
-        }
-        AoMethod::Vbao => {
-            // Every preset: the report shows the cheapest one that reaches a given accuracy.
-            let mut v = settings_for(AoMethod::Sao, &[], &[], &[]);
-            for radius in [1.0, 0.5] {
-                for q in crate::ao::GtaoQuality::ALL {
-                    v.push(Setting::preset(method, q, radius));
-                }
-            }
-            v
-        }
+    if !info.engine_chain {
+        return grid(&LESSON_SAMPLES, &LESSON_RADII);
+    }
+    if info.rays {
         // Rays per pixel and frame.
-        AoMethod::Rtao => vec![
+        return vec![
             Setting::new(1, 1.0),
             Setting::new(2, 1.0),
             Setting::new(4, 1.0),
             Setting::new(2, 0.5),
             Setting::new(2, 2.0),
-        ],
-        _ => quick_settings(),
+        ];
     }
+    let mut v = quick_settings();
+    for radius in [1.0, 0.5] {
+        for &q in info.bench_presets {
+            v.push(Setting::preset(method, q, radius));
+        }
+    }
+    v
 }
 
 /// The quick grid every method runs in a plain `opengl3d bench`, and the base of the methods
@@ -229,7 +211,7 @@ mod tests {
         assert!(labels.contains(&"ultra r0.5".to_string()), "{labels:?}");
         let high = settings_for(AoMethod::Gtao, &[], &[], &[])
             .into_iter()
-            .find(|s| s.quality == Some(crate::ao::GtaoQuality::High))
+            .find(|s| s.quality == Some(crate::ao::SlicePreset::High))
             .unwrap();
         assert_eq!(high.samples, 2 * 3 * 6);
         assert!(settings_for(AoMethod::Gtao, &[16], &[], &[])
@@ -245,7 +227,7 @@ mod tests {
         for label in ["low r1", "medium r0.5", "high r0.5", "ultra r1"] {
             assert!(vbao.contains(&label.to_string()), "{vbao:?}");
         }
-        let low = crate::ao::GtaoQuality::Low;
+        let low = crate::ao::SlicePreset::Low;
         let chosen: Vec<String> = settings_for(AoMethod::Vbao, &[8], &[0.5, 1.0], &[low])
             .iter()
             .map(Setting::label)

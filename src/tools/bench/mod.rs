@@ -20,7 +20,7 @@ pub mod skips;
 pub mod stress;
 mod timing;
 
-use crate::ao::{AoMethod, GtaoQuality};
+use crate::ao::{AoMethod, SlicePreset};
 use crate::res::ResDirs;
 use anyhow::{anyhow, Result};
 use clap::Args;
@@ -128,8 +128,8 @@ impl BenchArgs {
             .qualities
             .iter()
             .map(|n| {
-                GtaoQuality::from_name(n.trim()).ok_or_else(|| {
-                    let names = GtaoQuality::ALL.map(GtaoQuality::name).join(", ");
+                SlicePreset::from_name(n.trim()).ok_or_else(|| {
+                    let names = SlicePreset::ALL.map(SlicePreset::name).join(", ");
                     anyhow!("unknown quality preset '{n}': use one of {names}")
                 })
             })

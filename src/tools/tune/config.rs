@@ -57,7 +57,7 @@ impl TuneConfig {
         if self.methods.is_empty() {
             bail!("{}", rust_i18n::t!("tune.no_method"));
         }
-        if self.methods.contains(&AoMethod::Rtao) {
+        if self.methods.iter().any(|m| !m.info().reads_depth_occluders) {
             bail!("{}", rust_i18n::t!("tune.rtao"));
         }
         if let Some(b) = self.budget {

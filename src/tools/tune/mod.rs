@@ -61,7 +61,8 @@ impl TuneArgs {
         let methods = if self.methods.is_empty() {
             AoMethod::ALL
                 .into_iter()
-                .filter(|m| *m != AoMethod::Rtao)
+                // A ray-traced method has nothing to fit to the truth (`tune.rtao`).
+                .filter(|m| m.info().reads_depth_occluders)
                 .collect()
         } else {
             self.methods

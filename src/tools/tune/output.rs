@@ -186,7 +186,7 @@ fn markdown(results: &[MethodResult], cfg: &TuneConfig) -> String {
 
 #[cfg(test)]
 mod tests {
-    use crate::ao::{AoMethod, AoSettings, GtaoQuality, GuardBand, Thickness};
+    use crate::ao::{AoMethod, AoSettings, GuardBand, SlicePreset, Thickness};
     use crate::tools::tune::output::ao_toml;
 
     #[derive(serde::Deserialize)]
@@ -200,7 +200,7 @@ mod tests {
             method: AoMethod::Vbao,
             bias: 0.006,
             thickness: Some(Thickness::Metres(0.375)),
-            quality: Some(GtaoQuality::High),
+            quality: Some(SlicePreset::High),
             guard_band: GuardBand::Auto,
             ..AoSettings::default()
         };

@@ -7,8 +7,9 @@
 //! guard band, back-face pass, second layer, rays) are searched only with `--budget`, which bounds
 //! what they may spend. The radius is never searched: it defines the truth (rays of length R).
 
+use crate::ao::settings::{MethodInfo, NormalUse, TunedIntensity};
 use crate::ao::{
-    AoMethod, AoResolution, AoSettings, GtaoQuality, GuardBand, NormalSource, Thickness,
+    AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
 };
 
 /// One value of one `[ao]` key.
@@ -23,7 +24,7 @@ pub enum Choice {
     GuardBand(GuardBand),
     Resolution(AoResolution),
     Samples(u32),
-    Quality(Option<GtaoQuality>),
+    Quality(Option<SlicePreset>),
     Rays(u32),
 }
 
@@ -58,29 +59,31 @@ pub struct Axis {
 /// Bias (m, `BIAS_RANGE` 0–10): self-occlusion shows below a few millimetres, and beyond a
 /// decimetre the bias hides real creases at any radius the scenes use.
 const BIASES: [f32; 7] = [0.0, 0.003, 0.006, 0.012, 0.025, 0.05, 0.1];
-/// The lesson's intensity (`INTENSITY_RANGE`; its occlusion is `min(1, sum · intensity / n)`).
+/// Intensities as the lesson's scale (`INTENSITY_RANGE`; its occlusion is `min(1, sum · intensity / n)`).
 const INTENSITIES: [f32; 9] = [1.0, 2.0, 3.0, 4.0, 5.0, 6.5, 8.0, 10.0, 13.0];
-/// rtao's intensity: the exponent of its visibility is `5 / intensity` (5 is the identity).
+/// Intensities as an exponent (`rtao`'s): the exponent of its visibility is `5 / intensity` (5 is the identity).
 const RTAO_INTENSITIES: [f32; 5] = [3.0, 4.0, 5.0, 6.0, 7.5];
 /// Spiral turns (`SPIRAL_TURNS_RANGE` 1–64); the paper's table uses small counts prime to the
 /// sample count.
 const SPIRAL_TURNS: [u32; 6] = [1, 2, 3, 5, 7, 9];
-/// vbao's slab thickness as a fraction of the radius (`THICKNESS_RANGE` in metres).
+/// Slab thickness (`vbao`'s) as a fraction of the radius (`THICKNESS_RANGE` in metres).
 const THICKNESS_OF_RADIUS: [f32; 8] = [0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 1.5, 2.0];
 /// Sample counts of the methods without presets (`SAMPLES_RANGE`).
 const SAMPLES: [u32; 6] = [4, 8, 11, 16, 24, 32];
-/// rtao's rays per pixel and frame.
+/// Rays per pixel and frame (`rtao`'s).
 const RAYS: [u32; 4] = [1, 2, 4, 8];
 
-/// Where the descents start: the scene's own table; with a budget, for the engine's methods, also
-/// the configuration that reads the most of what the depth buffer can know for its cost: a quarter
-/// of the size, a guard band, the geometric normals (not for Crytek's sphere, which reads none), and
-/// for `vbao` the back faces, two layers and `medium`. From the scene's table one key at a time, the
-/// second layer is not worth its pass without the back faces, nor both at half size within a budget
-/// of about the lesson's cost; from this start the descent trades them away where they do not pay.
+/// Where the descents start: the scene's own table; with a budget, for the engine's methods that
+/// read their occluders from the depth buffer, also the configuration that reads the most of what
+/// the depth buffer can know for its cost: a quarter of the size, a guard band, the geometric
+/// normals (where the method reads a normal it may choose), the back faces and two layers (where it
+/// reads them, with the `medium` preset where it has presets). From the scene's table one key at a
+/// time, the second layer is not worth its pass without the back faces, nor both at half size
+/// within a budget of about the lesson's cost; from this start the descent trades them away where
+/// they do not pay.
 pub fn starts(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<AoSettings> {
-    let engine_method = !matches!(method, AoMethod::SaoLesson | AoMethod::Rtao);
-    if !budgeted || !engine_method {
+    let info = method.info();
+    if !budgeted || !reads_the_depth_chain(info) {
         return vec![*start];
     }
     let mut knows_most = AoSettings {
@@ -88,13 +91,18 @@ pub fn starts(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<AoSet
         guard_band: GuardBand::Auto,
         ..*start
     };
-    if method != AoMethod::Crytek {
+    if info.normals == NormalUse::Chosen {
         knows_most.normals = NormalSource::Geometric;
     }
-    if method == AoMethod::Vbao {
+    if info.back_faces {
         knows_most.thickness = Some(Thickness::Backface);
+    }
+    if info.second_layer {
         knows_most.layers = 2;
-        knows_most.quality = Some(GtaoQuality::Medium);
+    }
+    // With those passes to pay for, the taps drop to the `medium` preset where there are presets.
+    if info.presets.is_some() && (info.back_faces || info.second_layer) {
+        knows_most.quality = Some(SlicePreset::Medium);
     }
     if knows_most == *start {
         vec![*start]
@@ -103,34 +111,40 @@ pub fn starts(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<AoSet
     }
 }
 
-/// The keys `method`'s shaders read, from `start` (the scene's `[ao]` with the method set): the
-/// free keys always, the costly ones only when `budgeted`. Costly keys come first, so that the
-/// free ones are tuned for the chosen taps.
+/// An engine method whose occluders come from the depth chain: the AO size, the guard band and the
+/// normals change what it sees.
+fn reads_the_depth_chain(info: &MethodInfo) -> bool {
+    info.engine_chain && info.reads_depth_occluders
+}
+
+/// The keys `method`'s shaders read (its row, `MethodInfo`), from `start` (the scene's `[ao]` with
+/// the method set): the free keys always, the costly ones only when `budgeted`. Costly keys come
+/// first, so that the free ones are tuned for the chosen taps.
 pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
-    let engine_method = !matches!(method, AoMethod::SaoLesson | AoMethod::Rtao);
+    let info = method.info();
     let mut axes = Vec::new();
     if budgeted {
-        match method {
-            AoMethod::Gtao | AoMethod::Vbao => {
-                let presets = GtaoQuality::ALL.map(Some);
-                axes.push(axis(
-                    "quality",
-                    Choice::Quality(start.quality),
-                    presets.map(Choice::Quality),
-                ));
-            }
-            AoMethod::Rtao => axes.push(axis(
+        if info.presets.is_some() {
+            let presets = SlicePreset::ALL.map(Some);
+            axes.push(axis(
+                "quality",
+                Choice::Quality(start.quality),
+                presets.map(Choice::Quality),
+            ));
+        } else if info.rays {
+            axes.push(axis(
                 "rays",
                 Choice::Rays(start.rays),
                 RAYS.map(Choice::Rays),
-            )),
-            _ => axes.push(axis(
+            ));
+        } else {
+            axes.push(axis(
                 "samples",
                 Choice::Samples(start.samples),
                 SAMPLES.map(Choice::Samples),
-            )),
+            ));
         }
-        if engine_method {
+        if reads_the_depth_chain(info) {
             axes.push(axis(
                 "resolution",
                 Choice::Resolution(start.resolution),
@@ -141,8 +155,7 @@ pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
                 Choice::GuardBand(start.guard_band),
                 [GuardBand::Off, GuardBand::Auto].map(Choice::GuardBand),
             ));
-            // Crytek's sphere reads no normal.
-            if method != AoMethod::Crytek {
+            if info.normals == NormalUse::Chosen {
                 axes.push(axis(
                     "normals",
                     Choice::Normals(start.normals),
@@ -150,7 +163,7 @@ pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
                 ));
             }
         }
-        if method == AoMethod::Vbao {
+        if info.second_layer {
             axes.push(axis(
                 "layers",
                 Choice::Layers(start.layers),
@@ -159,47 +172,40 @@ pub fn axes(method: AoMethod, start: &AoSettings, budgeted: bool) -> Vec<Axis> {
         }
     }
     // Free keys: what each shader reads besides the radius and its counts.
-    if matches!(
-        method,
-        AoMethod::SaoLesson
-            | AoMethod::Sao
-            | AoMethod::Crytek
-            | AoMethod::Hemisphere
-            | AoMethod::Vbao
-    ) {
+    if info.bias {
         axes.push(axis(
             "bias",
             Choice::Bias(start.bias),
             BIASES.map(Choice::Bias),
         ));
     }
-    match method {
-        AoMethod::SaoLesson => axes.push(axis(
+    match info.tuned_intensity {
+        Some(TunedIntensity::Scale) => axes.push(axis(
             "intensity",
             Choice::Intensity(start.intensity),
             INTENSITIES.map(Choice::Intensity),
         )),
-        AoMethod::Rtao => axes.push(axis(
+        Some(TunedIntensity::Exponent) => axes.push(axis(
             "intensity",
             Choice::Intensity(start.intensity),
             RTAO_INTENSITIES.map(Choice::Intensity),
         )),
-        _ => {}
+        None => {}
     }
-    if matches!(method, AoMethod::SaoLesson | AoMethod::Sao) {
+    if info.spiral_turns {
         axes.push(axis(
             "spiral_turns",
             Choice::SpiralTurns(start.spiral_turns),
             SPIRAL_TURNS.map(Choice::SpiralTurns),
         ));
     }
-    if method == AoMethod::Vbao {
+    if info.thickness {
         let mut values: Vec<Choice> = THICKNESS_OF_RADIUS
             .iter()
             .map(|f| Choice::Thickness(Some(Thickness::Metres(f * start.radius))))
             .collect();
         // The back-face pass costs a depth pass of the scene.
-        if budgeted {
+        if budgeted && info.back_faces {
             values.push(Choice::Thickness(Some(Thickness::Backface)));
         }
         axes.push(axis_of(
@@ -241,7 +247,7 @@ fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
 
 #[cfg(test)]
 mod tests {
-    use crate::ao::{AoMethod, AoResolution, AoSettings, GtaoQuality, NormalSource, Thickness};
+    use crate::ao::{AoMethod, AoResolution, AoSettings, NormalSource, SlicePreset, Thickness};
     use crate::tools::tune::space::{axes, cost_signature, starts, Choice};
 
     #[test]
@@ -319,6 +325,6 @@ mod tests {
         }
         let costly = |c: Choice| cost_signature(&c.apply(&start)) != cost_signature(&start);
         assert!(costly(Choice::Thickness(Some(Thickness::Backface))));
-        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(GtaoQuality::Ultra))));
+        assert!(costly(Choice::Layers(2)) && costly(Choice::Quality(Some(SlicePreset::Ultra))));
     }
 }

@@ -20,7 +20,7 @@ pub struct PerfConfig {
     pub samples: Vec<u32>,
     pub radii: Vec<f32>,
     /// Presets of the methods that have them (gtao, vbao), replacing their defaults.
-    pub qualities: Vec<crate::ao::GtaoQuality>,
+    pub qualities: Vec<crate::ao::SlicePreset>,
     pub ref_rays: u32,
     /// Rays per pixel of the screen-space references (a dense march per ray is far slower than a
     /// BVH ray; they are rendered for the test cameras only, where the split is reported).
