@@ -9,6 +9,7 @@ pub mod guard_band;
 pub mod lesson;
 pub mod method;
 pub mod method_pass;
+pub mod method_row;
 pub mod packed;
 pub mod pipeline;
 pub use crate::scene::ao_resolution as resolution;

@@ -1,8 +1,8 @@
 //! UE4-style angle-based SSAO (Mittring 2012, the Elemental demo): samples in mirrored pairs, occlusion from the angle the
 //! pair makes over the pixel. Shader: `Res/ao/angle_based.frag`.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 

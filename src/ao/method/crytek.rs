@@ -1,8 +1,8 @@
 //! Crytek's SSAO (Mittring 2007, "Finding Next Gen: CryEngine 2"): points in a sphere around the pixel, occluded when the depth buffer is
 //! nearer than the point. Shader: `Res/ao/crytek.frag`.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::ShaderMethod;
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::shader_interface::{binding, s, AO_SPHERE_UNIFORMS};
 

@@ -2,8 +2,8 @@
 //! depth buffer, then the cosine-weighted visible arc integrated in closed form. Shader:
 //! `Res/ao/gtao.frag`; quality presets in `settings::SlicePreset`.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 

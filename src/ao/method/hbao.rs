@@ -1,8 +1,8 @@
 //! Horizon-based AO (Bavoil, Sainz and Dimitrov 2008): marches screen-space directions, keeps the highest horizon per
 //! direction. Shader: `Res/ao/hbao.frag`.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{units_for_budget, ShaderMethod};
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_METHOD_UNIFORMS};
 

@@ -1,8 +1,8 @@
 //! Normal-oriented hemisphere SSAO (Filion and McNaughton 2008, StarCraft II): the sphere kernel flipped into the surface's
 //! hemisphere, with a range check so distant occluders do not count. Shader: `Res/ao/hemisphere.frag`.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::ShaderMethod;
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::shader_interface::{AO_METHOD_SAMPLERS, AO_UNCLAMPED_UNIFORMS};
 

@@ -14,21 +14,11 @@ pub mod vbao;
 
 use super::method_pass::{method_defines, AoMethodPass};
 use super::settings::{AoMethod, AoSettings};
+pub use crate::ao::method_row::{BuildFn, MethodRow};
 use crate::gl::{Gl, ProgramError};
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::shader_interface::{ProgramInterface, Sampler, Uniform};
-
-/// Builds a method's passes (its programs compiled for `camera` and `settings`).
-pub type BuildFn =
-    fn(&Gl, &ResDirs, &Camera, &AoSettings) -> Result<Box<dyn AoMethodPass>, ProgramError>;
-
-/// How the engine builds one method, and what its occlusion shader (`MethodInfo::shader`) declares.
-pub struct MethodRow {
-    pub build: BuildFn,
-    pub uniforms: &'static [Uniform],
-    pub samplers: &'static [Sampler],
-}
+use crate::shader_interface::ProgramInterface;
 
 /// `method`'s row, from its own file (a new `AoMethod` names its file here or nothing compiles).
 pub fn row(method: AoMethod) -> &'static MethodRow {

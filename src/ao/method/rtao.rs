@@ -6,8 +6,8 @@
 //! while the camera and the scene stand still, by a running mean over `accumulate` frames; from
 //! `UNBLURRED_FROM_RAYS` rays per pixel on, the mean alone.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{AoInputs, AoMethodPass, ShaderMethod};
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::{Gl, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
 use crate::math::Camera;

@@ -2,10 +2,10 @@
 //! screen radius clamped, sky and sub-pixel discs skipped, as many mip levels as its largest disc
 //! needs, and the packed separable blur every engine method uses (`ao::packed`), on the shared skeleton (`ShaderMethod`).
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{
     max_radius_pixels, AoInputs, AoMethodPass, ShaderMethod, LOG_MAX_OFFSET,
 };
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::gl::texture::max_levels;
 use crate::gl::{ProgramError, ProgramObject, Texture};

@@ -4,8 +4,8 @@
 
 use crate::ao::blur::lesson_blur;
 use crate::ao::depth_chain::camera_defines;
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{AoInputs, AoMethodPass};
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::ao::targets::AoTargets;
 use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject};

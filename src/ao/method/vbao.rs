@@ -4,10 +4,10 @@
 //! With the slab hierarchy (`AoSettings::uses_slab_hierarchy`) the taps read `ao::slab_hierarchy`'s
 //! levels instead of single texels.
 
-use crate::ao::method::MethodRow;
 use crate::ao::method_pass::{
     method_defines, units_for_budget, AoInputs, AoMethodPass, ShaderMethod,
 };
+use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
 use crate::ao::slab_hierarchy::SlabLevels;
 use crate::gl::{Gl, ProgramError, ProgramObject, Texture};
