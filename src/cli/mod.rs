@@ -1,6 +1,7 @@
 //! The command line (`opengl3d`): the demo in a window, or frames rendered headless.
 
 mod args;
+mod challenge;
 mod help_text;
 mod output;
 mod render_error;
@@ -126,7 +127,7 @@ pub fn run() -> Result<()> {
         }
         Some(Command::Lesson(args)) => lesson(&res, cli.res.as_deref(), &args),
         Some(Command::Reference(args)) => reference(&res, &args),
-        Some(Command::Grade(args)) if args.challenge.is_some() => challenge(&res, &args),
+        Some(Command::Grade(args)) if args.challenge.is_some() => challenge::run(&res, &args),
         #[cfg(feature = "bench")]
         Some(Command::ChallengeEntry(args)) => {
             crate::tools::challenge::entry::run_entry(&res, &args)
@@ -245,59 +246,6 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         crate::outln!("{msg}");
     }
     Ok(())
-}
-
-/// `grade --challenge DIR`: ranks the class's method files and writes the report.
-#[cfg(feature = "bench")]
-fn challenge(res: &ResDirs, args: &crate::tools::grade::GradeArgs) -> Result<()> {
-    use crate::tools::challenge::{self, ChallengeConfig, ChallengeProtocol};
-    let Some(dir) = &args.challenge else {
-        return Ok(());
-    };
-    if !(args.entry_timeout > 0.0 && args.entry_timeout.is_finite()) {
-        bail!("{}", t!("grade.bad_timeout", value = args.entry_timeout));
-    }
-    let scenes = match args.scene.is_empty() {
-        true => vec![res
-            .find("scenes/demo.toml")
-            .map_err(|e| anyhow::anyhow!("{e}"))?],
-        false => args.scene.clone(),
-    };
-    let cfg = ChallengeConfig {
-        dir: dir.clone(),
-        protocol: ChallengeProtocol::new(
-            scenes,
-            crate::tools::reference::reference_cache_dir(None)?,
-        ),
-        budget: args.budget,
-        out: args
-            .out
-            .clone()
-            .unwrap_or_else(|| "challenge-report".into()),
-        timeout: std::time::Duration::from_secs_f64(args.entry_timeout),
-        progress: std::io::IsTerminal::is_terminal(&std::io::stderr()),
-    };
-    let standings = challenge::run(res, &cfg)?;
-    for s in &standings {
-        let place = s.rank.map_or("–".to_string(), |r| r.to_string());
-        let psnr = s.psnr.map_or("–".to_string(), |p| format!("{p:.2} dB"));
-        let cost = s.cost_ratio.map_or("–".to_string(), |c| format!("{c:.2}×"));
-        let reason = s.reason.as_deref().unwrap_or("");
-        crate::outln!("{place:>3}  {:<24} {psnr:>9} {cost:>7}  {reason}", s.name);
-    }
-    crate::outln!(
-        "{}",
-        t!(
-            "challenge.wrote",
-            path = cfg.out.join("report.html").display()
-        )
-    );
-    Ok(())
-}
-
-#[cfg(not(feature = "bench"))]
-fn challenge(_: &ResDirs, _: &crate::tools::grade::GradeArgs) -> Result<()> {
-    bail!("{}", t!("challenge.no_bench_feature"))
 }
 
 /// What `opengl3d lesson` prints without a step: the steps and how to begin.

@@ -96,7 +96,9 @@ mod unzip;
 pub use args::{selected_steps, GradeArgs, GradeFormat, GradeStepArgs, Step};
 /// How the other tools that run students' shaders start them (`grade --challenge`): confined as
 /// the steps are, killed past a time limit, forgotten once reaped.
+#[cfg(feature = "bench")]
 pub(crate) use child::{spawn_confined, wait_or_kill};
+#[cfg(feature = "bench")]
 pub(crate) use interrupt::unregister_group;
 pub use report::StepReport;
 pub use run::run;
