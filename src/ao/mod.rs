@@ -15,6 +15,7 @@ pub use crate::scene::ao_resolution as resolution;
 pub use crate::scene::ao_settings as settings;
 pub mod slab_hierarchy;
 pub mod targets;
+pub mod temporal;
 pub mod upsample;
 
 pub use lesson::SaoLesson;
