@@ -105,16 +105,34 @@ void main()
   vec2 uv = q.xy / max(expected, 1e-6) / previousNdcToView * 0.5 + 0.5;
   bool inside = historyValid != 0 && expected > 0.0 && all(greaterThanEqual(uv, vec2(0.0)))
       && all(lessThan(uv, vec2(1.0)));
-  ivec2 hp = clamp(ivec2(floor(uv * Size())), ivec2(0), ivec2(Size()) - 1);
-  vec4 h = texelFetch(texHistory, hp, 0);
-  // Same surface: the depth the last frame stored there is the one this point had (within a
-  // fraction of the depth, and the depth step to a neighbour, which reprojection off a texel's
-  // centre can add on a slope), and the normals agree.
-  bool sameDepth = abs(h.z - expected) <= temporalInfo.y * expected + 2.0 * slope;
-  bool sameNormal = h.y > 0.0 && dot(DecodeNormal(h.w), nWorld) >= temporalInfo.z;
-  float frames = inside && sameDepth && sameNormal ? h.y : 0.0;
+  // The history at uv, bilinear over the texels that hold the same surface: a texel counts when
+  // the depth the last frame stored there is the one this point had (within a fraction of the
+  // depth, and the depth step to a neighbour, which reprojection off a texel's centre can add on a
+  // slope) and the normals agree. Nearest texels instead would shift the history by up to half a
+  // texel every frame the camera moves, a blur that grows with the frames.
+  vec2 st = uv * Size() - 0.5;
+  ivec2 base = ivec2(floor(st));
+  vec2 f = st - vec2(base);
+  float weight = 0.0, sum = 0.0, frameSum = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 o = ivec2(k & 1, k >> 1);
+    ivec2 hp = clamp(base + o, ivec2(0), ivec2(Size()) - 1);
+    vec4 h = texelFetch(texHistory, hp, 0);
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    bool sameDepth = abs(h.z - expected) <= temporalInfo.y * expected + 2.0 * slope;
+    bool sameNormal = h.y > 0.0 && dot(DecodeNormal(h.w), nWorld) >= temporalInfo.z;
+    if (inside && sameDepth && sameNormal) {
+      weight += w;
+      sum += w * h.x;
+      frameSum += w * h.y;
+    }
+  }
+  // Too little of the footprint holds the surface: start again from this frame.
+  bool kept = weight > 0.25;
+  float frames = kept ? frameSum / weight : 0.0;
+  float previous = kept ? sum / weight : current;
 
-  float history = clamp(h.x, lo - temporalInfo.w, hi + temporalInfo.w);
+  float history = clamp(previous, lo - temporalInfo.w, hi + temporalInfo.w);
   float n = min(frames + 1.0, max(temporalInfo.x, 1.0));
   float blended = frames > 0.0 ? mix(history, current, 1.0 / n) : current;
   // A history that went wrong (NaN never compares true) is dropped for the current value.
