@@ -8,7 +8,7 @@
 //! the same run. Writes `camera-path.json`, `camera-path.md` and a chart per scene.
 
 use super::camera_path_report as report;
-use super::camera_path_score::{self as score, FrameScore};
+use super::camera_path_score::{self as score, FrameScore, PathReport, PathRun, PathSetting};
 use super::catalog;
 use crate::ao::{
     AoMethod, AoResolution, AoSettings, GtaoQuality, GuardBand, NormalSource, Thickness,
@@ -21,7 +21,6 @@ use crate::scene::SceneDesc;
 use crate::tools::reference::{load_or_render_cached, AoVariant, RefImage, RefParams, Scene};
 use anyhow::{Context as _, Result};
 use glam::Quat;
-use serde::Serialize;
 use std::path::PathBuf;
 
 /// What a camera-path run measures.
@@ -47,16 +46,6 @@ pub const ORBIT_DEG_PER_FRAME: f32 = 0.5;
 pub const DOLLY_PER_FRAME: f32 = 0.004;
 /// The AO radius every configuration uses (m), the bench's default.
 pub const RADIUS: f32 = 1.0;
-
-/// One configuration of the run.
-#[derive(Clone, Debug, Serialize)]
-pub struct PathSetting {
-    pub label: String,
-    pub method: AoMethod,
-    pub accumulate: u32,
-    /// A description of the AO settings (for the report).
-    pub settings: String,
-}
 
 /// `vbao` `high` at a quarter of the size with two layers, back faces, geometric normals and the
 /// guard band (the bench's accurate configuration at about the lesson's cost), or the scenes'
@@ -167,33 +156,6 @@ fn truth_params(cfg: &CameraPathConfig) -> RefParams {
         progress: false,
         supersample: cfg.ref_scale,
     }
-}
-
-/// One scene, test camera and configuration along the path.
-#[derive(Clone, Debug, Serialize)]
-pub struct PathRun {
-    pub scene: String,
-    pub camera: String,
-    pub setting: PathSetting,
-    pub frames: Vec<FrameScore>,
-    pub summary: score::Summary,
-}
-
-/// The whole run.
-#[derive(Clone, Debug, Serialize)]
-pub struct PathReport {
-    pub renderer: String,
-    pub width: u32,
-    pub height: u32,
-    pub ref_scale: u32,
-    pub ref_rays: u32,
-    pub still_frames: u32,
-    pub moving_frames: u32,
-    pub accumulate: u32,
-    pub orbit_deg_per_frame: f32,
-    pub dolly_per_frame: f32,
-    pub runs: Vec<PathRun>,
-    pub run_s: f64,
 }
 
 /// Runs every scene's test cameras along the path and writes the report and charts.

@@ -2,7 +2,7 @@
 //! `camera-path-SCENE.svg` / `.png` (PSNR over the frames, one line per configuration, the mean of
 //! the test cameras).
 
-use super::camera_path::{PathReport, PathRun};
+use super::camera_path_score::{PathReport, PathRun};
 use anyhow::{anyhow, Context as _, Result};
 use plotters::prelude::*;
 use std::fmt::Write as _;

@@ -1,12 +1,49 @@
-//! The camera path's figures: per frame the PSNR against that frame's truth, the frame-to-frame
+//! The camera path's runs and figures: per frame the PSNR against that frame's truth, the frame-to-frame
 //! change where the truth stands still (flicker), the error in pixels the previous frame did not
 //! see (ghosting), and the AO passes' time; per run their means after convergence.
 
-use super::camera_path::PathRun;
+use crate::ao::AoMethod;
 use crate::math::Camera;
 use crate::tools::metrics::psnr_from_mse;
 use crate::tools::reference::{pixel_dir, view_direction, RefImage};
 use serde::Serialize;
+
+/// One configuration of the run.
+#[derive(Clone, Debug, Serialize)]
+pub struct PathSetting {
+    pub label: String,
+    pub method: AoMethod,
+    pub accumulate: u32,
+    /// A description of the AO settings (for the report).
+    pub settings: String,
+}
+
+/// One scene, test camera and configuration along the path.
+#[derive(Clone, Debug, Serialize)]
+pub struct PathRun {
+    pub scene: String,
+    pub camera: String,
+    pub setting: PathSetting,
+    pub frames: Vec<FrameScore>,
+    pub summary: Summary,
+}
+
+/// The whole run.
+#[derive(Clone, Debug, Serialize)]
+pub struct PathReport {
+    pub renderer: String,
+    pub width: u32,
+    pub height: u32,
+    pub ref_scale: u32,
+    pub ref_rays: u32,
+    pub still_frames: u32,
+    pub moving_frames: u32,
+    pub accumulate: u32,
+    pub orbit_deg_per_frame: f32,
+    pub dolly_per_frame: f32,
+    pub runs: Vec<PathRun>,
+    pub run_s: f64,
+}
 
 /// A truth pixel counts as standing still between two frames when it changed by less than this
 /// (the truths' own noise is 0.012–0.017 per pixel at 256 rays, so two draws differ by about 0.02).
@@ -173,7 +210,7 @@ pub fn summarise(frames: &[FrameScore], still: usize) -> Summary {
 pub fn set_cost_ratios(runs: &mut [PathRun]) {
     let lesson: Vec<(String, String, f64)> = runs
         .iter()
-        .filter(|r| r.setting.method == crate::ao::AoMethod::SaoLesson)
+        .filter(|r| r.setting.method == AoMethod::SaoLesson)
         .map(|r| (r.scene.clone(), r.camera.clone(), r.summary.ao_cpu_ms))
         .collect();
     for r in runs.iter_mut() {
