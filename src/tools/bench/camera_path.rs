@@ -133,7 +133,7 @@ pub fn settings(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSetti
 }
 
 /// The path from `start`: `still` frames at it, then `moving` frames orbiting its target to the
-/// left while closing in.
+/// left while closing in, the first of them still at `start` (each one step further than the last).
 pub fn path(start: &Camera, still: u32, moving: u32) -> Vec<Camera> {
     let offset = start.eye - start.target;
     (0..still + moving)
@@ -303,7 +303,9 @@ mod tests {
         assert_eq!(p.len(), 7);
         assert!(p[..3].iter().all(|c| c.eye == start.eye));
         let d = |c: &Camera| (c.eye - c.target).length();
-        for w in p[2..].windows(2) {
+        // The moving segment starts where the still one stands and moves from its second frame.
+        assert_eq!(p[3].eye, start.eye);
+        for w in p[3..].windows(2) {
             assert!(d(&w[1]) < d(&w[0]), "the dolly closes in");
             assert!(w[1].eye.x < w[0].eye.x, "the orbit turns left");
         }
