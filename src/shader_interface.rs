@@ -76,6 +76,17 @@ pub mod loc {
     pub const RTAO_VIEW_TO_WORLD: i32 = 240;
     pub const RTAO_FRAME: i32 = 241;
     pub const RTAO_NODE_COUNT: i32 = 243;
+    /// Res/ao/common.glsl: this frame's (rotation, step offset) in [0, 1) (ao/temporal.rs).
+    pub const AO_FRAME_JITTER: i32 = 215;
+    /// ao/temporal_accumulate.frag: view now → view last frame (a mat4: 250–253), view → world for
+    /// normals (a mat3: 254–256), both frames' NDC → view, (length, depth tolerance, normal cosine,
+    /// clamp slack), whether a history exists.
+    pub const TEMPORAL_CURRENT_TO_PREVIOUS: i32 = 250;
+    pub const TEMPORAL_VIEW_TO_WORLD: i32 = 254;
+    pub const TEMPORAL_NDC_TO_VIEW: i32 = 257;
+    pub const TEMPORAL_PREVIOUS_NDC_TO_VIEW: i32 = 258;
+    pub const TEMPORAL_INFO: i32 = 259;
+    pub const TEMPORAL_HISTORY_VALID: i32 = 260;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -166,6 +177,7 @@ pub const AO_METHOD_UNIFORMS: &[Uniform] = &[
     u("aoCounts", AO_COUNTS),
     u("maxRadiusPixels", MAX_RADIUS_PIXELS),
     u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+    u("aoFrameJitter", AO_FRAME_JITTER),
 ];
 pub const AO_METHOD_SAMPLERS: &[Sampler] = &[s("texDepth", INPUT), s("texNormal", SURFACE_NORMALS)];
 /// The hemisphere kernel's samples stay within the world radius: no screen clamp.
@@ -174,12 +186,14 @@ pub const AO_UNCLAMPED_UNIFORMS: &[Uniform] = &[
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
     u("aoSurfaceNormals", AO_SURFACE_NORMALS),
+    u("aoFrameJitter", AO_FRAME_JITTER),
 ];
 /// Crytek's sphere reads no normal, and no screen clamp either.
 pub const AO_SPHERE_UNIFORMS: &[Uniform] = &[
     u("aoInfo", AO_INFO),
     u("ndcToView", NDC_TO_VIEW),
     u("aoCounts", AO_COUNTS),
+    u("aoFrameJitter", AO_FRAME_JITTER),
 ];
 
 /// The lesson's `sao.frag` (the course's locations); also the `sao-lesson` row's.
@@ -358,6 +372,22 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("blockSize", BACK_DEPTH_BLOCK),
         ],
         &[s("texNormal", INPUT), s("texFrontDepth", SECOND_INPUT)],
+    ),
+    fullscreen(
+        "ao/temporal_accumulate.frag",
+        &[
+            u("currentToPrevious", TEMPORAL_CURRENT_TO_PREVIOUS),
+            u("viewToWorld", TEMPORAL_VIEW_TO_WORLD),
+            u("ndcToView", TEMPORAL_NDC_TO_VIEW),
+            u("previousNdcToView", TEMPORAL_PREVIOUS_NDC_TO_VIEW),
+            u("temporalInfo", TEMPORAL_INFO),
+            u("historyValid", TEMPORAL_HISTORY_VALID),
+        ],
+        &[
+            s("texCurrent", INPUT),
+            s("texDepth", SECOND_INPUT),
+            s("texHistory", THIRD_INPUT),
+        ],
     ),
 ];
 

@@ -15,6 +15,10 @@ layout(location=203) uniform float maxRadiusPixels;
 // one every pixel takes the same way. Without the define both paths stay and this uniform decides.
 layout(location=206) uniform int aoSurfaceNormals;
 layout(binding=2) uniform sampler2D texNormal; // octahedral view-space normals at the AO size
+// This frame's (rotation, step offset) as fractions of their range: the next point of a
+// low-discrepancy sequence while frames are accumulated (src/ao/temporal.rs), (0, 0) otherwise.
+// NoiseAngle and StepNoise add it, so every pixel's pattern moves on from frame to frame.
+layout(location=215) uniform vec2 aoFrameJitter;
 
 // CAMERA_FAR, LOG_MAX_OFFSET and BLUR_REACH come from the engine (`ao::method_pass::method_defines`),
 // without a fallback here: a program built without them fails to compile instead of disagreeing.
@@ -106,14 +110,14 @@ vec3 SurfaceNormal(ivec2 p, vec3 c) {
 // A 4x4 tile of rotation angles (the "4x4 noise texture" of the seeds, as arithmetic).
 float NoiseAngle(ivec2 p) {
   const float bayer[16] = float[16](0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5);
-  return (bayer[(p.y & 3) * 4 + (p.x & 3)] + 0.5) / 16.0 * 2.0 * PI;
+  return fract((bayer[(p.y & 3) * 4 + (p.x & 3)] + 0.5) / 16.0 + aoFrameJitter.x) * 2.0 * PI;
 }
 
 // A step offset in [0, 1) independent of NoiseAngle's 4x4 tile (interleaved gradient noise, Jimenez
 // 2014): derived from the angle instead, the same rotation always comes with the same distances and
 // the blur is left with a pattern of rows.
 float StepNoise(ivec2 p) {
-  return fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))));
+  return fract(52.9829189 * fract(dot(vec2(p), vec2(0.06711056, 0.00583715))) + aoFrameJitter.y);
 }
 
 // Intensity 5 (the lesson's default) leaves occlusion as computed; larger darkens, smaller lightens.

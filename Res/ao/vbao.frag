@@ -224,7 +224,8 @@ void TapFromDepth(ivec2 q, out float zq, out float thickness) {
 // has no period, and the training cameras scored the same (sums of six: 170.47 -> 170.63 dB at a
 // quarter of the size, `high`, two layers; 121.28 -> 121.32 at `low`, the scenes' defaults).
 float SliceAngleNoise(ivec2 p) {
-  return fract(52.9829189 * fract(dot(vec2(p) + vec2(5.0, 11.0), vec2(0.00583715, 0.06711056))));
+  return fract(52.9829189 * fract(dot(vec2(p) + vec2(5.0, 11.0), vec2(0.00583715, 0.06711056)))
+      + aoFrameJitter.x);
 }
 
 // Angles of the mean slice weight: the weight is a smooth function of the angle with period pi, for

@@ -38,6 +38,9 @@ pub struct AoInputs<'a> {
     /// draw: inside a guard band, the view and the blur's reach around it
     /// (`guard_band::read_region`). `None`: all of them.
     pub region: Option<[i32; 4]>,
+    /// This frame's (rotation, step offset) in [0, 1) for `common.glsl`'s `aoFrameJitter`: the
+    /// temporal accumulation's sequence (`ao/temporal.rs`), [0, 0] when frames are not accumulated.
+    pub frame_jitter: [f32; 2],
 }
 
 impl AoInputs<'_> {
@@ -154,6 +157,10 @@ pub fn set_common_uniforms(gl: &Gl, program: &ProgramObject, inputs: &AoInputs, 
     }
     if program.has_location(loc::AO_SURFACE_NORMALS) {
         program.set_i32(loc::AO_SURFACE_NORMALS, inputs.normals.is_some() as i32);
+    }
+    // Temporal accumulation: where this frame's sample pattern starts.
+    if program.has_location(loc::AO_FRAME_JITTER) {
+        program.set_vec2(loc::AO_FRAME_JITTER, inputs.frame_jitter);
     }
 }
 

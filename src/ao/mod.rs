@@ -17,6 +17,7 @@ pub use crate::scene::ao_resolution as resolution;
 pub use crate::scene::ao_settings as settings;
 pub mod slab_hierarchy;
 pub mod targets;
+pub mod temporal;
 pub mod upsample;
 pub mod user_method;
 

@@ -246,8 +246,10 @@ pub struct SceneArgs {
     /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
     #[arg(long, allow_negative_numbers = true)]
     pub rays_per_pixel: Option<u32>,
-    /// `rtao`: frames averaged while the camera and the scene stand still (1 = none; `render` draws
-    /// that many frames and writes the last).
+    /// `rtao` and the screen-space methods: frames averaged (1 = none; `render` draws that many
+    /// frames and writes the last). `rtao` averages while the camera and the scene stand still;
+    /// the screen-space methods turn their samples each frame and blend the previous frames'
+    /// result reprojected through the camera's motion.
     #[arg(long, allow_negative_numbers = true)]
     pub accumulate: Option<u32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.

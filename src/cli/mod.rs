@@ -206,9 +206,11 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         // first draw) and allocates the targets, which is not what a pass costs.
         write_view(&mut engine, view, &args.out)?;
     }
-    // `rtao --accumulate N`: the first N - 1 frames build up the running mean the written one ends.
+    // `--accumulate N` (`rtao`, and the screen-space methods through `ao::temporal`): the first
+    // N - 1 frames build up the running mean the written one ends.
     let earlier = scene.ao.accumulate.saturating_sub(1 + args.stats as u32);
-    if scene.ao.method == crate::ao::AoMethod::Rtao {
+    let accumulates = crate::ao::temporal::applies(&engine.ao_settings);
+    if scene.ao.method == crate::ao::AoMethod::Rtao || accumulates {
         for _ in 0..earlier {
             engine.render_to_ao()?;
         }

@@ -11,6 +11,7 @@ use super::passes::{shadow::ShadowPass, transparent};
 use super::stats::{AoTextureInfo, PassStat, PassTimer};
 use super::view::View;
 use crate::ao::guard_band::GuardTargets;
+use crate::ao::temporal::{self, TemporalAccumulation};
 use crate::ao::upsample::UpsampleInputs;
 use crate::ao::{composite, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode};
 use crate::gl::clip_control::ClipControl;
@@ -55,6 +56,8 @@ pub struct Engine {
     post: PostPass,
     /// The AO passes; their targets are created on the first frame that runs AO.
     pub ao: AoPipeline,
+    /// The screen-space methods' occlusion accumulated over frames (`--accumulate` > 1).
+    pub temporal: TemporalAccumulation,
     width: u32,
     height: u32,
     pub fbo_main: FramebufferObject,
@@ -101,6 +104,7 @@ impl Engine {
             (width, height),
             crate::ao::targets::SAO_DEPTH_LEVELS,
         )?;
+        let temporal = TemporalAccumulation::new(gl, &res, &camera)?;
         let mut meshes = MeshBuffer::new(gl)?;
         let mut objects = Vec::new();
         for (i, o) in scene.objects.iter().enumerate() {
@@ -146,6 +150,7 @@ impl Engine {
             bloom_pass: BloomPass::new(gl, &res, (width, height))?,
             post: PostPass::new(gl, &res)?,
             ao,
+            temporal,
             width,
             height,
             fbo_main,
@@ -212,6 +217,7 @@ impl Engine {
         // needs them creates them.
         if !self.needs_ao(self.view) {
             self.ao.release_targets();
+            self.temporal.release_targets();
             self.surface.release_targets();
             self.guard_targets.release();
         }
@@ -256,6 +262,7 @@ impl Engine {
             .iter()
             .chain(self.surface.textures().iter())
             .chain(self.guard_targets.textures().iter())
+            .chain(self.temporal.textures().iter())
             .map(|t| AoTextureInfo::of(t))
             .collect()
     }
@@ -280,6 +287,7 @@ impl Engine {
         self.ao.prepare(settings.method, &camera, &settings)?;
         self.prepare_restores(self.depth_mode, &settings)?;
         self.ao.update_defines(&camera, &settings)?;
+        self.temporal.update_defines(&camera)?;
         self.configure_ao_targets()
     }
 
@@ -294,6 +302,7 @@ impl Engine {
             &mut self.sky.program,
             &mut self.post.image,
             &mut self.post.debug,
+            self.temporal.program_mut(),
             b0,
             b1,
             b2,
@@ -398,6 +407,7 @@ impl Engine {
         }
         if let Some(targets) = ao_targets {
             self.run_ao(&f, targets, view)?;
+            self.accumulate_over_frames(targets, view)?;
         }
         let blend_while_upsampling = view == View::Composite
             && !ambient_only
@@ -627,7 +637,21 @@ impl Engine {
             .draw_opaque(&f, &self.fbo_main, &self.shadow, &shadow_matrix);
         let targets = self.ao.targets()?;
         self.run_ao(&f, targets, View::Ao)?;
+        self.accumulate_over_frames(targets, View::Ao)?;
         check_error(&self.gl, "rendering the AO chain")
+    }
+
+    /// Blends the frame's occlusion with the previous frames' (`ao::temporal`) when the settings
+    /// accumulate a screen-space method; not in the raw and depth views, which show one pass.
+    fn accumulate_over_frames(&self, targets: &AoTargets, view: View) -> Result<()> {
+        if !temporal::applies(&self.ao_settings) || view == View::AoRaw || view.is_depth() {
+            return Ok(());
+        }
+        let (gl, meshes, s) = (&self.gl, &self.meshes, &self.ao_settings);
+        self.pass("temporal accumulation", "ao", || {
+            self.temporal
+                .run(gl, meshes, targets, &self.camera, s, s.blur)
+        })
     }
 
     /// Triangles of every object in world space (for the ray-traced reference).

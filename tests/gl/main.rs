@@ -51,6 +51,7 @@ mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;
 mod surface_normals;
+mod temporal;
 mod tune;
 mod vbao;
 mod vbao_convergence;

@@ -65,6 +65,7 @@ const UNIFORMS: &[Uniform] = &[
     u("aoLayers", loc::AO_LAYERS),
     u("aoLayerBackFaces", loc::AO_LAYER_BACK_FACES),
     u("aoSlabLevels", loc::AO_SLAB_LEVELS),
+    u("aoFrameJitter", loc::AO_FRAME_JITTER),
 ];
 const SAMPLERS: &[Sampler] = &[
     s("texDepth", binding::INPUT),

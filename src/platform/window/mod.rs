@@ -330,6 +330,8 @@ impl App {
             .changed(&s.engine.ao_settings, s.engine.size())
         {
             s.engine.ao.restart_accumulation();
+            // The screen-space methods' history too: it follows the camera, not the settings.
+            s.engine.temporal.restart();
         }
         if std::mem::take(&mut self.options.truth_at_start) {
             // Scripted runs wait for the truth, so that their frames show its map.

@@ -101,6 +101,7 @@ impl Engine {
             second_back_depth: surface.second_back_depth.as_deref(),
             objects: &self.objects,
             region,
+            frame_jitter: self.temporal.frame_jitter(&self.ao_settings),
         };
         let info = method.info();
         let (pass_name, blur_name) = self

@@ -9,6 +9,9 @@
 //!   view, no shadow light, bloom off, frustum culling), as ratios measured in one run → `skips.json`,
 //!   `skips.md`.
 
+pub mod camera_path;
+mod camera_path_report;
+pub mod camera_path_score;
 pub mod catalog;
 pub mod depth_formats;
 pub(crate) mod limits;
@@ -105,6 +108,15 @@ pub struct BenchArgs {
     /// With --stress: skip the 4096×4096 frame.
     #[arg(long)]
     pub no_large: bool,
+    /// Run `vbao` one frame at a time and accumulated over frames along a camera path per scene
+    /// and test camera instead (--frames still frames, then as many moving; truths per frame),
+    /// writing camera-path.json, camera-path.md and a chart per scene.
+    #[arg(long, conflicts_with_all = ["stress", "skips"])]
+    pub camera_path: bool,
+    /// With --camera-path: the accumulated configurations' history length in frames (default 16).
+    #[arg(long, requires = "camera_path",
+          value_parser = clap::value_parser!(u32).range(2..=4096))]
+    pub accumulate: Option<u32>,
 }
 
 impl BenchArgs {
@@ -224,6 +236,9 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         crate::outln!("wrote {}", args.out.join("skips.md").display());
         return Ok(());
     }
+    if args.camera_path {
+        return run_camera_path(res, args);
+    }
     let cfg = args.perf_config()?;
     let report = perf::run(res, &cfg)?;
     crate::outln!(
@@ -232,6 +247,31 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         report.rows.len(),
         report.width,
         report.height,
+        report.run_s.round()
+    );
+    Ok(())
+}
+
+/// `bench --camera-path`: 960×540, truths at 1/6 with 256 rays and 24 frames per segment unless
+/// the flags say otherwise.
+fn run_camera_path(res: &ResDirs, args: &BenchArgs) -> Result<()> {
+    let cfg = camera_path::CameraPathConfig {
+        scenes: args.scenes.clone(),
+        width: args.width.unwrap_or(960).max(16),
+        height: args.height.unwrap_or(540).max(16),
+        ref_scale: args.ref_scale.unwrap_or(6),
+        ref_rays: args.ref_rays.unwrap_or(256),
+        cache: crate::tools::reference::reference_cache_dir(args.cache.as_deref())?,
+        frames: args.frames.unwrap_or(24).max(2),
+        accumulate: args.accumulate.unwrap_or(16),
+        out: args.out.clone(),
+        progress: true,
+    };
+    let report = camera_path::run(res, &cfg)?;
+    crate::outln!(
+        "wrote {} ({} runs, {} s)",
+        cfg.out.join("camera-path.md").display(),
+        report.runs.len(),
         report.run_s.round()
     );
     Ok(())

@@ -21,7 +21,7 @@ const FONT_CANDIDATES: [&str; 6] = [
 ];
 
 /// Registers a sans-serif font once; `Err` with the places searched when none is found.
-fn ensure_font() -> Result<()> {
+pub(crate) fn ensure_font() -> Result<()> {
     static FONT: OnceLock<Option<PathBuf>> = OnceLock::new();
     let found = FONT.get_or_init(|| {
         let mut paths: Vec<PathBuf> = std::env::var_os("OPENGL3D_FONT")

@@ -22,7 +22,7 @@
 //! figures), `markdown.rs` and `chart.rs` (their presentation),
 //! `pictures.rs` and `html.rs` (`report.html`: truth, AO view and signed error map per setting).
 
-mod chart;
+pub(crate) mod chart;
 mod config;
 mod html;
 mod markdown;

@@ -1,0 +1,285 @@
+//! Temporal accumulation for the screen-space methods: each frame the method's sample directions
+//! and steps turn by the next point of the R2 sequence (`frame_jitter`, the one input the method
+//! shaders read for it: `aoFrameJitter` in `Res/ao/common.glsl`), and `Res/ao/temporal_accumulate.frag`
+//! blends the frame's occlusion with the previous frames' reprojected through the two cameras,
+//! dropping the history where depth or normal disagree (disocclusion) and clamping it to the 3×3
+//! range of the current occlusion. The running mean stops growing at `accumulate` frames and goes
+//! on as an exponential mean of that length. XeGTAO and other engines spread their samples over
+//! frames the same way and leave the reprojection to TAA; here the AO keeps its own history.
+//!
+//! On only with `accumulate` > 1 and a screen-space method (the lesson's SAO and `rtao` are left as
+//! they are): the single-frame outputs stay what they were.
+
+use super::settings::{AoMethod, AoSettings};
+use super::targets::AoTargets;
+use crate::gl::preprocess::glsl_float;
+use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramError, ProgramObject};
+use crate::gl::{Texture, TextureDesc};
+use crate::math::camera::fov_scale;
+use crate::math::Camera;
+use crate::res::ResDirs;
+use crate::shader_interface::loc;
+use anyhow::Result;
+use glam::{Mat3, Mat4};
+use glow::HasContext;
+use std::cell::{Cell, RefCell};
+use std::rc::Rc;
+
+pub const SHADER: &str = "ao/temporal_accumulate.frag";
+
+/// Depth the history may differ by and still be the same surface, as a fraction of the depth.
+pub const DEPTH_TOLERANCE: f32 = 0.02;
+/// Least cosine between the history's normal and the current one (about 25°).
+pub const NORMAL_COSINE: f32 = 0.9;
+/// How far (in occlusion) the history may lie outside the current 3×3 range: the range of a
+/// blurred, noisy frame is narrow, and a clamp exactly to it would hold the mean at each frame's
+/// noise; this much lets it converge while a moved shadow still goes within a frame or two.
+pub const CLAMP_SLACK: f32 = 0.05;
+
+/// Whether `settings` accumulate a screen-space method over frames.
+pub fn applies(settings: &AoSettings) -> bool {
+    settings.enabled
+        && settings.accumulate > 1
+        && !matches!(settings.method, AoMethod::SaoLesson | AoMethod::Rtao)
+}
+
+/// Frame `index` of the R2 sequence (Roberts 2018, "The unreasonable effectiveness of
+/// quasirandom sequences"): (rotation, step offset), each in [0, 1); frame 0 is (0, 0), the
+/// single-frame pattern.
+pub fn r2(index: u32) -> [f32; 2] {
+    // 1/g and 1/g² for the plastic number g, in f64 so that long runs stay evenly spread.
+    const A1: f64 = 0.754_877_666_246_692_7;
+    const A2: f64 = 0.569_840_290_998_053_2;
+    let i = index as f64;
+    [(i * A1).fract() as f32, (i * A2).fract() as f32]
+}
+
+/// The camera a history was made with.
+#[derive(Clone, Copy)]
+struct HistoryCamera {
+    view: Mat4,
+    ndc_to_view: [f32; 2],
+    size: (u32, u32),
+}
+
+/// Two histories, written in turn.
+struct Histories {
+    fbo: [FramebufferObject; 2],
+}
+
+pub struct TemporalAccumulation {
+    program: ProgramObject,
+    histories: RefCell<Option<Histories>>,
+    /// Frames accumulated since the last restart (the R2 index of the next frame).
+    frame: Cell<u32>,
+    /// Which history the last frame wrote, and its camera; `None` until a frame ran.
+    last: Cell<Option<(usize, HistoryCamera)>>,
+}
+
+impl TemporalAccumulation {
+    pub fn new(
+        gl: &Gl,
+        res: &ResDirs,
+        camera: &Camera,
+    ) -> Result<TemporalAccumulation, ProgramError> {
+        let program = ProgramObject::from_res(gl, res, "simple.vert", SHADER, &defines(camera))?;
+        Ok(TemporalAccumulation {
+            program,
+            histories: RefCell::new(None),
+            frame: Cell::new(0),
+            last: Cell::new(None),
+        })
+    }
+
+    pub fn program_mut(&mut self) -> &mut ProgramObject {
+        &mut self.program
+    }
+
+    pub fn update_defines(&mut self, camera: &Camera) -> Result<(), ProgramError> {
+        self.program.set_defines(&defines(camera))
+    }
+
+    /// The rotation and step offset the method shaders add this frame ([0, 0] when off).
+    pub fn frame_jitter(&self, settings: &AoSettings) -> [f32; 2] {
+        if applies(settings) {
+            r2(self.frame.get())
+        } else {
+            [0.0; 2]
+        }
+    }
+
+    /// Frames in the mean the last frame wrote, at most `accumulate` (0 before any frame).
+    pub fn frames(&self) -> u32 {
+        self.frame.get()
+    }
+
+    /// Drops the history: the next frame starts the mean again.
+    pub fn restart(&self) {
+        self.frame.set(0);
+        self.last.set(None);
+    }
+
+    /// Drops the size-dependent textures (and the history with them).
+    pub fn release_targets(&mut self) {
+        *self.histories.borrow_mut() = None;
+        self.restart();
+    }
+
+    pub fn textures(&self) -> Vec<Rc<Texture>> {
+        self.histories
+            .borrow()
+            .iter()
+            .flat_map(|h| h.fbo.iter().filter_map(|f| f.color_texture().cloned()))
+            .collect()
+    }
+
+    /// Blends this frame's occlusion in `targets` (blurred or raw, as `blurred` says) with the
+    /// history and writes the result back there, for the up-sampling and the composite.
+    pub fn run(
+        &self,
+        gl: &Gl,
+        meshes: &MeshBuffer,
+        targets: &AoTargets,
+        camera: &Camera,
+        settings: &AoSettings,
+        blurred: bool,
+    ) -> Result<()> {
+        let size = targets.size();
+        self.ensure_histories(gl, size)?;
+        let histories = self.histories.borrow();
+        let histories = histories.as_ref().expect("created above");
+        let fov = fov_scale(camera.fov_y_deg);
+        let now = HistoryCamera {
+            view: camera.view(),
+            ndc_to_view: [size.0 as f32 / size.1 as f32 / fov, 1.0 / fov],
+            size,
+        };
+        let last = self.last.get().filter(|(_, c)| c.size == size);
+        let write = last.map_or(0, |(read, _)| 1 - read);
+        let previous = last.map_or(now, |(_, c)| c);
+        let p = &self.program;
+        p.set_mat4(
+            loc::TEMPORAL_CURRENT_TO_PREVIOUS,
+            &(previous.view * now.view.inverse()),
+        );
+        p.set_mat3(
+            loc::TEMPORAL_VIEW_TO_WORLD,
+            &Mat3::from_mat4(now.view.inverse()),
+        );
+        p.set_vec2(loc::TEMPORAL_NDC_TO_VIEW, now.ndc_to_view);
+        p.set_vec2(loc::TEMPORAL_PREVIOUS_NDC_TO_VIEW, previous.ndc_to_view);
+        p.set_vec4(
+            loc::TEMPORAL_INFO,
+            [
+                settings.accumulate as f32,
+                DEPTH_TOLERANCE,
+                NORMAL_COSINE,
+                CLAMP_SLACK,
+            ],
+        );
+        p.set_i32(loc::TEMPORAL_HISTORY_VALID, last.is_some() as i32);
+        let out = &histories.fbo[write];
+        out.bind();
+        PassState::FULLSCREEN.apply(gl, None);
+        // SAFETY: a viewport of the target's own size.
+        unsafe { gl.viewport(0, 0, size.0 as i32, size.1 as i32) };
+        p.use_program();
+        targets.result_texture(blurred).bind(0);
+        targets.tex_depth.bind(1);
+        let history_tex = histories.fbo[1 - write]
+            .color_texture()
+            .expect("created with a colour texture");
+        history_tex.bind(2);
+        meshes.draw_plane_xy();
+        // The blend back into the target the rest of the frame reads (RGBA32F → R8: red only).
+        let result = if blurred {
+            &targets.fbo_blur
+        } else {
+            &targets.fbo_sao
+        };
+        let (w, h) = (size.0 as i32, size.1 as i32);
+        // SAFETY: both framebuffers are complete and `size` large.
+        unsafe {
+            gl.blit_named_framebuffer(
+                Some(out.id()),
+                Some(result.id()),
+                0,
+                0,
+                w,
+                h,
+                0,
+                0,
+                w,
+                h,
+                glow::COLOR_BUFFER_BIT,
+                glow::NEAREST,
+            );
+        }
+        self.last.set(Some((write, now)));
+        self.frame.set(self.frame.get().saturating_add(1));
+        Ok(())
+    }
+
+    fn ensure_histories(&self, gl: &Gl, size: (u32, u32)) -> Result<()> {
+        let fits = self
+            .histories
+            .borrow()
+            .as_ref()
+            .is_some_and(|h| (h.fbo[0].width(), h.fbo[0].height()) == size);
+        if fits {
+            return Ok(());
+        }
+        let make = |name: &str| -> Result<FramebufferObject> {
+            let tex = Texture::new(gl, TextureDesc::target(name, size.0, size.1, glow::RGBA32F))?;
+            FramebufferObject::new(gl, Some(Rc::new(tex)), None, 0, 0)
+        };
+        *self.histories.borrow_mut() = Some(Histories {
+            fbo: [make("FBO(ao history 0)")?, make("FBO(ao history 1)")?],
+        });
+        self.last.set(None);
+        Ok(())
+    }
+}
+
+fn defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    vec![("CAMERA_FAR", glsl_float(camera.far))]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn r2_starts_at_the_single_frame_pattern_and_spreads_evenly() {
+        assert_eq!(r2(0), [0.0, 0.0]);
+        // Any 16 consecutive points leave no quarter of either axis empty.
+        for start in [1, 100, 10_000] {
+            for axis in 0..2 {
+                let mut seen = [false; 4];
+                for i in start..start + 16 {
+                    let v = r2(i)[axis];
+                    assert!((0.0..1.0).contains(&v));
+                    seen[(v * 4.0) as usize] = true;
+                }
+                assert!(seen.iter().all(|&s| s), "axis {axis} from {start}");
+            }
+        }
+    }
+
+    #[test]
+    fn only_screen_space_methods_with_accumulate_above_one_accumulate() {
+        let base = AoSettings {
+            method: AoMethod::Vbao,
+            accumulate: 8,
+            ..Default::default()
+        };
+        assert!(applies(&base));
+        assert!(!applies(&AoSettings {
+            accumulate: 1,
+            ..base
+        }));
+        for m in [AoMethod::SaoLesson, AoMethod::Rtao] {
+            assert!(!applies(&AoSettings { method: m, ..base }), "{}", m.name());
+        }
+    }
+}

@@ -1,0 +1,321 @@
+//! `opengl3d bench --camera-path`: the screen-space methods accumulated over frames
+//! (`ao::temporal`) against the same methods one frame at a time, along a camera path per scene
+//! and test camera: a still segment (the accumulation converges), then a slow orbit with a dolly
+//! (the history is reprojected). Every frame is scored against the ray-traced truth of its own
+//! camera (footprint means, cached like the bench's references); the frame-to-frame change where
+//! the truth stands still measures flicker, and the error in pixels the previous frame did not see
+//! measures ghosting. Costs are the AO passes' time per frame as a ratio to the lesson's chain in
+//! the same run. Writes `camera-path.json`, `camera-path.md` and a chart per scene.
+
+use super::camera_path_report as report;
+use super::camera_path_score::{self as score, FrameScore, PathReport, PathRun, PathSetting};
+use super::catalog;
+use crate::ao::{
+    AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
+};
+use crate::math::Camera;
+use crate::platform::HeadlessContext;
+use crate::render::{Engine, View};
+use crate::res::ResDirs;
+use crate::scene::SceneDesc;
+use crate::tools::reference::{load_or_render_cached, AoVariant, RefImage, RefParams, Scene};
+use anyhow::{Context as _, Result};
+use glam::Quat;
+use std::path::PathBuf;
+
+/// What a camera-path run measures.
+#[derive(Clone, Debug)]
+pub struct CameraPathConfig {
+    pub scenes: Vec<PathBuf>,
+    pub width: u32,
+    pub height: u32,
+    /// The truth is rendered at 1/`ref_scale` and the engine's output box-averaged to it.
+    pub ref_scale: u32,
+    pub ref_rays: u32,
+    pub cache: PathBuf,
+    /// Frames of each segment (still, then moving).
+    pub frames: u32,
+    /// The accumulated configurations' history length (`--accumulate`).
+    pub accumulate: u32,
+    pub out: PathBuf,
+    pub progress: bool,
+}
+
+/// Degrees the orbit turns per frame, and the share of the distance the dolly closes per frame.
+pub const ORBIT_DEG_PER_FRAME: f32 = 0.5;
+pub const DOLLY_PER_FRAME: f32 = 0.004;
+/// The AO radius every configuration uses (m), the bench's default.
+pub const RADIUS: f32 = 1.0;
+
+/// `vbao` `high` at a quarter of the size with two layers, back faces, geometric normals and the
+/// guard band (the bench's accurate configuration at about the lesson's cost), or the scenes'
+/// defaults (`low`, half size).
+fn vbao_settings(base: &AoSettings, quarter_high: bool) -> AoSettings {
+    let mut s = AoSettings {
+        method: AoMethod::Vbao,
+        radius: RADIUS,
+        enabled: true,
+        ..*base
+    };
+    if quarter_high {
+        s.quality = Some(SlicePreset::High);
+        s.resolution = AoResolution::Quarter;
+        s.layers = 2;
+        s.thickness = Some(Thickness::Backface);
+        s.normals = NormalSource::Geometric;
+        s.guard_band = GuardBand::Auto;
+    } else {
+        s.quality = Some(SlicePreset::Low);
+    }
+    s
+}
+
+/// The configurations: the lesson's chain (the cost unit), `vbao` in two set-ups, each one frame at
+/// a time and accumulated, and the first accumulated without its blur.
+pub fn settings(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings)> {
+    let lesson = AoSettings {
+        method: AoMethod::SaoLesson,
+        radius: RADIUS,
+        enabled: true,
+        ..*base
+    };
+    let mut out = vec![(
+        PathSetting {
+            label: "sao-lesson".into(),
+            method: AoMethod::SaoLesson,
+            accumulate: 1,
+            settings: "n11, R 1 m".into(),
+        },
+        lesson,
+    )];
+    for (quarter_high, what) in [
+        (
+            true,
+            "high, quarter size, 2 layers, back faces, geometric normals, guard band",
+        ),
+        (false, "low, half size (the scenes' defaults)"),
+    ] {
+        for n in [1, accumulate] {
+            let s = AoSettings {
+                accumulate: n,
+                ..vbao_settings(base, quarter_high)
+            };
+            let short = if quarter_high { "quarter high" } else { "low" };
+            let label = if n > 1 {
+                format!("vbao {short} ×{n}")
+            } else {
+                format!("vbao {short}")
+            };
+            let setting = PathSetting {
+                label,
+                method: AoMethod::Vbao,
+                accumulate: n,
+                settings: what.into(),
+            };
+            out.push((setting, s));
+        }
+    }
+    // Accumulated without the blur: the frames average the noise the blur would, without its
+    // smoothing across edges.
+    let unblurred = AoSettings {
+        accumulate,
+        blur: false,
+        ..vbao_settings(base, true)
+    };
+    let setting = PathSetting {
+        label: format!("vbao quarter high ×{accumulate}, no blur"),
+        method: AoMethod::Vbao,
+        accumulate,
+        settings: "as vbao quarter high, without the blur".into(),
+    };
+    out.push((setting, unblurred));
+    out
+}
+
+/// The path from `start`: `still` frames at it, then `moving` frames orbiting its target to the
+/// left while closing in, the first of them still at `start` (each one step further than the last).
+pub fn path(start: &Camera, still: u32, moving: u32) -> Vec<Camera> {
+    let offset = start.eye - start.target;
+    (0..still + moving)
+        .map(|i| {
+            let k = i.saturating_sub(still) as f32;
+            let turn = Quat::from_rotation_y((-ORBIT_DEG_PER_FRAME * k).to_radians());
+            let eye = start.target + turn * offset * (1.0 - DOLLY_PER_FRAME * k);
+            Camera { eye, ..*start }
+        })
+        .collect()
+}
+
+/// The truth's parameters: footprint means over the `ref_scale`² engine pixels, the bench's seed.
+fn truth_params(cfg: &CameraPathConfig) -> RefParams {
+    RefParams {
+        radius: RADIUS,
+        rays: cfg.ref_rays,
+        variant: AoVariant::Visibility,
+        seed: 1,
+        progress: false,
+        supersample: cfg.ref_scale,
+    }
+}
+
+/// Runs every scene's test cameras along the path and writes the report and charts.
+pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
+    let t0 = std::time::Instant::now();
+    std::fs::create_dir_all(&cfg.out)
+        .with_context(|| format!("cannot create {}", cfg.out.display()))?;
+    let scenes: Vec<PathBuf> = if cfg.scenes.is_empty() {
+        vec![res
+            .find("scenes/demo.toml")
+            .map_err(|e| anyhow::anyhow!("{e}"))?]
+    } else {
+        cfg.scenes.clone()
+    };
+    let ctx = HeadlessContext::new()?;
+    let (rw, rh) = (cfg.width / cfg.ref_scale, cfg.height / cfg.ref_scale);
+    let mut runs = Vec::new();
+    for path_file in &scenes {
+        let mut desc = SceneDesc::load(path_file)?;
+        desc.output.width = cfg.width;
+        desc.output.height = cfg.height;
+        let name = path_file
+            .file_stem()
+            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
+        let bvh = Scene::new(desc.world_triangles(res)?)?;
+        let mut engine = Engine::new(&ctx.gl, res.clone(), &desc, cfg.width, cfg.height)?;
+        let base = engine.ao_settings;
+        for cam in catalog::camera_variants(&desc.camera)
+            .iter()
+            .filter(|c| !c.train)
+        {
+            let cameras = path(&cam.camera(&desc.camera), cfg.frames, cfg.frames);
+            let truths: Vec<RefImage> = cameras
+                .iter()
+                .enumerate()
+                .map(|(i, c)| {
+                    if cfg.progress {
+                        eprintln!(
+                            "truth {name}/{} frame {}/{}",
+                            cam.name,
+                            i + 1,
+                            cameras.len()
+                        );
+                    }
+                    load_or_render_cached(&cfg.cache, &bvh, c, rw, rh, &truth_params(cfg))
+                })
+                .collect();
+            let fresh = score::disoccluded(&cameras, &truths);
+            for (setting, s) in settings(cfg.accumulate, &base) {
+                if cfg.progress {
+                    eprintln!("{name}/{} {}", cam.name, setting.label);
+                }
+                let frames = run_path(&mut engine, &s, &cameras, &truths, &fresh, cfg)?;
+                let summary = score::summarise(&frames, cfg.frames as usize);
+                runs.push(PathRun {
+                    scene: name.clone(),
+                    camera: cam.name.clone(),
+                    setting,
+                    frames,
+                    summary,
+                });
+            }
+        }
+    }
+    score::set_cost_ratios(&mut runs);
+    let report = PathReport {
+        renderer: ctx.renderer.clone(),
+        width: cfg.width,
+        height: cfg.height,
+        ref_scale: cfg.ref_scale,
+        ref_rays: cfg.ref_rays,
+        still_frames: cfg.frames,
+        moving_frames: cfg.frames,
+        accumulate: cfg.accumulate,
+        orbit_deg_per_frame: ORBIT_DEG_PER_FRAME,
+        dolly_per_frame: DOLLY_PER_FRAME,
+        runs,
+        run_s: t0.elapsed().as_secs_f64(),
+    };
+    report::write(&report, &cfg.out)?;
+    Ok(report)
+}
+
+/// Renders `cameras` in order with `settings` from an empty history, scoring each frame.
+fn run_path(
+    engine: &mut Engine,
+    settings: &AoSettings,
+    cameras: &[Camera],
+    truths: &[RefImage],
+    fresh: &[Vec<bool>],
+    cfg: &CameraPathConfig,
+) -> Result<Vec<FrameScore>> {
+    engine.ao_settings = *settings;
+    engine.camera = cameras[0];
+    engine.sync_shader_constants()?;
+    // One frame unscored and untimed: the first frame compiles the shaders and creates targets.
+    engine.render_values(View::Ao)?;
+    engine.temporal.restart();
+    engine.collect_stats = true;
+    let mut out = Vec::new();
+    let mut previous: Option<Vec<f32>> = None;
+    for (i, (camera, truth)) in cameras.iter().zip(truths).enumerate() {
+        engine.camera = *camera;
+        let values = engine.render_values(View::Ao)?;
+        let ao_ms: f64 = engine
+            .last_stats()
+            .iter()
+            .filter(|p| p.group == "ao")
+            .map(|p| p.cpu_ms)
+            .sum();
+        let (small, _, _) = crate::tools::metrics::downsample(
+            &values,
+            cfg.width as usize,
+            cfg.height as usize,
+            cfg.ref_scale as usize,
+        );
+        let prev_truth = i.checked_sub(1).map(|p| &truths[p]);
+        out.push(score::score_frame(
+            &small,
+            previous.as_deref(),
+            truth,
+            prev_truth,
+            &fresh[i],
+            ao_ms,
+        ));
+        previous = Some(small);
+    }
+    engine.collect_stats = false;
+    Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec3;
+
+    #[test]
+    fn the_path_stands_still_then_orbits_and_closes_in() {
+        let start = Camera {
+            eye: Vec3::new(0.0, 2.0, 10.0),
+            target: Vec3::ZERO,
+            ..Camera::default()
+        };
+        let p = path(&start, 3, 4);
+        assert_eq!(p.len(), 7);
+        assert!(p[..3].iter().all(|c| c.eye == start.eye));
+        let d = |c: &Camera| (c.eye - c.target).length();
+        // The moving segment starts where the still one stands and moves from its second frame.
+        assert_eq!(p[3].eye, start.eye);
+        for w in p[3..].windows(2) {
+            assert!(d(&w[1]) < d(&w[0]), "the dolly closes in");
+            assert!(w[1].eye.x < w[0].eye.x, "the orbit turns left");
+        }
+    }
+
+    #[test]
+    fn every_vbao_setting_comes_one_frame_and_accumulated() {
+        let s = settings(16, &AoSettings::default());
+        assert_eq!(s[0].0.method, AoMethod::SaoLesson);
+        assert_eq!(s.iter().filter(|(p, _)| p.accumulate == 16).count(), 3);
+        assert!(s.iter().all(|(p, a)| p.accumulate == a.accumulate));
+    }
+}
