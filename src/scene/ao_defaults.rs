@@ -56,7 +56,28 @@ pub fn recommended(method: AoMethod) -> Recommended {
             // Each pixel's own thickness, from the back faces: chair legs stay thin, walls stay walls.
             thickness: Some(Thickness::Backface),
         },
-        _ => PLAIN,
+        // The methods below: each key the quick protocol's search chose on at least two of the
+        // three scenes (docs/bench/defaults.md); their sample counts stay the scene's `samples`.
+        AoMethod::Sao | AoMethod::Hemisphere => Recommended {
+            // Chosen on all three scenes: the rebuilt normal bends at every crease.
+            normals: NormalSource::Geometric,
+            // Chosen on two: walls just off screen darken the room's corners.
+            guard_band: GuardBand::Auto,
+            ..PLAIN
+        },
+        AoMethod::Crytek | AoMethod::Hbao | AoMethod::AngleBased => Recommended {
+            // Chosen on two scenes (Crytek reads no normal; the others' normal choice split).
+            guard_band: GuardBand::Auto,
+            ..PLAIN
+        },
+        AoMethod::Gtao => Recommended {
+            // 4 slices × 8 steps: chosen on all three scenes, within the lesson's cost.
+            quality: Some(GtaoQuality::Ultra),
+            // Chosen on two scenes each.
+            normals: NormalSource::Geometric,
+            guard_band: GuardBand::Auto,
+            ..PLAIN
+        },
     }
 }
 
