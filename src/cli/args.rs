@@ -293,12 +293,13 @@ pub struct RenderArgs {
     pub scene: SceneArgs,
     /// What to write: the lit composite, linear depth (m), the second depth layer's (`vbao` with
     /// `--layers 2`), raw SAO or blurred SAO (visibility, 1 = open), or `error`: the blurred AO view
-    /// minus `--truth`, box-averaged to the truth's size (too dark blue, too light orange, sky grey,
+    /// minus the truth (`--truth`, else traced), box-averaged to the truth's size (too dark blue, too light orange, sky grey,
     /// with a colour scale; PSNR and RMSE on stdout).
     #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
     pub view: RenderView,
     /// With `--view error`: the truth, a one-channel PFM of visibility (e.g. `opengl3d reference`'s)
-    /// at the output size divided by a whole factor.
+    /// at the output size divided by a whole factor; without it the truth is ray-traced (at most
+    /// 320 pixels wide, 256 rays) and kept in the reference cache.
     #[arg(long, value_name = "FILE.pfm")]
     pub truth: Option<PathBuf>,
     /// With `--view error`: the error drawn at full colour (visibility units).

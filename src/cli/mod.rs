@@ -232,6 +232,12 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     );
     if args.stats {
         eprintln!("{msg}");
+        let keys = crate::scene::ao_defaults::chosen_line(&engine.ao_settings);
+        let method = engine.ao_settings.method.name();
+        eprintln!(
+            "{}",
+            t!("render.ao_configuration", method = method, keys = keys)
+        );
         // Each pass names its clock too: a pass timed inside another falls back to the wall clock.
         let clock = crate::gl::PassClock::of_context(&ctx.gl);
         let method = engine.ao_settings.method;
@@ -242,6 +248,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
             "passes": engine.last_stats(),
             "bvh": engine.ao.bvh_stats(method),
             "accumulated_frames": engine.ao.accumulated_frames(method),
+            "ao_configuration": crate::scene::ao_defaults::chosen(&engine.ao_settings),
         });
         crate::outln!("{json}");
     } else {

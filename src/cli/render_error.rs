@@ -1,5 +1,5 @@
-//! `render --view error --truth FILE`: the AO view of the current settings against a truth image,
-//! written as a signed error map (`crate::tools::error_map`), with PSNR and RMSE on stdout.
+//! `render --view error [--truth FILE]`: the AO view of the current settings against a truth image
+//! (traced here when none is given), written as a signed error map (`crate::tools::error_map`), with PSNR and RMSE on stdout.
 
 use super::args::RenderArgs;
 use super::output::{OutFormat, PNG_OR_PFM};
@@ -13,21 +13,44 @@ use rust_i18n::t;
 
 pub fn run(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     OutFormat::of("--out", &args.out, PNG_OR_PFM)?;
-    let Some(truth_path) = &args.truth else {
-        bail!("{}", t!("error_map.no_truth"));
-    };
     if !(args.error_range.is_finite() && args.error_range > 0.0) {
         bail!("{}", t!("error_map.bad_range", range = args.error_range));
     }
     if args.stats {
         bail!("{}", t!("error_map.no_stats"));
     }
-    // The truth first: a missing file or a wrong size costs no render.
-    let (tw, th, truth) = error_map::read_truth(truth_path)?;
-    let scene = load_scene(&args.scene, res)?;
+    let (scene, (tw, th, truth)) = match &args.truth {
+        Some(truth_path) => {
+            // The truth first: a missing file or a wrong size costs no render.
+            let (tw, th, truth) = error_map::read_truth(truth_path)?;
+            let scene = load_scene(&args.scene, res)?;
+            let (ew, eh) = (scene.output.width as usize, scene.output.height as usize);
+            error_map::factor((ew, eh), (tw, th))
+                .map_err(|e| anyhow::anyhow!("{}: {e}", truth_path.display()))?;
+            (scene, (tw, th, truth))
+        }
+        None => {
+            // No truth given: trace it (or read it from the reference cache), as the window's T.
+            let scene = load_scene(&args.scene, res)?;
+            let cache = crate::tools::reference::reference_cache_dir(None)?;
+            let traced = error_map::traced_truth(res, &scene, &cache)?;
+            let key = if traced.cached {
+                "error_map.truth_cached"
+            } else {
+                "error_map.truth_traced"
+            };
+            let message = t!(
+                key,
+                size = format!("{}x{}", traced.width, traced.height),
+                rays = error_map::TRACED_TRUTH_RAYS,
+                radius = scene.ao.radius,
+                path = traced.path.display()
+            );
+            eprintln!("{message}");
+            (scene, (traced.width, traced.height, traced.ao))
+        }
+    };
     let (ew, eh) = (scene.output.width as usize, scene.output.height as usize);
-    error_map::factor((ew, eh), (tw, th))
-        .map_err(|e| anyhow::anyhow!("{}: {e}", truth_path.display()))?;
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
     super::scene_args::use_method_file(&mut engine, &args.scene)?;

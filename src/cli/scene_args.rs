@@ -39,6 +39,8 @@ pub fn load_scene(args: &SceneArgs, res: &ResDirs) -> Result<SceneDesc> {
         (file.desc.clone(), Origin::File(Box::new(file)), None)
     };
     let flags = apply_flags(args, &mut desc)?;
+    // The keys neither the scene file nor a flag wrote: the method's recommended configuration.
+    crate::scene::ao_defaults::apply(&mut desc.ao);
     if let Some(mesh) = &model {
         frame_mesh(&mut desc, mesh, args);
     }
@@ -182,11 +184,13 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
             bail!("{}", t!("render.bad_samples", n = n));
         }
         desc.ao.samples = n;
-        // An explicit count wins over a preset from the scene file.
+        // An explicit count wins over a preset from the scene file or the recommendation.
         desc.ao.quality = None;
+        desc.ao.written.quality = true;
     }
     if let Some(q) = args.quality {
         desc.ao.quality = Some(q);
+        desc.ao.written.quality = true;
     }
     if let Some(n) = args.rays_per_pixel {
         let (lo, hi) = crate::ao::settings::RAYS_RANGE;
@@ -228,15 +232,19 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
     }
     if let Some(r) = args.ao_resolution {
         desc.ao.resolution = r;
+        desc.ao.written.resolution = true;
     }
     if let Some(n) = args.normals {
         desc.ao.normals = n;
+        desc.ao.written.normals = true;
     }
     if let Some(g) = args.guard_band {
         desc.ao.guard_band = g;
+        desc.ao.written.guard_band = true;
     }
     if let Some(l) = args.layers {
         desc.ao.layers = l;
+        desc.ao.written.layers = true;
     }
     if let Some(h) = args.slab_hierarchy {
         desc.ao.slab_hierarchy = h;
@@ -251,6 +259,7 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
             }
         }
         desc.ao.thickness = Some(t);
+        desc.ao.written.thickness = true;
         keys.push(("ao.thickness", "--thickness"));
     }
     Ok(keys)

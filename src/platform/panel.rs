@@ -140,7 +140,16 @@ impl Panel {
                     ui.selectable_value(&mut p.method, m, m.name());
                 }
             });
-        actions.sync_shader_constants |= p.method != before;
+        if p.method != before {
+            crate::scene::ao_defaults::apply(p);
+            actions.sync_shader_constants = true;
+        }
+        ui.small(format!(
+            "{}: {}",
+            tr("panel.configuration"),
+            crate::scene::ao_defaults::chosen_line(p)
+        ))
+        .on_hover_text(tr("panel.configuration_help"));
 
         // What the method reads decides what the panel offers (`MethodInfo`).
         let info = p.method.info();

@@ -204,6 +204,10 @@ pub struct AoSettings {
     /// `of` 0: the lattice is this frame's `rays`. Not a scene-file key.
     #[serde(skip)]
     pub lattice_slice: (u32, u32),
+    /// Which of the keys a method's recommendation covers the scene file or a flag wrote
+    /// (`ao_defaults::apply` fills in the others). Not a scene-file key.
+    #[serde(skip)]
+    pub written: super::ao_written::WrittenKeys,
 }
 
 /// What `vbao` takes to lie behind each depth sample (`[ao] thickness = 0.3` or `"backface"`,
@@ -334,6 +338,7 @@ impl Default for AoSettings {
             accumulate: 1,
             stratified: false,
             lattice_slice: (0, 0),
+            written: Default::default(),
         }
     }
 }

@@ -40,6 +40,7 @@ impl SceneFile {
         })?;
         let mut desc: SceneDesc = toml::from_str(&text)
             .map_err(|e| anyhow::anyhow!("{}: invalid scene file: {e}", path.display()))?;
+        desc.ao.written = super::ao_defaults::WrittenKeys::in_scene_text(&text);
         let folder = path.parent().unwrap_or(Path::new(""));
         for o in &mut desc.objects {
             let mesh = Path::new(&o.mesh);
@@ -104,7 +105,8 @@ impl SceneDesc {
 
     /// Parses and checks scene text (meshes resolve through `Res/`); errors name LINE:COL.
     pub fn parse(text: &str) -> Result<SceneDesc> {
-        let desc: SceneDesc = toml::from_str(text)?;
+        let mut desc: SceneDesc = toml::from_str(text)?;
+        desc.ao.written = super::ao_defaults::WrittenKeys::in_scene_text(text);
         let errors = desc.errors();
         if !errors.is_empty() {
             let places = KeyPlaces::of(text);

@@ -1,8 +1,10 @@
 //! Scene descriptions: small TOML files in `Res/scenes/`, their checks, and the demo meshes' generator.
 
+pub mod ao_defaults;
 pub mod ao_method;
 pub mod ao_resolution;
 pub mod ao_settings;
+mod ao_written;
 pub mod bvh;
 mod check;
 mod desc;

@@ -218,6 +218,92 @@ pub fn engine_view(engine: &mut Engine) -> Result<(Vec<f32>, Vec<bool>)> {
     Ok((ao, sky))
 }
 
+/// The widest truth `render --view error` traces itself when no `--truth` is given: at the bench's
+/// size (320×180 for a 1920×1080 render), a trace takes seconds, not minutes, on two cores.
+pub const TRACED_TRUTH_MAX_WIDTH: u32 = 320;
+
+/// Rays per pixel of a traced truth: `opengl3d reference`'s default and the bench's, so all three
+/// share cached files.
+pub const TRACED_TRUTH_RAYS: u32 = 256;
+
+/// The whole factor a `width`×`height` render is divided by for its traced truth: the smallest
+/// factor of both sides that brings the width to [`TRACED_TRUTH_MAX_WIDTH`] or less (1 when the
+/// sides share no such factor).
+pub fn traced_truth_factor(width: u32, height: u32) -> u32 {
+    let wanted = width.div_ceil(TRACED_TRUTH_MAX_WIDTH).max(1);
+    let common = gcd(width, height);
+    (wanted..=common)
+        .find(|f| common.is_multiple_of(*f))
+        .unwrap_or(1)
+}
+
+fn gcd(a: u32, b: u32) -> u32 {
+    if b == 0 {
+        a
+    } else {
+        gcd(b, a % b)
+    }
+}
+
+/// A truth traced for the scene's camera and radius.
+pub struct TracedTruth {
+    pub width: usize,
+    pub height: usize,
+    pub ao: Vec<f32>,
+    /// Read from the reference cache instead of traced.
+    pub cached: bool,
+    /// The file it is cached in.
+    pub path: std::path::PathBuf,
+}
+
+/// The truth of `scene`'s view traced by `opengl3d reference`'s CPU ray tracer (visibility at the
+/// AO radius, [`TRACED_TRUTH_RAYS`] rays, each pixel the mean over the footprint of the
+/// `factor`² render pixels it stands for, as the bench's truths), read from the reference cache
+/// in `cache_dir` when it holds it, otherwise traced with a progress bar on stderr and stored
+/// there (an unwritable cache is a warning).
+pub fn traced_truth(
+    res: &crate::res::ResDirs,
+    scene: &crate::scene::SceneDesc,
+    cache_dir: &Path,
+) -> Result<TracedTruth> {
+    use crate::tools::reference::{self as reference, AoVariant, RefParams};
+    let (w, h) = (scene.output.width, scene.output.height);
+    let f = traced_truth_factor(w, h);
+    let (tw, th) = (w / f, h / f);
+    let bvh = reference::Scene::new(scene.world_triangles(res)?)?;
+    let cam = scene.camera.camera();
+    let params = RefParams {
+        radius: scene.ao.radius,
+        rays: TRACED_TRUTH_RAYS,
+        variant: AoVariant::Visibility,
+        seed: 1,
+        progress: true,
+        supersample: f,
+    };
+    let key = reference::cache_key(bvh.content_hash(), &cam, tw, th, &params);
+    let path = reference::cache_path(cache_dir, &key);
+    let found = reference::read_cached(cache_dir, &key).filter(|i| (i.width, i.height) == (tw, th));
+    let cached = found.is_some();
+    let img = match found {
+        Some(img) => img,
+        None => {
+            let img = reference::render_reference(&bvh, &cam, tw, th, &params);
+            if let Err(e) = reference::write_cached(cache_dir, &key, &img) {
+                let message = format!("{e:#}");
+                eprintln!("{}", t!("render.warning", message = message));
+            }
+            img
+        }
+    };
+    Ok(TracedTruth {
+        width: tw as usize,
+        height: th as usize,
+        ao: img.ao,
+        cached,
+        path,
+    })
+}
+
 /// Reads a single-channel truth PFM (rows top-down): errors name the file.
 pub fn read_truth(path: &Path) -> Result<(usize, usize, Vec<f32>)> {
     let (w, h, c, v) = crate::io::read_pfm(path).map_err(|e| {
@@ -269,6 +355,19 @@ mod tests {
         // A whole factor on one axis only is refused too.
         assert!(compare(&[0.0; 16], &[false; 16], (4, 4), &[0.0; 4], (2, 2)).is_ok());
         assert!(compare(&[0.0; 16], &[false; 16], (4, 4), &[0.0; 8], (2, 4)).is_err());
+    }
+
+    #[test]
+    fn a_traced_truth_is_at_most_320_wide_by_a_whole_factor() {
+        assert_eq!(traced_truth_factor(1920, 1080), 6);
+        assert_eq!(traced_truth_factor(1280, 720), 4);
+        assert_eq!(traced_truth_factor(320, 180), 1);
+        assert_eq!(traced_truth_factor(80, 60), 1);
+        assert_eq!(traced_truth_factor(1000, 700), 4);
+        // 1001×700 share only 7: 143×100.
+        assert_eq!(traced_truth_factor(1001, 700), 7);
+        // Sides that share no factor large enough: the render's own size.
+        assert_eq!(traced_truth_factor(641, 360), 1);
     }
 
     #[test]

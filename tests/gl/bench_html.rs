@@ -1,5 +1,6 @@
 //! The bench's `report.html`: well-formed (parsed as XML), every picture it names is in
-//! `pictures/` and is a PNG, and every link of the summary leads to a setting on the page.
+//! `pictures/` and is a PNG, every test camera of every row is pictured, the chart is drawn in the
+//! page, and every link of the summary leads to a setting on the page.
 
 use quick_xml::events::Event;
 use std::collections::BTreeSet;
@@ -14,9 +15,30 @@ fn attr(tag: &quick_xml::events::BytesStart, name: &str) -> Option<String> {
 }
 
 /// Checks `dir/report.html` of a run with `rows` rows, each with its AO view and error map (and
-/// its ceiling's, when the run split the error).
+/// its ceiling's, when the run split the error) at each of its test cameras.
 pub fn check(dir: &Path, rows: usize) {
     let text = std::fs::read_to_string(dir.join("report.html")).expect("report.html");
+    // Every row's test cameras, as report.json lists them, each pictured once.
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let mut pictured = 0;
+    for row in json["rows"].as_array().unwrap() {
+        let test: BTreeSet<&str> = row["cameras"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .filter(|c| c["train"] == false)
+            .map(|c| c["camera"].as_str().unwrap())
+            .collect();
+        let shown: BTreeSet<&str> = row["pictures"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .map(|p| p["camera"].as_str().unwrap())
+            .collect();
+        assert!(test.len() >= 2 && shown == test, "{shown:?} vs {test:?}");
+        pictured += test.len();
+    }
     let mut reader = quick_xml::Reader::from_str(&text);
     let (mut images, mut links, mut ids) = (Vec::new(), BTreeSet::new(), BTreeSet::new());
     let mut open = Vec::new();
@@ -49,7 +71,7 @@ pub fn check(dir: &Path, rows: usize) {
     }
     assert!(open.is_empty(), "unclosed elements in report.html");
     // Each row's AO view and error map, and at least one truth.
-    assert!(images.len() > 2 * rows, "{images:?}");
+    assert!(images.len() > 2 * pictured, "{images:?}");
     for src in &images {
         assert!(src.starts_with("pictures/"), "{src}");
         let img = image::open(dir.join(src)).unwrap_or_else(|e| panic!("{src}: {e}"));
@@ -59,9 +81,12 @@ pub fn check(dir: &Path, rows: usize) {
         .iter()
         .filter(|s| s.ends_with("-error.png"))
         .partition(|s| s.contains("-ceiling-"));
-    assert_eq!(errors.len(), rows, "{images:?}");
-    // With the error split, each row shows its ceiling's error map beside its own.
-    assert!(ceilings.is_empty() || ceilings.len() == rows, "{images:?}");
+    assert_eq!(errors.len(), pictured, "{images:?}");
+    // With the error split, each picture of a row has its ceiling's error map beside it.
+    assert!(
+        ceilings.is_empty() || ceilings.len() == pictured,
+        "{images:?}"
+    );
     assert_eq!(links.len(), rows, "{links:?}");
     for link in &links {
         assert!(ids.contains(link), "{link} leads nowhere: {ids:?}");
@@ -69,6 +94,8 @@ pub fn check(dir: &Path, rows: usize) {
     assert!(text.contains("PSNR") && text.contains(" ms"));
     if dir.join("report.svg").is_file() {
         check_chart(dir);
+        // The chart is drawn in the page itself: its tooltips are there.
+        assert!(text.contains("<svg") && text.contains("(Pareto front)"));
     }
 }
 

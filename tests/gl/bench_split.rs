@@ -9,10 +9,20 @@ use opengl3d::tools::bench::perf;
 fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
     let out = crate::common::temp_dir("bench-split");
     let res = ResDirs::default();
-    let scenes = vec![
-        res.find("scenes/demo.toml").unwrap(),
-        res.find("scenes/room.toml").unwrap(),
-    ];
+    // The scenes with the keys a method's recommendation covers written out as the struct's
+    // defaults (half size, depth normals, no guard band, one layer, vbao's default thickness): the
+    // split of one depth layer against slabs of a fixed thickness is what this test checks.
+    let scenes: Vec<_> = ["demo", "room"]
+        .into_iter()
+        .map(|name| {
+            let text = std::fs::read_to_string(res.find(&format!("scenes/{name}.toml")).unwrap());
+            let plain = "[ao]\nresolution = \"half\"\nnormals = \"depth\"\nguard_band = 0\nlayers = 1\nthickness = 0.25\n";
+            let path = out.join("scenes").join(format!("{name}.toml"));
+            std::fs::create_dir_all(path.parent().unwrap()).unwrap();
+            std::fs::write(&path, text.unwrap().replace("[ao]\n", plain)).unwrap();
+            path
+        })
+        .collect();
     let cfg = perf::PerfConfig {
         scenes,
         models: Vec::new(),
@@ -45,8 +55,9 @@ fn vbao_is_split_against_slabs_of_its_thickness_on_every_scene() {
             assert!(size > 1000, "{} missing or empty", path.display());
         }
     }
-    // Neither scene sets `[ao] thickness`: vbao's default, a fraction of the radius.
+    // vbao's default thickness at R = 0.5 m, a fraction of the radius, as written above.
     let thickness = opengl3d::ao::settings::DEFAULT_THICKNESS_OF_RADIUS * 0.5;
+    assert_eq!(thickness, 0.25);
     // One row per scene and method, in scene order.
     assert_eq!(report.scenes, ["demo", "room"]);
     assert_eq!(report.rows.len(), 4);

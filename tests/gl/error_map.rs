@@ -3,7 +3,7 @@
 //! truth, the scale bar, and clear errors.
 
 use crate::common;
-use crate::common::{fails_with, run, stderr};
+use crate::common::{bin, fails_with, run, stderr};
 use opengl3d::io::{read_pfm, scale_bar, write_pfm_gray};
 use opengl3d::tools::error_map::{self, SKY, TOO_DARK, TOO_LIGHT, ZERO};
 use std::path::Path;
@@ -216,10 +216,6 @@ fn bad_truths_give_clear_errors() {
         ],
         &["nothere.pfm", "リファレンス"],
     );
-    fails_with(
-        &["--lang", "en", "render", "--view", "error", "--out", o],
-        &["--truth"],
-    );
     let odd = dir.join("odd.pfm");
     write_pfm_gray(&odd, 30, 20, &[0.5; 600]).unwrap();
     let mut args: Vec<String> = ["--lang", "en", "render", "--view", "error", "--truth"]
@@ -229,4 +225,62 @@ fn bad_truths_give_clear_errors() {
     args.extend(size_flags(W, H));
     args.extend(["--out".into(), o.into()]);
     fails_with(&args, &["odd.pfm", "30x20", "80x60"]);
+}
+
+/// PSNR (dB) on a `render --view error` run's stdout.
+fn psnr_of(o: &std::process::Output) -> f64 {
+    let text = String::from_utf8_lossy(&o.stdout).to_string();
+    text.split("PSNR ")
+        .nth(1)
+        .and_then(|s| s.split(" dB").next())
+        .and_then(|s| s.parse::<f64>().ok())
+        .unwrap_or_else(|| panic!("no PSNR on stdout:\n{text}"))
+}
+
+#[test]
+fn without_a_truth_it_traces_one_then_reads_it_from_the_cache() {
+    let dir = common::temp_dir("error-map-traced");
+    let (cache, other_cache) = (dir.join("cache"), dir.join("other-cache"));
+    let out = dir.join("e.png");
+    let mut args: Vec<String> = ["--lang", "en", "render", "--view", "error"]
+        .map(String::from)
+        .to_vec();
+    args.extend(size_flags(W, H));
+    args.extend(["--out".into(), out.to_str().unwrap().into()]);
+    let env = opengl3d::tools::reference::CACHE_ENV;
+    let first = bin().env(env, &cache).args(&args).output().unwrap();
+    assert!(first.status.success(), "{}", stderr(&first));
+    assert!(
+        stderr(&first).contains("traced the truth"),
+        "{}",
+        stderr(&first)
+    );
+    let traced = psnr_of(&first);
+    assert!(image::open(&out).is_ok());
+    let second = bin().env(env, &cache).args(&args).output().unwrap();
+    assert!(
+        stderr(&second).contains("read from the reference cache"),
+        "{}",
+        stderr(&second)
+    );
+    assert_eq!(psnr_of(&second), traced);
+
+    // `opengl3d reference` (its own cache, so it traces anew) gives the truth compared against.
+    let truth = dir.join("truth.pfm");
+    let mut reference: Vec<String> = ["reference"].map(String::from).to_vec();
+    reference.extend(size_flags(W, H));
+    reference.extend(["--out".into(), truth.to_str().unwrap().into()]);
+    let o = bin()
+        .env(env, &other_cache)
+        .args(&reference)
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let given = error_render(&truth, W, H, &dir.join("given.png"), &[]);
+    assert!(
+        (given - traced).abs() < 1e-9,
+        "traced {traced} dB, given {given} dB"
+    );
+    // Not the engine against itself: the AO view misses the truth somewhere.
+    assert!(traced < 40.0, "{traced} dB");
 }

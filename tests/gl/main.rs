@@ -1,6 +1,7 @@
 //! Every GL test in one binary (one link instead of fourteen): real Mesa GL through EGL, no display.
 //! The window tests, which need Xvfb, are the other binary (`tests/window_panel.rs`).
 
+mod ao_defaults;
 mod ao_resolution;
 mod bench;
 mod bench_html;

@@ -64,6 +64,8 @@ fn window_truth_scores_the_psnr_of_render_view_error() {
     scene.output.width = W;
     scene.output.height = H;
     scene.ao.method = AoMethod::Hbao;
+    // As the window's M key and `render --method` do: the method's recommended configuration.
+    opengl3d::scene::ao_defaults::apply(&mut scene.ao);
     let ctx = common::context();
     let mut engine = common::engine(&ctx, &scene);
     let backend = Arc::new(CpuTruth {

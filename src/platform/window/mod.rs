@@ -421,6 +421,7 @@ impl App {
                     .position(|m| *m == s.engine.ao_settings.method)
                     .unwrap_or(0);
                 s.engine.ao_settings.method = all[(i + 1) % all.len()];
+                crate::scene::ao_defaults::apply(&mut s.engine.ao_settings);
                 self.sync_constants();
             }
             _ => {}

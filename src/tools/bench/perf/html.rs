@@ -1,7 +1,8 @@
 //! `report.html`: the bench's pictures on one page, readable offline (no script, no outside
-//! style, the pictures in `pictures/` next to it): a summary table linking to each setting, then
-//! per scene the truth at each radius and each setting's AO view and signed error map, with the
-//! PSNR and the cost in each caption. Every text is escaped; the page is well-formed XML.
+//! style, the pictures in `pictures/` next to it): a summary table linking to each setting, the
+//! cost-against-error chart drawn in the page, then per scene the truth at each radius and each
+//! setting's AO view and signed error map at every test camera, with the PSNR and the cost in each
+//! caption. Every text is escaped; the page is well-formed XML.
 
 use super::report::{Report, Row};
 use crate::tools::error_map::DEFAULT_RANGE;
@@ -26,7 +27,8 @@ fn esc(text: &str) -> String {
 const STYLE: &str = "body{font-family:sans-serif;margin:1.5em;color:#222}\
 table{border-collapse:collapse}td,th{border:1px solid #bbb;padding:2px 8px;text-align:right}\
 td:first-child,td:nth-child(2),td:nth-child(3){text-align:left}\
-.pics{display:flex;flex-wrap:wrap;gap:12px}figure{margin:0}\
+.pics{display:flex;flex-wrap:wrap;gap:12px;margin-bottom:8px}figure{margin:0}\
+.chart svg{max-width:100%;height:auto}\
 img{width:320px;image-rendering:pixelated;border:1px solid #888}\
 figcaption{font-size:90%;max-width:320px}";
 
@@ -44,8 +46,17 @@ fn figure(out: &mut String, src: &str, alt: &str, caption: &str) {
     );
 }
 
-/// The page (links and pictures relative to the report's folder).
-pub fn html(report: &Report) -> String {
+/// `svg` (a chart the bench drew) as an element of the page: from its `<svg` tag on, without
+/// any XML prolog, scaled to the page's width.
+fn inline_svg(svg: &str) -> Option<&str> {
+    let start = svg.find("<svg")?;
+    let end = svg.rfind("</svg>")? + "</svg>".len();
+    (start < end).then(|| &svg[start..end])
+}
+
+/// The page (links and pictures relative to the report's folder); `chart`: the text of
+/// `report.svg` when the run drew it, shown in the page.
+pub fn html(report: &Report, chart: Option<&str>) -> String {
     let mut out = String::new();
     out.push_str("<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"/>");
     let _ = writeln!(
@@ -60,7 +71,7 @@ pub fn html(report: &Report) -> String {
         esc(&format!(
             "Renderer {}; methods at {}x{}, box-averaged to the truth's {}x{} (ray-traced, {} rays per pixel, \
              over the pixel's whole footprint). \
-             Each picture is the first test camera. Error maps: engine minus truth, blue too dark, \
+             The pictures show every test camera. Error maps: engine minus truth, blue too dark, \
              orange too light, full colour at ±{DEFAULT_RANGE}, white 0, sky grey. AO ms: median \
              of the AO chain at {}x{} by the {} ({}); PSNR: the mean over the test cameras, and in \
              the captions at the camera shown.",
@@ -86,9 +97,11 @@ pub fn html(report: &Report) -> String {
         report.clock.unit()
     );
     for (i, row) in report.rows.iter().enumerate() {
-        let link = match &row.pictures {
-            Some(p) => format!("<a href=\"#row-{i}\">{}</a>", esc(&p.camera)),
-            None => "-".into(),
+        let cameras: Vec<&str> = row.pictures.iter().map(|p| p.camera.as_str()).collect();
+        let link = if cameras.is_empty() {
+            "-".into()
+        } else {
+            format!("<a href=\"#row-{i}\">{}</a>", esc(&cameras.join(", ")))
         };
         let _ = writeln!(
             out,
@@ -102,6 +115,11 @@ pub fn html(report: &Report) -> String {
         );
     }
     out.push_str("</table>\n");
+    if let Some(svg) = chart.and_then(inline_svg) {
+        out.push_str("<h2 id=\"chart\">AO cost against PSNR</h2>\n<div class=\"chart\">");
+        out.push_str(svg);
+        out.push_str("</div>\n");
+    }
     for (si, scene) in report.scenes.iter().enumerate() {
         let _ = writeln!(out, "<h2 id=\"scene-{si}\">{}</h2>", esc(scene));
         let rows: Vec<(usize, &Row)> = report
@@ -110,51 +128,59 @@ pub fn html(report: &Report) -> String {
             .enumerate()
             .filter(|(_, r)| scene_of(r) == scene)
             .collect();
-        // The truths, one per radius.
+        // The truths, one per camera and radius.
         out.push_str("<div class=\"pics\">");
         let mut shown: Vec<&str> = Vec::new();
         for (_, row) in &rows {
-            let Some(p) = &row.pictures else { continue };
-            if shown.contains(&p.truth.as_str()) {
-                continue;
+            for p in &row.pictures {
+                if shown.contains(&p.truth.as_str()) {
+                    continue;
+                }
+                shown.push(&p.truth);
+                let caption = format!("truth: camera {}, R {} m", p.camera, row.radius);
+                figure(&mut out, &p.truth, &caption, &caption);
             }
-            shown.push(&p.truth);
-            let caption = format!("truth: camera {}, R {} m", p.camera, row.radius);
-            figure(&mut out, &p.truth, &caption, &caption);
         }
         out.push_str("</div>\n");
         for (i, row) in rows {
-            let Some(p) = &row.pictures else { continue };
+            if row.pictures.is_empty() {
+                continue;
+            }
             let title = format!("{} {}", row.method, row.setting);
-            let _ = write!(
-                out,
-                "<h3 id=\"row-{i}\">{}</h3><div class=\"pics\">",
-                esc(&title)
-            );
+            let _ = writeln!(out, "<h3 id=\"row-{i}\">{}</h3>", esc(&title));
             let cost = format!("AO {:.2} {}", row.total_ms, report.clock.unit());
-            figure(
-                &mut out,
-                &p.ao,
-                &format!("{title}: AO"),
-                &format!("{title}: AO view at camera {} ({cost})", p.camera),
-            );
-            figure(
-                &mut out,
-                &p.error,
-                &format!("{title}: error"),
-                &format!("{title}: error, PSNR {:.2} dB, {cost}", p.psnr),
-            );
-            if let (Some(map), Some(psnr)) = (&p.ceiling_error, p.ceiling_psnr) {
-                // What the depth buffer alone allows, on the same scale: the row's error minus this
-                // is what its sampling loses.
+            for p in &row.pictures {
+                out.push_str("<div class=\"pics\">");
                 figure(
                     &mut out,
-                    map,
-                    &format!("{title}: its ceiling's error"),
-                    &format!("ceiling ({}): error, PSNR {psnr:.2} dB", row.ceiling_label),
+                    &p.ao,
+                    &format!("{title}: AO at {}", p.camera),
+                    &format!("{title}: AO view at camera {} ({cost})", p.camera),
                 );
+                figure(
+                    &mut out,
+                    &p.error,
+                    &format!("{title}: error at {}", p.camera),
+                    &format!(
+                        "{title}: error at camera {}, PSNR {:.2} dB, {cost}",
+                        p.camera, p.psnr
+                    ),
+                );
+                if let (Some(map), Some(psnr)) = (&p.ceiling_error, p.ceiling_psnr) {
+                    // What the depth buffer alone allows, on the same scale: the row's error minus
+                    // this is what its sampling loses.
+                    figure(
+                        &mut out,
+                        map,
+                        &format!("{title}: its ceiling's error at {}", p.camera),
+                        &format!(
+                            "ceiling ({}) at camera {}: error, PSNR {psnr:.2} dB",
+                            row.ceiling_label, p.camera
+                        ),
+                    );
+                }
+                out.push_str("</div>\n");
             }
-            out.push_str("</div>\n");
         }
     }
     out.push_str("</body></html>\n");
@@ -163,7 +189,7 @@ pub fn html(report: &Report) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::esc;
+    use super::{esc, inline_svg};
 
     #[test]
     fn markup_characters_are_escaped() {
@@ -171,5 +197,12 @@ mod tests {
             esc("<a href=\"x\">&'</a>"),
             "&lt;a href=&quot;x&quot;&gt;&amp;&#39;&lt;/a&gt;"
         );
+    }
+
+    #[test]
+    fn a_chart_is_inlined_from_its_svg_tag() {
+        let svg = "<?xml version=\"1.0\"?>\n<svg width=\"2\"><rect/></svg>\n";
+        assert_eq!(inline_svg(svg), Some("<svg width=\"2\"><rect/></svg>"));
+        assert_eq!(inline_svg("not a chart"), None);
     }
 }

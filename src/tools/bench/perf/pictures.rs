@@ -1,4 +1,4 @@
-//! The pictures of `report.html`, in `pictures/` next to it: per scene, the first test camera's
+//! The pictures of `report.html`, in `pictures/` next to it: per scene, each test camera's
 //! ray-traced truth at each radius, and each setting's AO view (box-averaged to the truth's size)
 //! with its signed error map against that truth (`crate::tools::error_map`); with the error split, the
 //! ceiling's own error map too (the screen-space reference the row is split against, same scale).
@@ -41,10 +41,10 @@ fn plain(text: &str) -> String {
         .collect()
 }
 
-/// Writes the truth (shared by the settings of a radius), the AO view and the error map of `method` at
-/// `s` for the scene's first test camera; `views` are the box-averaged AO views of every camera;
-/// `ceiling`: the screen-space references and the row's ceiling (its map is shared by the rows with
-/// that ceiling). `None` when the scene has no test camera.
+/// Writes, for each test camera of the scene, the truth (shared by the settings of a radius), the
+/// AO view and the error map of `method` at `s`; `views` are the box-averaged AO views of every
+/// camera; `ceiling`: the screen-space references and the row's ceiling (its map is shared by the
+/// rows with that ceiling). Empty when the scene has no test camera.
 pub fn write(
     cfg: &PerfConfig,
     sd: &SceneData,
@@ -52,23 +52,36 @@ pub fn write(
     s: &Setting,
     views: &[Vec<f32>],
     (screen, ceiling): (&ScreenMap, Ceiling),
-) -> Result<Option<SettingPictures>> {
-    let Some(ci) = sd.cameras.iter().position(|c| !c.train) else {
-        return Ok(None);
-    };
+) -> Result<Vec<SettingPictures>> {
+    let dir = cfg.out.join(FOLDER);
+    crate::io::create_dir_all(&dir)?;
+    (0..sd.cameras.len())
+        .filter(|ci| !sd.cameras[*ci].train)
+        .map(|ci| write_camera(cfg, sd, ci, (method, s), &views[ci], (screen, ceiling)))
+        .collect()
+}
+
+/// [`write`]'s pictures of camera `ci`, whose box-averaged AO view is `view`.
+fn write_camera(
+    cfg: &PerfConfig,
+    sd: &SceneData,
+    ci: usize,
+    (method, s): (AoMethod, &Setting),
+    view: &[f32],
+    (screen, ceiling): (&ScreenMap, Ceiling),
+) -> Result<SettingPictures> {
     let r = &sd.refs[&(ci, s.radius.to_bits())];
     let (w, h) = (r.width, r.height);
     let dir = cfg.out.join(FOLDER);
-    crate::io::create_dir_all(&dir)?;
     let camera = &sd.cameras[ci].name;
     let stem = plain(&format!("{}-{}", sd.name, camera));
     let truth = format!("{stem}-r{}-truth.png", plain(&s.radius.to_string()));
     crate::io::gray_to_png(&dir.join(&truth), w, h, &r.ao, 1.0)?;
     let setting = plain(&format!("{stem}-{}-{}", method.name(), s.label()));
     let (ao, error) = (format!("{setting}-ao.png"), format!("{setting}-error.png"));
-    crate::io::gray_to_png(&dir.join(&ao), w, h, &views[ci], 1.0)?;
+    crate::io::gray_to_png(&dir.join(&ao), w, h, view, 1.0)?;
     let map = error_map::at_truth_size(
-        &views[ci],
+        view,
         &r.ao,
         r.sky_mask(),
         (w as usize, h as usize),
@@ -92,7 +105,7 @@ pub fn write(
             ceiling_psnr = Some(map.psnr);
         }
     }
-    Ok(Some(SettingPictures {
+    Ok(SettingPictures {
         camera: camera.clone(),
         truth: rel(&truth),
         ao: rel(&ao),
@@ -100,5 +113,5 @@ pub fn write(
         psnr: map.psnr,
         ceiling_error,
         ceiling_psnr,
-    }))
+    })
 }

@@ -85,9 +85,9 @@ pub struct Row {
     pub split_gap_db: f64,
     pub split_gap_max_db: f64,
     pub cameras: Vec<CameraError>,
-    /// The first test camera's truth, AO view and error map (`report.html`'s pictures).
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub pictures: Option<super::pictures::SettingPictures>,
+    /// Each test camera's truth, AO view and error map (`report.html`'s pictures).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub pictures: Vec<super::pictures::SettingPictures>,
 }
 
 #[derive(Clone, Debug, Serialize)]

@@ -297,7 +297,8 @@ fn plan(cfg: &PerfConfig) -> Result<Plan> {
     Ok(plan)
 }
 
-/// report.json, report.md, report.html (its pictures are written with each row) and (when a font is found) the charts; a chart that cannot be drawn is
+/// report.json, report.md, (when a font is found) the charts, and report.html (its pictures are written with each row, the
+/// main chart is drawn in it); a chart that cannot be drawn is
 /// reported on stderr and the run still succeeds, the tables being the result.
 fn write_outputs(report: &Report, cfg: &PerfConfig) -> Result<()> {
     let json_path = cfg.out.join("report.json");
@@ -307,11 +308,19 @@ fn write_outputs(report: &Report, cfg: &PerfConfig) -> Result<()> {
     let md_path = cfg.out.join("report.md");
     std::fs::write(&md_path, markdown::markdown(report, cfg)?)
         .with_context(|| format!("cannot write {}", md_path.display()))?;
-    crate::io::write_file(&cfg.out.join("report.html"), html::html(report).as_bytes())?;
+    // The charts first: the page shows the main one.
+    let mut chart_svg = None;
     if cfg.charts {
-        if let Err(e) = chart::write_charts(report, &cfg.out) {
-            eprintln!("charts not written: {e:#}");
+        match chart::write_charts(report, &cfg.out) {
+            Ok(files) => {
+                let main = cfg.out.join("report.svg");
+                if files.contains(&main) {
+                    chart_svg = std::fs::read_to_string(&main).ok();
+                }
+            }
+            Err(e) => eprintln!("charts not written: {e:#}"),
         }
     }
-    Ok(())
+    let page = html::html(report, chart_svg.as_deref());
+    crate::io::write_file(&cfg.out.join("report.html"), page.as_bytes())
 }

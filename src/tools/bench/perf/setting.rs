@@ -39,6 +39,12 @@ pub fn run_setting(
         engine.ao_settings.rays = s.samples;
     }
     engine.ao_settings.quality = s.quality;
+    // The grid decides the count or preset; the method's recommendation the keys the scene leaves
+    // unwritten (normals, layers, thickness, guard band, size).
+    let written = engine.ao_settings.written;
+    engine.ao_settings.written.quality = true;
+    crate::scene::ao_defaults::apply(&mut engine.ao_settings);
+    engine.ao_settings.written = written;
     engine.ao_settings.radius = s.radius;
     engine.ao_settings.enabled = true;
     let scene_camera = sd.cameras[0].camera(&sd.desc.camera);
