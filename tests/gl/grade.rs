@@ -313,6 +313,7 @@ fails_at_lesson! {
     sao_with_a_4cm_test_smears: "sao-threshold-4cm" => ["2.4–3.6 cm per pixel are evened out", "abs(dpdy.z) < 0.02"],
     sao_without_the_uv_clamp_occludes_the_border: "sao-no-uv-clamp" => ["border occludes itself", "clamp(uv, vec2(0), vec2(1))"],
     sao_with_another_epsilon_fails_on_a_small_disc: "sao-epsilon-0-01" => ["5 cm sampling radius", "(vv + 0.001), 0)"],
+    sao_with_the_loop_from_1_loses_its_first_tap: "sao-loop-from-1" => ["right beside small raised squares", "float ratio = (float(i) + 0.5) * (1.0 / samplingCount);"],
     sao_with_one_tap_more_fails_on_a_small_disc: "sao-one-tap-more" => ["5 cm sampling radius", "ratio = (i + 0.5) / N"],
     restore_leaving_the_sky_at_1000_014_fails: "restore-sky-not-far" => ["instead of exactly 1000 (far)", "if (depth >= 1.0) { outColor = far; return; }"],
 }

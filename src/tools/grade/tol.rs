@@ -127,6 +127,12 @@ pub const SAO_BORDER_DARKER: f64 = 0.015;
 /// more (`i <= N`) +10 %, the taps one spacing nearer (`i − 0.5`) −11 %; the divisor's ε doubled or
 /// halved, (vv + 0.002) or (vv + 0.0005), −28 % and +23 %.
 pub const SAO_SMALL_DISC_REL: f64 = 0.07;
+/// SAO at `--level lesson`: with the lesson's radius, how far the mean occlusion of the wall's
+/// texels beside 3 cm squares may be from the reference's, relative: there the first taps, which lie
+/// nearest, give most of it. Another hash −0.1 %…+1.9 %, the spiral through 4π +0.5 %, reversed
+/// −1.4 %, the loop from 1 to N with (i − 0.5) / N −0.1 %, the taps at (i + 1) / N or (i + 0.25) / N
+/// +4 % and +5 %; the first tap dropped (the loop from 1) −47 %, one more at −0.5 / N (from −1) +24 %.
+pub const SAO_FIRST_TAPS_REL: f64 = 0.15;
 /// SAO: a quad counts as occluded (its unsmoothed pixels differ) above this mean occlusion.
 pub const SAO_QUAD_OCCLUDED: f64 = 0.02;
 /// SAO: a pair counts as left apart when its pixels differ by this many times `SAO_QUAD_SPREAD`.

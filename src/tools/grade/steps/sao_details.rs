@@ -420,6 +420,15 @@ pub(super) fn details(
         beside_mean(&r8(s), &r8(r), &depth, (w, h)),
     );
 
+    // The same squares with the lesson's radius (a disc 27 texels wide): beside a square, only the
+    // nearest taps (1.2 texels out for the first) reach it close enough to count, so the wall's ring
+    // tells where the first taps lie.
+    let (r, s) = rig.sao_pair(&panels.camera, &depth, params)?;
+    put(
+        "beside_squares_ring",
+        beside_mean(&r8(s), &r8(r), &depth, (w, h)),
+    );
+
     // Three times the intensity: many pixels reach 1 before the smoothing.
     let strong = AoSettings {
         intensity: 3.0 * params.intensity,
@@ -492,6 +501,18 @@ pub(super) fn judge(
             OCCLUSION,
             say!(
                 "grade.verdict.sao_small_disc",
+                got = got,
+                expected = expected
+            ),
+        ));
+    }
+    let (ring, ring_r) = (get("beside_squares_ring"), reference("beside_squares_ring"));
+    if !smoothing_failed && ring_r > 0.0 && (ring / ring_r - 1.0).abs() > tol::SAO_FIRST_TAPS_REL {
+        let (got, expected) = (f3(ring), f3(ring_r));
+        out.push((
+            SAMPLING,
+            say!(
+                "grade.verdict.sao_first_taps",
                 got = got,
                 expected = expected
             ),
