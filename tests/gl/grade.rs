@@ -198,12 +198,21 @@ passes! {
     rewritten_blur_passes: "rewrite-blur",
 }
 
+/// The lesson's `sao.frag` written differently (the hash bracketed the other way, the loop from 1 to N
+/// with (i − 0.5) / N, the spiral turned the other way, `normalize`): every measure of what the pages
+/// fix must leave it its noise.
+#[test]
+fn a_rewritten_lesson_sao_passes_at_both_levels() {
+    expect_at("rewrite-sao-lesson", "lesson", true, &[]);
+    expect_at("rewrite-sao-lesson", "course", true, &[]);
+}
+
 fails! {
     restore_with_the_wrong_sign_fails: "restore-wrong-sign" => ["wrong sign at z=10 m: got -10.0"],
     restore_with_max_fails: "restore-max" => ["max instead of min"],
     restore_without_times_two_fails: "restore-no-x2" => ["gl_FragCoord.xy) * 2"],
     restore_with_the_debug_scale_left_fails: "restore-debug-scale" => ["0.01", "got 0.100"],
-    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["2D + 1", "a typo in the course's printed text", "depth = 2 * depth - 1;"],
+    restore_with_2d_plus_1_fails: "restore-2d-plus-1" => ["D′ = 2D - 1, not 2D + 1", "a typo in the course's printed text", "depth = 2 * depth - 1;"],
     restore_not_text_is_rejected_by_name: "restore-not-text" => ["restore-not-text/sao_restore_depth.frag", "neither UTF-8, UTF-16 nor Shift-JIS"],
     down_sampling_with_max_fails: "down-sampling-max" => ["max instead of min"],
     down_sampling_without_times_two_fails: "down-sampling-no-x2" => ["gl_FragCoord.xy) * 2"],
@@ -234,6 +243,8 @@ fails! {
     sao_without_the_2x2_smoothing_fails: "sao-no-smoothing" => ["2×2 smoothing"],
     sao_with_the_2x2_smoothing_of_the_wrong_sign_fails: "sao-smoothing-wrong-sign" => ["2×2 smoothing"],
     sao_with_the_mip_level_inverted_fails: "sao-mip-level-inverted" => ["flat and open but occluded"],
+    blur_without_its_sky_test_blurs_the_sky: "blur-no-sky-test" => ["sky texels are blurred", "if (depth >= CAMERA_FAR) { return; }"],
+    blur_with_a_strict_sky_test_blurs_the_sky: "blur-sky-test-strict" => ["sky texels are blurred", "with >=", "if (depth >= CAMERA_FAR) { return; }"],
     blur_without_its_clamp_fails_at_the_border: "blur-no-clamp" => ["reads past the texture's border", "clamp(ivec2(gl_FragCoord.xy) + ivec2(x, y) * 2, ivec2(0), textureSize(texColor, 0) - 1)"],
     blur_clamped_to_the_transposed_size_fails: "blur-clamp-swapped" => ["reads past the texture's border"],
     sao_with_ndc_to_view_swapped_fails: "sao-ndc-swapped" => ["stretched along x or y", "x by ndcToView.x"],
@@ -297,6 +308,13 @@ fails_at_lesson! {
     sao_without_the_2cm_test_smears: "sao-no-2cm-test" => ["grey smears across silhouettes", "|Δz| < 0.02"],
     sao_with_the_thresholds_swapped_smears: "sao-thresholds-swapped" => ["grey smears across silhouettes", "wrong axis"],
     sao_with_both_derivatives_first_halves: "sao-derivatives-before" => ["instead of the mean of the quad", "float dOccY = dFdy(occlusion);"],
+    sao_with_the_edge_guard_at_20_percent_draws_outlines: "sao-guard-20-percent" => ["silhouettes 12–18 % deep", "> 0.1 * depth"],
+    sao_with_weighted_smoothing_misses_the_mean: "sao-smoothing-weighted" => ["does not leave the pair's mean", "(float(iuv.x & 1) - 0.5)"],
+    sao_with_a_4cm_test_smears: "sao-threshold-4cm" => ["2.4–3.6 cm per pixel are evened out", "abs(dpdy.z) < 0.02"],
+    sao_without_the_uv_clamp_occludes_the_border: "sao-no-uv-clamp" => ["border occludes itself", "clamp(uv, vec2(0), vec2(1))"],
+    sao_with_another_epsilon_fails_on_a_small_disc: "sao-epsilon-0-01" => ["5 cm sampling radius", "(vv + 0.001), 0)"],
+    sao_with_the_loop_from_1_loses_its_first_tap: "sao-loop-from-1" => ["right beside small raised squares", "float ratio = (float(i) + 0.5) * (1.0 / samplingCount);"],
+    sao_with_one_tap_more_fails_on_a_small_disc: "sao-one-tap-more" => ["5 cm sampling radius", "ratio = (i + 0.5) / N"],
     restore_leaving_the_sky_at_1000_014_fails: "restore-sky-not-far" => ["instead of exactly 1000 (far)", "if (depth >= 1.0) { outColor = far; return; }"],
 }
 

@@ -16,6 +16,7 @@ use anyhow::{anyhow, bail, Context as _, Result};
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use rayon::prelude::*;
 use serde::Serialize;
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant};
@@ -64,6 +65,9 @@ pub struct MutantResult {
     pub probe_listing: Option<f64>,
     /// The grader's message.
     pub message: String,
+    /// What the step measured (its report's metrics).
+    #[serde(skip_serializing_if = "BTreeMap::is_empty")]
+    pub metrics: BTreeMap<String, f64>,
 }
 
 #[derive(Clone, Debug, Serialize)]
@@ -220,6 +224,7 @@ fn run_one(
         probe,
         probe_listing,
         message: report.message,
+        metrics: report.metrics,
     })
 }
 
@@ -422,6 +427,7 @@ mod tests {
             probe: None,
             probe_listing: None,
             message: String::new(),
+            metrics: BTreeMap::new(),
         };
         let s = score(
             Step::Blur,

@@ -13,6 +13,8 @@ pub enum Mips {
     /// Every level above 0 pushed to the far plane after down-sampling: samples read from levels
     /// 1–3 then see nothing, so the output changes only where a shader reads the mips.
     Emptied,
+    /// Only the last level pushed to the far plane: the output changes only where a shader reads it.
+    LastEmptied,
 }
 
 /// Linear depth `depth` (metres, `far` for sky) → down-sampling → SAO; returns the raw occlusion.
@@ -26,12 +28,16 @@ pub fn run_sao(
 ) -> Result<Vec<f32>> {
     lesson.targets.tex_depth.upload_f32(0, 1, depth)?;
     lesson.down_sample(meshes);
-    if mips == Mips::Emptied {
-        for level in 1..lesson.targets.tex_depth.levels() {
-            let (w, h) = lesson.targets.tex_depth.size_at(level);
-            let far = vec![camera.far; (w * h) as usize];
-            lesson.targets.tex_depth.upload_f32(level, 1, &far)?;
-        }
+    let levels = lesson.targets.tex_depth.levels();
+    let emptied = match mips {
+        Mips::Filled => levels..levels,
+        Mips::Emptied => 1..levels,
+        Mips::LastEmptied => levels - 1..levels,
+    };
+    for level in emptied {
+        let (w, h) = lesson.targets.tex_depth.size_at(level);
+        let far = vec![camera.far; (w * h) as usize];
+        lesson.targets.tex_depth.upload_f32(level, 1, &far)?;
     }
     lesson.compute_sao(meshes, camera, params);
     Ok(lesson.sao_texture().read_f32(0, 1))

@@ -95,6 +95,44 @@ pub const SAO_LOW_FLOOR: f64 = 0.01;
 /// Reference 0; the listing 0.016 smeared; no 2 cm test 0.47 and the tests swapped 0.42 smeared;
 /// both derivatives first 0.49 halved; the sign flipped 0.81 left apart.
 pub const SAO_PATTERN_FRACTION: f64 = 0.05;
+/// SAO at `--level lesson`: the fraction of occluded quads whose distance changes by 1.2–1.8 cm per
+/// texel along an axis (the lesson's 2 cm test evens them out) that may be left apart. Reference and
+/// rewrites with another hash 0; the test at 1 cm 0.31.
+pub const SAO_THRESHOLD_BELOW: f64 = 0.1;
+/// ...and of those changing by 2.4–3.6 cm that the reference leaves apart, the fraction that may be
+/// evened out: another hash or spiral 0.03–0.06 (pairs equal by chance, both 0 or both 1); the
+/// clamp to 1 after the smoothing 0.10; the test at 4 cm 0.82.
+pub const SAO_THRESHOLD_ABOVE: f64 = 0.3;
+/// SAO at `--level lesson`: on the wall beside 3 cm squares, a disc 1.4 texels wide and the
+/// occlusion saturated, the mean |student − reference| over the quads touching a square along one
+/// axis (the reference leaves the pair's plain mean, 0.5). Another hash 0.023, the spiral's ratios
+/// shifted 0.010; the half-texel weights 0.5 as 0.25 along x 0.11, along y 0.097; `min(2.0, …)`
+/// before the smoothing 0.21.
+pub const SAO_BESIDE_SQUARES_ABS: f64 = 0.06;
+/// SAO at `--level lesson`: how much weaker than the reference the occlusion of creases on sloped
+/// floors may be, relative (the floor with rows of low blocks at three times the intensity, and the
+/// creases of a floor seen from 0.5 m). Another hash or spiral −2 %…+2 %, one tap fewer −4 %; a mip
+/// bias on level 0 −25 %…−43 %; the edge test at 5 % of the depth −11 %; `max(sampleDepth, …)` as
+/// `min` −53 % on the low floor.
+pub const SAO_SLOPED_REL: f64 = 0.1;
+/// SAO at `--level lesson`: how much darker than the reference the band within 6 texels of the
+/// border may be on a convex box corner whose faces recede towards the left and bottom borders.
+/// Reference 0.012 (the mip bias leaves a little), another hash −0.001, the spiral's ratios shifted
+/// −0.001; `uv` clamped to −1…1 instead of 0…1 +0.032.
+pub const SAO_BORDER_DARKER: f64 = 0.015;
+/// SAO at `--level lesson`: with a 5 cm radius (a disc 1.4 texels wide), how far the mean occlusion
+/// of the wall's texels beside 3 cm squares may be from the reference's, relative: it counts the taps
+/// that cross into a square and what each adds at that distance. Another hash −3 %…+0 %, the spiral
+/// turned 4π instead of 2π −3.6 %, reversed +0.3 %, the taps a quarter spacing nearer −3.8 %; a tap
+/// more (`i <= N`) +10 %, the taps one spacing nearer (`i − 0.5`) −11 %; the divisor's ε doubled or
+/// halved, (vv + 0.002) or (vv + 0.0005), −28 % and +23 %.
+pub const SAO_SMALL_DISC_REL: f64 = 0.07;
+/// SAO at `--level lesson`: with the lesson's radius, how far the mean occlusion of the wall's
+/// texels beside 3 cm squares may be from the reference's, relative: there the first taps, which lie
+/// nearest, give most of it. Another hash −0.1 %…+1.9 %, the spiral through 4π +0.5 %, reversed
+/// −1.4 %, the loop from 1 to N with (i − 0.5) / N −0.1 %, the taps at (i + 1) / N or (i + 0.25) / N
+/// +4 % and +5 %; the first tap dropped (the loop from 1) −47 %, one more at −0.5 / N (from −1) +24 %.
+pub const SAO_FIRST_TAPS_REL: f64 = 0.15;
 /// SAO: a quad counts as occluded (its unsmoothed pixels differ) above this mean occlusion.
 pub const SAO_QUAD_OCCLUDED: f64 = 0.02;
 /// SAO: a pair counts as left apart when its pixels differ by this many times `SAO_QUAD_SPREAD`.
@@ -123,8 +161,10 @@ pub const BLUR_EDGE_WEIGHT_ABS: f64 = 0.05;
 /// Blur: the noise left on a flat surface, as a fraction of the input's standard deviation
 /// (input 0.290; reference 0.038, listing 0.036).
 pub const BLUR_SMOOTHING: f64 = 0.6;
-/// Blur: the most occlusion allowed in the sky. The sky's input is 0 and sky pixels must be kept as
-/// they are, so anything above about five steps of the engine's 8-bit target is leaked occlusion.
+/// Blur: how far a sky texel may move from its input. The panel's sky holds noise (input standard
+/// deviation 0.29) and sky texels must be returned unchanged, so anything above about five steps of
+/// the engine's 8-bit target is a sky texel blurred (no sky test, or `>` instead of `>=`: 0.4 and
+/// more).
 pub const BLUR_SKY_ABS: f64 = 0.02;
 /// Blur: within the blur's reach of the texture's border, where only the outermost texels are
 /// occluded, the output may differ by this much from the shader's own output beside an occluded

@@ -37,7 +37,8 @@ fn noise(x: usize, y: usize) -> f32 {
 }
 
 /// The blur's synthetic panel (rows bottom-up): lower half a noisy flat surface at 5 m with sky on
-/// its right; upper half a depth edge, occluded near surface (2 m) left, open far one right. The
+/// its right, the sky's occlusion noisy too (the SAO pass writes 0 there, but a sky texel must come
+/// back unchanged whatever it holds: blurred among themselves, noisy sky texels show it); upper half a depth edge, occluded near surface (2 m) left, open far one right. The
 /// far side is only 0.5 m behind (a kerb, a table top): the lesson's edge distance (0.15 m) cuts
 /// it fully, one ten times too large does not.
 fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
@@ -52,7 +53,7 @@ fn blur_panel(w: usize, h: usize, far: f32) -> (Vec<f32>, Vec<f32>) {
                     occ[i] = noise(x, y);
                 } else {
                     depth[i] = far;
-                    occ[i] = 0.0;
+                    occ[i] = noise(x, y);
                 }
             } else if x < w / 2 {
                 depth[i] = 2.0;
@@ -438,9 +439,10 @@ pub fn blur(rig: &Rig, params: &AoSettings) -> Verdict {
     let far_max = rows
         .flat_map(|y| [w / 2, w / 2 + 1].map(|x| s_b[y * w + x]))
         .fold(0.0f32, f32::max) as f64;
+    // How far a sky texel moves from its input.
     let sky_max = (0..h / 2)
         .flat_map(|y| (w * 3 / 4..w).map(move |x| (x, y)))
-        .map(|(x, y)| s_b[y * w + x])
+        .map(|(x, y)| (s_b[y * w + x] - occ_b[y * w + x]).abs())
         .fold(0.0f32, f32::max) as f64;
     // Against the closer reference on the real buffer (non-sky pixels): the project's blur, or the
     // same with the course's table.

@@ -6,6 +6,7 @@ mod down_sampling;
 mod restore;
 mod sao;
 mod sao_checkpoint;
+mod sao_details;
 mod sao_isotropy;
 mod sao_lesson;
 mod sao_measure;

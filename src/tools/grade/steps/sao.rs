@@ -15,7 +15,7 @@
 //! not much less, not far more); and that fully occluded pixels reach 1 (the intensity raised a
 //! hundredfold: where the project's output is 1, the student's must be too); last, that samples
 //! beyond the sampling radius count 0 (the wall beside a panel keeps its occlusion with a near post
-//! in the disc, `sao_reach`).
+//! in the disc, `sao_reach`). At `--level lesson`, also the numbers the pages fix (`sao_details`).
 
 use super::sao_measure::{measure, mip_change, saturation, Measured, ProbeResult};
 use super::sao_parts::{Parts, NORMAL, OCCLUSION, SAMPLING, SMOOTHING, VIEW};
@@ -541,6 +541,10 @@ pub fn sao(
     // What the pages add to the listing, measured against the reference only where the occlusion
     // term itself agrees with it (a wrong term darkens edges and floors for its own reason).
     if level == Level::Lesson && !parts.failed(OCCLUSION) {
+        let details = match super::sao_details::details(rig, params, SAO_SIZE) {
+            Ok(d) => d,
+            Err(e) => return Verdict::grader_error(&e),
+        };
         let (edge_s, edge_r, _) = edge;
         let (straddle_s, straddle_r, straddle_n) = straddle;
         metrics.insert("edge_mean".into(), edge_s);
@@ -619,6 +623,12 @@ pub fn sao(
                 say!("grade.verdict.sao_no_smoothing", percent = percent),
             );
         }
+        // After the checks above, whose messages name the pages' missing pieces first.
+        let judged = super::sao_details::judge(&details, smoothing_taught, |p| parts.failed(p));
+        for (part, message) in judged {
+            parts.fail(part, message);
+        }
+        metrics.extend(details);
     }
     let creases = creases
         .iter()
