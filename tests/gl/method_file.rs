@@ -149,3 +149,47 @@ fn a_broken_method_shader_or_file_names_the_file_and_line() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn the_bench_measures_a_method_file_beside_the_engine_s_methods() {
+    let dir = temp_dir("method-file-bench");
+    let file = example();
+    let o = run(&[
+        "bench",
+        "--methods",
+        "hbao",
+        "--method-file",
+        file.to_str().unwrap(),
+        "--samples",
+        "11",
+        "--radii",
+        "1",
+        "--width",
+        "320",
+        "--height",
+        "180",
+        "--ref-scale",
+        "2",
+        "--frames",
+        "1",
+        "--warmup",
+        "0",
+        "--no-flip",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let report: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("report.json")).unwrap()).unwrap();
+    let rows = report["rows"].as_array().unwrap();
+    let names: Vec<&str> = rows.iter().map(|r| r["method"].as_str().unwrap()).collect();
+    assert_eq!(names, ["hbao", "my-hbao"]);
+    let psnr = rows[1]["psnr"].as_f64().unwrap();
+    assert!(psnr.is_finite() && psnr > 10.0, "{psnr}");
+    let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    assert!(page.contains("my-hbao"));
+    assert!(dir
+        .join("pictures/demo-orbit-left-my-hbao-n11_r1-error.png")
+        .is_file());
+    let _ = std::fs::remove_dir_all(&dir);
+}

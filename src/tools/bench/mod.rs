@@ -64,6 +64,10 @@ pub struct BenchArgs {
     /// AO methods by name, comma-separated (default: every method the engine has).
     #[arg(long, value_delimiter = ',')]
     pub methods: Vec<String>,
+    /// Methods of your own (method files, see docs/method-file.md), measured beside the engine's
+    /// on the same grid, charts and report; repeat for several.
+    #[arg(long = "method-file", value_name = "FILE.toml")]
+    pub method_files: Vec<PathBuf>,
     /// Sample counts to run (replaces each method's default settings; combined with --radii).
     #[arg(long, value_delimiter = ',', allow_negative_numbers = true)]
     pub samples: Vec<u32>,
@@ -240,7 +244,12 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         return run_camera_path(res, args);
     }
     let cfg = args.perf_config()?;
-    let report = perf::run(res, &cfg)?;
+    let files = args
+        .method_files
+        .iter()
+        .map(|f| crate::scene::method_file::MethodFile::read(f))
+        .collect::<Result<Vec<_>>>()?;
+    let report = perf::run_with_method_files(res, &cfg, &files)?;
     crate::outln!(
         "wrote {} ({} rows, {}x{}, {} s)",
         cfg.out.join("report.md").display(),

@@ -36,4 +36,4 @@ pub(crate) mod setting;
 pub use config::PerfConfig;
 pub use protocol::Grid;
 pub use report::{CameraError, ReferenceInfo, Report, Row};
-pub use run::run;
+pub use run::{run, run_with_method_files};

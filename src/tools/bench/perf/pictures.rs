@@ -5,7 +5,6 @@
 
 use super::config::PerfConfig;
 use super::references::{Ceiling, SceneData, ScreenMap};
-use crate::ao::AoMethod;
 use crate::tools::bench::catalog::Setting;
 use crate::tools::error_map;
 use anyhow::Result;
@@ -48,7 +47,7 @@ fn plain(text: &str) -> String {
 pub fn write(
     cfg: &PerfConfig,
     sd: &SceneData,
-    method: AoMethod,
+    method: &str,
     s: &Setting,
     views: &[Vec<f32>],
     (screen, ceiling): (&ScreenMap, Ceiling),
@@ -66,7 +65,7 @@ fn write_camera(
     cfg: &PerfConfig,
     sd: &SceneData,
     ci: usize,
-    (method, s): (AoMethod, &Setting),
+    (method, s): (&str, &Setting),
     view: &[f32],
     (screen, ceiling): (&ScreenMap, Ceiling),
 ) -> Result<SettingPictures> {
@@ -77,7 +76,7 @@ fn write_camera(
     let stem = plain(&format!("{}-{}", sd.name, camera));
     let truth = format!("{stem}-r{}-truth.png", plain(&s.radius.to_string()));
     crate::io::gray_to_png(&dir.join(&truth), w, h, &r.ao, 1.0)?;
-    let setting = plain(&format!("{stem}-{}-{}", method.name(), s.label()));
+    let setting = plain(&format!("{stem}-{method}-{}", s.label()));
     let (ao, error) = (format!("{setting}-ao.png"), format!("{setting}-error.png"));
     crate::io::gray_to_png(&dir.join(&ao), w, h, view, 1.0)?;
     let map = error_map::at_truth_size(

@@ -7,10 +7,12 @@ use super::references::{self, Ceiling, RenderCount};
 use super::report::{ReferenceInfo, Report};
 use super::setting::run_setting;
 use super::{chart, html, markdown};
+use crate::ao::user_method::HOST;
 use crate::ao::{AoMethod, AoSettings};
 use crate::platform::HeadlessContext;
 use crate::render::Engine;
 use crate::res::ResDirs;
+use crate::scene::method_file::MethodFile;
 use crate::tools::bench::catalog::{self, Setting};
 use crate::tools::bench::progress;
 use crate::tools::bench::timing::load_average;
@@ -21,6 +23,16 @@ use std::time::Instant;
 /// Runs the benchmark and writes report.json, report.md, report.html (with `pictures/`) and the
 /// charts into `cfg.out`.
 pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
+    run_with_method_files(res, cfg, &[])
+}
+
+/// `run`, with the methods of `files` (method files) measured beside the engine's, at the same
+/// settings grid (their sample budget; no presets), named by their files' `name`.
+pub fn run_with_method_files(
+    res: &ResDirs,
+    cfg: &PerfConfig,
+    files: &[MethodFile],
+) -> Result<Report> {
     let t0 = Instant::now();
     cfg.check()?;
     let (rw, rh) = cfg.reference_size();
@@ -51,7 +63,8 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         .collect();
     let ctx = HeadlessContext::new()?;
     let mut work = Work {
-        settings: plans.iter().flatten().map(|(_, s)| s.len()).sum(),
+        settings: plans.iter().flatten().map(|(_, s)| s.len()).sum::<usize>()
+            + files.len() * file_settings(cfg).len() * plans.len(),
         cameras: loaded.first().map_or(0, |(sd, _)| sd.cameras.len()),
         mean_radius: mean(&radii_of(&plan)),
         ..Work::default()
@@ -107,11 +120,24 @@ pub fn run(res: &ResDirs, cfg: &PerfConfig) -> Result<Report> {
         for (method, settings) in plan {
             for s in settings {
                 pb.set_message(format!("{} {} {}", sd.name, method.name(), s.label()));
-                let row = run_setting(&mut engine, sd, &screen, *method, s, cfg)
+                let row = run_setting(&mut engine, sd, &screen, (*method, None), s, cfg)
                     .with_context(|| format!("{} {} {}", sd.name, method.name(), s.label()))?;
                 rows.push(row);
                 pb.inc(1);
             }
+        }
+        for file in files {
+            engine.use_method_file(file.clone())?;
+            for s in &file_settings(cfg) {
+                pb.set_message(format!("{} {} {}", sd.name, file.name, s.label()));
+                let row = run_setting(&mut engine, sd, &screen, (HOST, Some(file)), s, cfg)
+                    .with_context(|| {
+                        format!("{} {} {}", sd.name, file.path.display(), s.label())
+                    })?;
+                rows.push(row);
+                pb.inc(1);
+            }
+            engine.ao.set_user_method(None);
         }
     }
     pb.finish_and_clear();
@@ -268,6 +294,17 @@ fn scaled_plan(plan: &Plan, scale: f32) -> Plan {
 }
 
 /// The settings of every method, checked against what the engine accepts.
+/// A method file's settings: the grid's sample counts and radii (the quick grid when none are
+/// given), without presets.
+fn file_settings(cfg: &PerfConfig) -> Vec<Setting> {
+    let given = !(cfg.samples.is_empty() && cfg.radii.is_empty());
+    if cfg.grid == Grid::Quick && !given {
+        catalog::quick_settings()
+    } else {
+        catalog::settings_for(AoMethod::Hbao, &cfg.samples, &cfg.radii, &[])
+    }
+}
+
 fn plan(cfg: &PerfConfig) -> Result<Plan> {
     let plan: Vec<(AoMethod, Vec<Setting>)> = cfg
         .methods

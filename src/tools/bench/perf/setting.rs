@@ -6,6 +6,7 @@ use super::references::{Ceiling, SceneData, ScreenMap};
 use super::report::{CameraError, Row};
 use crate::ao::AoMethod;
 use crate::render::{Engine, View};
+use crate::scene::method_file::MethodFile;
 use crate::tools::bench::catalog::Setting;
 use crate::tools::bench::timing::median;
 use crate::tools::metrics::{self, Fit, Gray, Metrics};
@@ -24,11 +25,13 @@ struct Timing {
 }
 
 /// Measures `method` at setting `s` on the scene `sd` (the engine runs at the bench size).
+/// With `file`, the method file's method runs in `method`'s place (`user_method::HOST`), with the
+/// scene's settings narrowed to what the file reads instead of a recommended configuration.
 pub fn run_setting(
     engine: &mut Engine,
     sd: &SceneData,
     screen: &ScreenMap,
-    method: AoMethod,
+    (method, file): (AoMethod, Option<&MethodFile>),
     s: &Setting,
     cfg: &PerfConfig,
 ) -> Result<Row> {
@@ -41,10 +44,17 @@ pub fn run_setting(
     engine.ao_settings.quality = s.quality;
     // The grid decides the count or preset; the method's recommendation the keys the scene leaves
     // unwritten (normals, layers, thickness, guard band, size).
-    let written = engine.ao_settings.written;
-    engine.ao_settings.written.quality = true;
-    crate::scene::ao_defaults::apply(&mut engine.ao_settings);
-    engine.ao_settings.written = written;
+    match file {
+        Some(f) => {
+            engine.ao_settings = crate::ao::user_method::settings_for(f, &engine.ao_settings)
+        }
+        None => {
+            let written = engine.ao_settings.written;
+            engine.ao_settings.written.quality = true;
+            crate::scene::ao_defaults::apply(&mut engine.ao_settings);
+            engine.ao_settings.written = written;
+        }
+    }
     engine.ao_settings.radius = s.radius;
     engine.ao_settings.enabled = true;
     let scene_camera = sd.cameras[0].camera(&sd.desc.camera);
@@ -54,7 +64,8 @@ pub fn run_setting(
 
     let views = ao_views(engine, sd, s, cfg)?;
     let ceiling = Ceiling::of(method, &engine.ao_settings);
-    let pictures = super::pictures::write(cfg, sd, method, s, &views, (screen, ceiling))?;
+    let name = file.map_or(method.name(), |f| f.name.as_str());
+    let pictures = super::pictures::write(cfg, sd, name, s, &views, (screen, ceiling))?;
     engine.camera = scene_camera;
     engine.sync_shader_constants()?;
 
@@ -67,7 +78,7 @@ pub fn run_setting(
         test.iter().map(|c| f(c)).sum::<f64>() / test.len().max(1) as f64
     };
     Ok(Row {
-        method: method.name().to_string(),
+        method: name.to_string(),
         setting: s.label(),
         samples: s.samples,
         radius: s.radius,
