@@ -440,3 +440,58 @@ fn the_truth_view_shows_the_error_map_and_scores_it() {
         "error-map pixels: {before} without, {after} with the truth"
     );
 }
+
+#[test]
+fn a_method_file_runs_in_the_window_as_it_renders_headless() {
+    if !xvfb_available() {
+        return;
+    }
+    let dir = common::temp_dir("window-method-file");
+    let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("docs/method-file/my_hbao.toml");
+    let file = file.to_str().unwrap();
+    let size = [
+        "--width".to_string(),
+        W.to_string(),
+        "--height".to_string(),
+        H.to_string(),
+    ];
+    let own = dir.join("headless-own.png");
+    let o = Command::new(env!("CARGO_BIN_EXE_opengl3d"))
+        .arg("render")
+        .args(&size)
+        .args(["--method-file", file, "--out", own.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let own = image::open(&own).unwrap().to_rgb8();
+    let lesson = headless(&dir.join("headless-lesson.png"));
+    let shot = dir.join("window-own.png");
+    let o = {
+        let _one_at_a_time = XVFB.lock().unwrap_or_else(|e| e.into_inner());
+        Command::new("xvfb-run")
+            .args([
+                "-a",
+                "-s",
+                "-screen 0 640x480x24",
+                env!("CARGO_BIN_EXE_opengl3d"),
+            ])
+            .args(["window", "--frames", "4", "--method-file", file])
+            .args(&size)
+            .args(["--screenshot", shot.to_str().unwrap()])
+            .env("OPENGL3D_SCREENSHOT_UI", "1")
+            .env("OPENGL3D_PANEL", "on")
+            .env_remove("WAYLAND_DISPLAY")
+            .output()
+            .unwrap()
+    };
+    assert!(o.status.success(), "{}", stderr(&o));
+    let win = image::open(&shot).unwrap().to_rgb8();
+    // Right of the panel, the window shows the method file's frame, not the lesson's.
+    let (max, _) = compare(&win, &own, W * 13 / 20..W, 0..H);
+    assert!(max <= DRIVER_TOLERANCE, "max channel difference {max}");
+    let (_, differing) = compare(&own, &lesson, W * 13 / 20..W, 0..H);
+    assert!(
+        differing > 0.01,
+        "the method file's frame should differ from the lesson's"
+    );
+}

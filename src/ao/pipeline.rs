@@ -209,6 +209,12 @@ impl AoPipeline {
         pass.downcast_ref::<T>()
     }
 
+    /// `pass_of`, to change it (a method file's parameters).
+    pub fn pass_of_mut<T: AoMethodPass>(&mut self, method: AoMethod) -> Option<&mut T> {
+        let pass: &mut dyn Any = self.methods.get_mut(&method)?.as_mut();
+        pass.downcast_mut::<T>()
+    }
+
     /// The BVH `method` traces, once built (`rtao`), with its build time and size.
     pub fn bvh_stats(&self, method: AoMethod) -> Option<crate::scene::bvh::BvhStats> {
         self.pass_of::<RtaoMethod>(method)?.bvh_stats()

@@ -63,6 +63,11 @@ impl UserMethod {
     pub fn file(&self) -> &MethodFile {
         &self.file
     }
+
+    /// Sets a parameter (kept in its range); the next `update_defines` rebuilds the shader with it.
+    pub fn set_parameter(&mut self, name: &str, value: f32) -> Result<()> {
+        self.file.set(name, value)
+    }
 }
 
 /// The settings as the method file's method sees them: only the inputs its file says it reads are

@@ -202,10 +202,6 @@ pub struct SceneArgs {
     /// AO method.
     #[arg(long, value_parser = choice(&AoMethod::ALL, AoMethod::name))]
     pub method: Option<AoMethod>,
-    /// A method of your own: a method file (TOML naming a GLSL shader beside it, what it reads, its
-    /// parameters; see docs/method-file.md), run where an engine method runs.
-    #[arg(long, value_name = "FILE.toml", conflicts_with = "method")]
-    pub method_file: Option<PathBuf>,
     /// AO sample count (per method: samples, or directions × steps); overrides a scene's GTAO quality.
     #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
     pub samples: Option<u32>,
@@ -297,6 +293,10 @@ pub struct RenderArgs {
     /// with a colour scale; PSNR and RMSE on stdout).
     #[arg(long, value_parser = choice(&RenderView::ALL, RenderView::name), default_value = "composite")]
     pub view: RenderView,
+    /// A method of your own: a method file (TOML naming a GLSL shader beside it, what it reads, its
+    /// parameters; see docs/method-file.md), run where an engine method runs.
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "method")]
+    pub method_file: Option<PathBuf>,
     /// With `--view error`: the truth, a one-channel PFM of visibility (e.g. `opengl3d reference`'s)
     /// at the output size divided by a whole factor; without it the truth is ray-traced (at most
     /// 320 pixels wide, 256 rays) and kept in the reference cache.
@@ -321,6 +321,11 @@ pub struct WindowArgs {
     /// The view shown first (V cycles through them).
     #[arg(long, value_parser = choice(&View::ALL, View::name), default_value = "composite")]
     pub view: View,
+    /// A method of your own: a method file (TOML naming a GLSL shader beside it, what it reads, its
+    /// parameters; see docs/method-file.md), run where an engine method runs (its shader reloads when saved;
+    /// its parameters are sliders in the panel).
+    #[arg(long, value_name = "FILE.toml", conflicts_with = "method")]
+    pub method_file: Option<PathBuf>,
     /// Close after this many frames (for scripted runs and tests).
     #[arg(long, allow_negative_numbers = true)]
     pub frames: Option<u32>,

@@ -120,6 +120,11 @@ pub fn run() -> Result<()> {
             }
             let scene = load_scene(&args.scene, &res)?;
             let mut options = window_options(args.view, args.frames, args.screenshot);
+            options.method_file = args
+                .method_file
+                .as_deref()
+                .map(crate::scene::method_file::MethodFile::read)
+                .transpose()?;
             options.screenshot_with_ui |= args.screenshot_ui;
             options.panel_visible &= !args.no_panel;
             options.time_passes |= args.time_passes;
@@ -176,6 +181,7 @@ pub fn run() -> Result<()> {
             let args = RenderArgs {
                 scene: SceneArgs::default(),
                 view: RenderView::Engine(View::Composite),
+                method_file: None,
                 truth: None,
                 error_range: crate::tools::error_map::DEFAULT_RANGE,
                 out: PathBuf::from("out/frame.png"),
@@ -199,7 +205,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let scene = load_scene(&args.scene, res)?;
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-    scene_args::use_method_file(&mut engine, &args.scene)?;
+    scene_args::use_method_file(&mut engine, args.method_file.as_deref())?;
     engine.view = view;
     if args.stats {
         // One frame first, unmeasured: the first frame compiles every shader (Mesa compiles on

@@ -53,7 +53,7 @@ pub fn run(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let (ew, eh) = (scene.output.width as usize, scene.output.height as usize);
     let ctx = HeadlessContext::new()?;
     let mut engine = Engine::at_output_size(&ctx.gl, res.clone(), &scene)?;
-    super::scene_args::use_method_file(&mut engine, &args.scene)?;
+    super::scene_args::use_method_file(&mut engine, args.method_file.as_deref())?;
     let (ao, sky) = error_map::engine_view(&mut engine)?;
     let map = error_map::compare(&ao, &sky, (ew, eh), &truth, (tw, th))?;
     error_map::write(&args.out, &map, args.error_range)?;

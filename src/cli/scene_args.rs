@@ -266,8 +266,11 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
 }
 
 /// Runs `--method-file`'s method in `engine` (its errors name the file, and the line).
-pub fn use_method_file(engine: &mut crate::render::Engine, args: &SceneArgs) -> Result<()> {
-    if let Some(path) = &args.method_file {
+pub fn use_method_file(
+    engine: &mut crate::render::Engine,
+    file: Option<&std::path::Path>,
+) -> Result<()> {
+    if let Some(path) = file {
         let file = crate::scene::method_file::MethodFile::read(path)?;
         engine.use_method_file(file)?;
     }

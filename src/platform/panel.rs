@@ -9,6 +9,7 @@ use crate::ao::settings::{
     AoSettings, NormalUse, SlabHierarchy, POWER_RANGE, RAYS_RANGE, SAMPLES_RANGE,
     SPIRAL_TURNS_RANGE,
 };
+use crate::ao::user_method::{UserMethod, HOST};
 use crate::ao::{AoMethod, AoResolution, CompositeMode, GuardBand, NormalSource, Thickness};
 use crate::i18n::Lang;
 use crate::platform::window::accumulation::WINDOW_ACCUMULATE;
@@ -128,13 +129,15 @@ impl Panel {
         let tr = |key: &str| label(lang, key);
         ui.heading(tr("panel.heading"));
         ui.small(tr("panel.hide_hint"));
+        // A method file running in its host's place goes by its own name.
+        let shown = engine.ao.own_labels(engine.ao_settings.method);
         let p = &mut engine.ao_settings;
         ui.checkbox(&mut p.enabled, tr("panel.ao_on"));
         let compiled = compiled_choices(p);
 
         let before = p.method;
         egui::ComboBox::from_label(tr("panel.method"))
-            .selected_text(p.method.name())
+            .selected_text(shown.map_or(p.method.name(), |(name, _)| name))
             .show_ui(ui, |ui| {
                 for m in AoMethod::ALL {
                     ui.selectable_value(&mut p.method, m, m.name());
@@ -231,6 +234,24 @@ impl Panel {
 
         // The shaders compile only the paths these choices use.
         actions.sync_shader_constants |= compiled_choices(p) != compiled;
+
+        // A method file's parameters, one slider each over the file's range: a change rebuilds its
+        // shader with the new #defines.
+        if let Some(user) = engine.ao.pass_of_mut::<UserMethod>(HOST) {
+            ui.label(format!("{} {}", tr("panel.method_file"), user.file().name));
+            let mut changed = Vec::new();
+            for param in &user.file().parameters {
+                let mut v = param.value;
+                let slider = egui::Slider::new(&mut v, param.min..=param.max).text(&param.name);
+                if ui.add(slider).changed() {
+                    changed.push((param.name.clone(), v));
+                }
+            }
+            for (name, v) in changed {
+                actions.sync_shader_constants |= user.set_parameter(&name, v).is_ok();
+            }
+        }
+        let p = &mut engine.ao_settings;
 
         egui::ComboBox::from_label(tr("panel.composite"))
             .selected_text(composite_name(p.composite))

@@ -132,7 +132,12 @@ impl App {
     fn create_engine(&mut self, gl: &crate::gl::Gl, size: PhysicalSize<u32>) -> Result<Engine> {
         let (w, h) = (size.width.max(1), size.height.max(1));
         let err = match Engine::new(gl, self.res.clone(), &self.scene, w, h) {
-            Ok(e) => return Ok(e),
+            Ok(mut e) => {
+                if let Some(file) = &self.options.method_file {
+                    e.use_method_file(file.clone())?;
+                }
+                return Ok(e);
+            }
             Err(e) => e,
         };
         let dirs = self.res.dirs();
@@ -175,6 +180,11 @@ impl App {
                 engine.ao_settings = s.engine.ao_settings;
                 engine.collect_stats = s.engine.collect_stats;
                 self.shader_errors.clear();
+                if let Some(file) = &self.options.method_file {
+                    if let Err(e) = engine.use_method_file(file.clone()) {
+                        self.shader_errors.record_any(&e);
+                    }
+                }
                 if let Err(e) = engine.sync_shader_constants() {
                     self.shader_errors.record_any(&e);
                 }

@@ -60,6 +60,8 @@ pub struct WindowOptions {
     pub truth: Option<TruthTools>,
     /// Ask for the truth of the first frame's view at start-up (scripted runs: `OPENGL3D_TRUTH=1`).
     pub truth_at_start: bool,
+    /// A method file's method, run in the place of the engine method that reads the most inputs.
+    pub method_file: Option<crate::scene::method_file::MethodFile>,
 }
 
 impl WindowOptions {
@@ -85,6 +87,7 @@ impl WindowOptions {
                 .is_some_and(|v| matches!(v.as_str(), "1" | "on" | "yes" | "true")),
             panel_visible: !flag("OPENGL3D_PANEL")
                 .is_some_and(|v| matches!(v.as_str(), "0" | "off" | "no" | "false" | "hidden")),
+            method_file: None,
         }
     }
 }
