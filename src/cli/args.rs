@@ -206,32 +206,37 @@ pub struct SceneArgs {
     #[arg(long, conflicts_with = "quality", allow_negative_numbers = true)]
     pub samples: Option<u32>,
     /// GTAO/VBAO quality preset (slices × steps per side): gtao low 1×4, medium 2×4, high 3×6, ultra
-    /// 4×8; vbao 1×4, 1×8, 1×16, 1×32.
+    /// 4×8; vbao 1×4, 1×8, 1×16, 1×32 (default: the method's recommended configuration,
+    /// docs/bench/defaults.md).
     #[arg(long, value_parser = choice(&SlicePreset::ALL, SlicePreset::name))]
     pub quality: Option<SlicePreset>,
     /// AO radius in metres.
     #[arg(long, allow_negative_numbers = true)]
     pub radius: Option<f32>,
     /// Size the engine's AO methods run at: half (the course's), full, or quarter (a sixteenth of the
-    /// pixels, for large outputs); `sao-lesson` stays at half.
+    /// pixels, for large outputs); `sao-lesson` stays at half (default: the method's recommended
+    /// configuration, docs/bench/defaults.md).
     #[arg(long, value_parser = choice(&AoResolution::ALL, AoResolution::name))]
     pub ao_resolution: Option<AoResolution>,
     /// Where the engine's AO methods take each pixel's normal: geometric (the triangle's own, from a
-    /// pass over the geometry) or depth (rebuilt from neighbouring depths, no extra pass; the default).
+    /// pass over the geometry) or depth (rebuilt from neighbouring depths, no extra pass); default:
+    /// the method's recommended configuration.
     #[arg(long, value_parser = choice(&NormalSource::ALL, NormalSource::name))]
     pub normals: Option<NormalSource>,
     /// Pixels the engine's AO covers beyond each edge of the view, so that occluders just off
     /// screen count: auto (the radius's size at the camera's focus distance, at most 1/12 of the
-    /// larger side), a number, or 0 (none, the default).
+    /// larger side), a number, or 0 (none); default: the method's recommended configuration.
     #[arg(long, value_name = "auto|PX", value_parser = GuardBand::parse)]
     pub guard_band: Option<GuardBand>,
-    /// How far (m) behind each depth sample `vbao` takes the surface to extend (default: half the radius),
-    /// or `backface`: each pixel's own, from a depth pass of the back faces.
+    /// How far (m) behind each depth sample `vbao` takes the surface to extend, or `backface`: each
+    /// pixel's own, from a depth pass of the back faces (default: the method's recommended
+    /// configuration, `backface` for `vbao`).
     #[arg(long, allow_negative_numbers = true, value_parser = Thickness::parse)]
     pub thickness: Option<Thickness>,
     /// Depth layers `vbao` marches: 1 (the visible surface) or 2 (also the nearest surface hidden at
     /// least a tenth of the radius behind it, from one more depth pass; with `--thickness backface`
-    /// its slabs reach its own back faces, from another).
+    /// its slabs reach its own back faces, from another); default: the method's recommended
+    /// configuration (2 for `vbao`).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=2))]
     pub layers: Option<u32>,
     /// Whether `vbao`'s taps read the slab hierarchy (the nearest slab under a texel as wide as the
