@@ -199,37 +199,26 @@ struct Threshold {
 }
 
 fn threshold(s: &[f32], r: &[f32], depth: &[f32], far: f32, w: usize, h: usize) -> Threshold {
+    use super::sao_measure::{apart, even as eq, surface_quads};
     let mut t = Threshold::default();
-    let eq = |v: &[f32], i: usize, j: usize| (v[i] - v[j]).abs() as f64 <= tol::SAO_QUAD_SPREAD;
-    let apart = |v: &[f32], i: usize, j: usize| {
-        (v[i] - v[j]).abs() as f64 > tol::SAO_QUAD_APART * tol::SAO_QUAD_SPREAD
-    };
-    for y in (0..h.saturating_sub(1)).step_by(2) {
-        for x in (0..w.saturating_sub(1)).step_by(2) {
-            let [a, b, c, e] =
-                [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(u, v)| v * w + u);
-            if [a, b, c, e].iter().any(|&i| depth[i] >= far) {
-                continue;
+    for (x, y, [a, b, c, e]) in surface_quads(depth, far, w, h) {
+        if ((r[a] + r[b] + r[c] + r[e]) as f64 / 4.0) <= tol::SAO_QUAD_OCCLUDED {
+            continue;
+        }
+        let (dx, dy) = quad_slopes(depth, w, x, y);
+        let band = |d: [f32; 2], lo: f32, hi: f32| d.iter().all(|v| (lo..hi).contains(&v.abs()));
+        // Along x the pairs are (a, b) and (c, e); along y, after the x step, (a, c), (b, e).
+        let axes = [(dx, [(a, b), (c, e)]), (dy, [(a, c), (b, e)])];
+        for (d, pairs) in axes {
+            let r_even = pairs.iter().all(|&(i, j)| eq(r, i, j));
+            let s_even = pairs.iter().all(|&(i, j)| eq(s, i, j));
+            if band(d, 0.012, 0.018) && r_even {
+                t.below += 1;
+                t.below_apart += usize::from(!s_even);
             }
-            if ((r[a] + r[b] + r[c] + r[e]) as f64 / 4.0) <= tol::SAO_QUAD_OCCLUDED {
-                continue;
-            }
-            let (dx, dy) = quad_slopes(depth, w, x, y);
-            let band =
-                |d: [f32; 2], lo: f32, hi: f32| d.iter().all(|v| (lo..hi).contains(&v.abs()));
-            // Along x the pairs are (a, b) and (c, e); along y, after the x step, (a, c), (b, e).
-            let axes = [(dx, [(a, b), (c, e)]), (dy, [(a, c), (b, e)])];
-            for (d, pairs) in axes {
-                let r_even = pairs.iter().all(|&(i, j)| eq(r, i, j));
-                let s_even = pairs.iter().all(|&(i, j)| eq(s, i, j));
-                if band(d, 0.012, 0.018) && r_even {
-                    t.below += 1;
-                    t.below_apart += usize::from(!s_even);
-                }
-                if band(d, 0.024, 0.036) && pairs.iter().any(|&(i, j)| apart(r, i, j)) {
-                    t.above += 1;
-                    t.above_even += usize::from(s_even);
-                }
+            if band(d, 0.024, 0.036) && pairs.iter().any(|&(i, j)| apart(r, i, j)) {
+                t.above += 1;
+                t.above_even += usize::from(s_even);
             }
         }
     }

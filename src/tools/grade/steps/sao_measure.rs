@@ -105,45 +105,67 @@ pub(super) struct Pattern {
     pub(super) halved: usize,
 }
 
+/// Whether a pair of pixels of `v` is evened out (within the smoothing's spread).
+pub(super) fn even(v: &[f32], i: usize, j: usize) -> bool {
+    (v[i] - v[j]).abs() as f64 <= tol::SAO_QUAD_SPREAD
+}
+
+/// Whether a pair of pixels of `v` is clearly left apart (well beyond the smoothing's spread).
+pub(super) fn apart(v: &[f32], i: usize, j: usize) -> bool {
+    (v[i] - v[j]).abs() as f64 > tol::SAO_QUAD_APART * tol::SAO_QUAD_SPREAD
+}
+
+/// The aligned 2×2 quads of a `w`×`h` image with no sky pixel (`depth` at or beyond `far`): each
+/// as its top-left corner and its pixels' indices (top-left, top-right, bottom-left, bottom-right).
+pub(super) fn surface_quads(
+    depth: &[f32],
+    far: f32,
+    w: usize,
+    h: usize,
+) -> impl Iterator<Item = (usize, usize, [usize; 4])> + '_ {
+    let corners = (0..h.saturating_sub(1))
+        .step_by(2)
+        .flat_map(move |y| (0..w.saturating_sub(1)).step_by(2).map(move |x| (x, y)));
+    corners.filter_map(move |(x, y)| {
+        let quad = [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(u, v)| v * w + u);
+        quad.iter().all(|&i| depth[i] < far).then_some((x, y, quad))
+    })
+}
+
 /// Aligned 2×2 quads of non-sky pixels, the student's output `s` against the reference's `r`: where
 /// the reference's smoothing evened a pair out (its `|Δz| < 0.02` test passed) the student's must
 /// too, with the whole quad's mean where both passed; where the reference left an occluded pair
 /// apart, the student's must not be equal.
 fn quad_pattern(s: &[f32], r: &[f32], depth: &[f32], far: f32, w: usize, h: usize) -> Pattern {
     let mut p = Pattern::default();
-    let eq = |v: &[f32], i: usize, j: usize| (v[i] - v[j]).abs() as f64 <= tol::SAO_QUAD_SPREAD;
-    let apart = |v: &[f32], i: usize, j: usize| {
-        (v[i] - v[j]).abs() as f64 > tol::SAO_QUAD_APART * tol::SAO_QUAD_SPREAD
-    };
-    for y in (0..h.saturating_sub(1)).step_by(2) {
-        for x in (0..w.saturating_sub(1)).step_by(2) {
-            let [a, b, c, e] =
-                [(x, y), (x + 1, y), (x, y + 1), (x + 1, y + 1)].map(|(u, v)| v * w + u);
-            if [a, b, c, e].iter().any(|&i| depth[i] >= far) {
-                continue;
-            }
-            let occluded = (r[a] + r[b] + r[c] + r[e]) as f64 / 4.0 > tol::SAO_QUAD_OCCLUDED;
-            let (rx, ry) = (eq(r, a, b) && eq(r, c, e), eq(r, a, c) && eq(r, b, e));
-            let (sx, sy) = (eq(s, a, b) && eq(s, c, e), eq(s, a, c) && eq(s, b, e));
-            let (r_apart_x, r_apart_y) = (
-                !rx && (apart(r, a, b) || apart(r, c, e)),
-                !ry && (apart(r, a, c) || apart(r, b, e)),
-            );
-            if !(occluded || r_apart_x || r_apart_y) {
-                continue;
-            }
-            p.quads += 1;
-            if (sx && r_apart_x) || (sy && r_apart_y) {
-                p.smeared += 1;
-            } else if occluded && rx && ry && !(sx && sy) {
-                if eq(s, a, e) && eq(s, b, c) {
-                    p.halved += 1;
-                } else {
-                    p.unsmoothed += 1;
-                }
-            } else if occluded && ((rx && !sx) || (ry && !sy)) {
+    for (_, _, [a, b, c, e]) in surface_quads(depth, far, w, h) {
+        let occluded = (r[a] + r[b] + r[c] + r[e]) as f64 / 4.0 > tol::SAO_QUAD_OCCLUDED;
+        let (rx, ry) = (
+            even(r, a, b) && even(r, c, e),
+            even(r, a, c) && even(r, b, e),
+        );
+        let (sx, sy) = (
+            even(s, a, b) && even(s, c, e),
+            even(s, a, c) && even(s, b, e),
+        );
+        let (r_apart_x, r_apart_y) = (
+            !rx && (apart(r, a, b) || apart(r, c, e)),
+            !ry && (apart(r, a, c) || apart(r, b, e)),
+        );
+        if !(occluded || r_apart_x || r_apart_y) {
+            continue;
+        }
+        p.quads += 1;
+        if (sx && r_apart_x) || (sy && r_apart_y) {
+            p.smeared += 1;
+        } else if occluded && rx && ry && !(sx && sy) {
+            if even(s, a, e) && even(s, b, c) {
+                p.halved += 1;
+            } else {
                 p.unsmoothed += 1;
             }
+        } else if occluded && ((rx && !sx) || (ry && !sy)) {
+            p.unsmoothed += 1;
         }
     }
     p
