@@ -253,7 +253,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
             "timing": clock.description(),
             "passes": engine.last_stats(),
             "bvh": engine.ao.bvh_stats(method),
-            "accumulated_frames": engine.ao.accumulated_frames(method),
+            "accumulated_frames": engine.accumulated_frames(),
             "ao_configuration": crate::scene::ao_defaults::chosen(&engine.ao_settings),
         });
         crate::outln!("{json}");

@@ -188,3 +188,22 @@ fn many_frames_on_a_moving_camera_stay_finite_and_in_range() {
     }
     assert_eq!(eng.temporal.frames(), 96);
 }
+
+#[test]
+fn render_stats_count_the_frames_a_screen_space_method_accumulated() {
+    let dir = common::temp_dir("temporal-stats");
+    let out = dir.join("vbao.png");
+    let frames_of = |extra: &[&str]| {
+        let mut args = vec![
+            "render", "--method", "vbao", "--width", "160", "--height", "90",
+        ];
+        args.extend_from_slice(extra);
+        args.extend_from_slice(&["--stats", "--out", out.to_str().unwrap()]);
+        let o = common::run(&args);
+        assert!(o.status.success(), "{}", common::stderr(&o));
+        let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
+        json["accumulated_frames"].as_u64()
+    };
+    assert_eq!(frames_of(&["--accumulate", "3"]), Some(3));
+    assert_eq!(frames_of(&[]), Some(1));
+}

@@ -12,6 +12,19 @@ use crate::render::view::View;
 use anyhow::{anyhow, Result};
 
 impl Engine {
+    /// Frames averaged into the last frame's AO: `rtao`'s running mean, or the screen-space
+    /// methods' temporal accumulation (`ao::temporal`); 1 without either.
+    pub fn accumulated_frames(&self) -> u32 {
+        let method = self.ao_settings.method;
+        if method.info().rays {
+            return self.ao.accumulated_frames(method);
+        }
+        if crate::ao::temporal::applies(&self.ao_settings) {
+            return self.temporal.frames().max(1);
+        }
+        1
+    }
+
     /// The AO chain: restore and down-sample the depth, then the method and its blur (only what
     /// `view` shows); drawn at the AO size over a widened view when the settings ask for a guard
     /// band, or over the view when they ask for surface passes or a quarter-size AO (`guard`).
