@@ -239,7 +239,8 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     if args.stats {
         eprintln!("{msg}");
         let keys = crate::scene::ao_defaults::chosen_line(&engine.ao_settings);
-        let method = engine.ao_settings.method.name();
+        let method = engine.ao.own_labels(engine.ao_settings.method);
+        let method = method.map_or(engine.ao_settings.method.name(), |(name, _)| name);
         eprintln!(
             "{}",
             t!("render.ao_configuration", method = method, keys = keys)
