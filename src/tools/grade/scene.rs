@@ -130,6 +130,29 @@ impl SynthScene {
     }
 }
 
+/// A wall seen head-on at 5 m from the camera at the origin, with `reliefs` standing out of it and
+/// no probes: the scenes where a step measures one number the pages fix.
+pub fn facing_wall(
+    name: &'static str,
+    reliefs: &[Aabb],
+    (width, height): (u32, u32),
+) -> SynthScene {
+    let mut boxes = vec![Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0])];
+    boxes.extend_from_slice(reliefs);
+    SynthScene {
+        name,
+        camera: Camera {
+            eye: Vec3::ZERO,
+            target: Vec3::new(0.0, 0.0, -5.0),
+            ..Camera::default()
+        },
+        boxes,
+        width,
+        height,
+        probes: vec![],
+    }
+}
+
 /// The floor every SAO scene stands on (its top is y = 0).
 pub fn floor() -> Aabb {
     Aabb::new([-60.0, -1.0, -60.0], [60.0, 0.0, 60.0])

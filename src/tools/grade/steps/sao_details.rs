@@ -13,7 +13,7 @@ use crate::math::Camera;
 use crate::tools::grade::measure::as_r8;
 use crate::tools::grade::passes::{run_sao, Mips};
 use crate::tools::grade::rig::Rig;
-use crate::tools::grade::scene::{floor, Aabb, SynthScene};
+use crate::tools::grade::scene::{facing_wall, floor, Aabb, SynthScene};
 use crate::tools::grade::tol;
 use anyhow::Result;
 use glam::Vec3;
@@ -73,23 +73,15 @@ fn ribbed_scene((width, height): (u32, u32)) -> SynthScene {
 
 /// A wall seen head-on at 5 m with panels standing 0.7 m (silhouettes 16 % deep) and 0.3 m (6 %)
 /// out of it.
-fn panels_scene((width, height): (u32, u32)) -> SynthScene {
-    SynthScene {
-        name: "panels",
-        camera: Camera {
-            eye: Vec3::ZERO,
-            target: Vec3::new(0.0, 0.0, -5.0),
-            ..Camera::default()
-        },
-        boxes: vec![
-            Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
+fn panels_scene(size: (u32, u32)) -> SynthScene {
+    facing_wall(
+        "panels",
+        &[
             Aabb::new([-2.0, -1.0, -5.0], [-0.6, 1.0, -4.3]),
             Aabb::new([0.6, -1.0, -5.0], [2.0, 1.0, -4.7]),
         ],
-        width,
-        height,
-        probes: vec![],
-    }
+        size,
+    )
 }
 
 /// A wall facing the camera at 5 m (as linear depth, built texel by texel) with 3 cm squares raised

@@ -7,29 +7,18 @@
 //! step's target is wider than high) occludes left and right unlike below and above.
 
 use crate::ao::AoSettings;
-use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
 use crate::tools::grade::rig::Rig;
-use crate::tools::grade::scene::{Aabb, SynthScene};
+use crate::tools::grade::scene::{facing_wall, Aabb, SynthScene};
 use anyhow::Result;
 use glam::Vec3;
 
-fn panel_scene((width, height): (u32, u32)) -> SynthScene {
-    SynthScene {
-        name: "square panel",
-        camera: Camera {
-            eye: Vec3::ZERO,
-            target: Vec3::new(0.0, 0.0, -5.0),
-            ..Camera::default()
-        },
-        boxes: vec![
-            Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
-            Aabb::new([-1.0, -1.0, -5.0], [1.0, 1.0, -4.75]),
-        ],
-        width,
-        height,
-        probes: vec![],
-    }
+fn panel_scene(size: (u32, u32)) -> SynthScene {
+    facing_wall(
+        "square panel",
+        &[Aabb::new([-1.0, -1.0, -5.0], [1.0, 1.0, -4.75])],
+        size,
+    )
 }
 
 /// Mean occlusion of the wall beside each side of the panel (left, right, bottom, top).

@@ -6,31 +6,22 @@
 //! the panel's occlusion; the step's own scenes have no such near object, so only this shows it.
 
 use crate::ao::AoSettings;
-use crate::math::Camera;
 use crate::tools::grade::measure::{as_r8, rect_mean};
 use crate::tools::grade::rig::Rig;
-use crate::tools::grade::scene::{Aabb, SynthScene};
+use crate::tools::grade::scene::{facing_wall, Aabb, SynthScene};
 use anyhow::Result;
 use glam::Vec3;
 
-fn post_scene((width, height): (u32, u32)) -> SynthScene {
-    SynthScene {
-        name: "post",
-        camera: Camera {
-            eye: Vec3::ZERO,
-            target: Vec3::new(0.0, 0.0, -5.0),
-            ..Camera::default()
-        },
-        boxes: vec![
-            Aabb::new([-60.0, -60.0, -6.0], [60.0, 60.0, -5.0]),
+fn post_scene(size: (u32, u32)) -> SynthScene {
+    facing_wall(
+        "post",
+        &[
             Aabb::new([-60.0, -60.0, -5.0], [0.0, 60.0, -4.75]),
             // Seen from the eye it hides x 0.85–1.45 of the wall: 0.1 m right of the band.
             Aabb::new([0.595, -60.0, -3.6], [1.015, 60.0, -3.5]),
         ],
-        width,
-        height,
-        probes: vec![],
-    }
+        size,
+    )
 }
 
 /// Mean occlusion of the wall between the panel and the post (away from both edges), the student's
