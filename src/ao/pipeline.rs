@@ -24,6 +24,8 @@ pub struct AoPipeline {
     pub targets: LazyAoTargets,
     pub depth_chain: DepthChain,
     methods: HashMap<AoMethod, Box<dyn AoMethodPass>>,
+    /// The recommendation of the method file running in `user_method::HOST`'s place, if one does.
+    user_recommended: Option<crate::scene::ao_defaults::Recommended>,
     /// `simple.frag` (the lesson's composite) and `ao/composite_tint.frag`.
     pub composite_simple: ProgramObject,
     pub composite_tint: ProgramObject,
@@ -51,6 +53,7 @@ impl AoPipeline {
             targets: LazyAoTargets::new(gl, size, depth_levels),
             depth_chain: DepthChain::new(gl, res, camera)?,
             methods: HashMap::new(),
+            user_recommended: None,
             composite_simple: fullscreen("simple.frag", &[])?,
             composite_tint: fullscreen("ao/composite_tint.frag", &[])?,
             upsample: BilateralUpsample::new(
@@ -96,10 +99,20 @@ impl AoPipeline {
     /// own method again, rebuilt on the next `prepare`).
     pub fn set_user_method(&mut self, method: Option<super::user_method::UserMethod>) {
         let host = super::user_method::HOST;
+        self.user_recommended = method.as_ref().map(|m| m.file().recommended);
         match method {
             Some(m) => self.methods.insert(host, Box::new(m)),
             None => self.methods.remove(&host),
         };
+    }
+
+    /// What `method` recommends for the keys a scene leaves unwritten: a method file's own where
+    /// one runs in its place, else the engine method's.
+    pub fn recommended(&self, method: AoMethod) -> crate::scene::ao_defaults::Recommended {
+        match self.user_recommended {
+            Some(r) if method == super::user_method::HOST => r,
+            _ => crate::scene::ao_defaults::recommended(method),
+        }
     }
 
     /// The names of a method file's pass and blur where one runs in `method`'s place.

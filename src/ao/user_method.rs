@@ -70,11 +70,15 @@ impl UserMethod {
     }
 }
 
-/// The settings as the method file's method sees them: only the inputs its file says it reads are
+/// The settings as the method file's method sees them: its `[recommended]` configuration where
+/// neither the scene nor a flag writes a key, and only the inputs its file says it reads are
 /// drawn (`HOST`'s slab hierarchy never: the method's shader does not read it).
 pub fn settings_for(file: &MethodFile, settings: &AoSettings) -> AoSettings {
     let mut s = *settings;
     s.method = HOST;
+    // The keys the scene and the flags leave unwritten follow the file's recommendation, not the
+    // one applied for the scene's own method.
+    crate::scene::ao_defaults::apply_from(&mut s, &file.recommended);
     if !file.reads.normals {
         s.normals = NormalSource::Depth;
     }

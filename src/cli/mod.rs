@@ -238,7 +238,8 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     );
     if args.stats {
         eprintln!("{msg}");
-        let keys = crate::scene::ao_defaults::chosen_line(&engine.ao_settings);
+        let recommended = engine.ao.recommended(engine.ao_settings.method);
+        let keys = crate::scene::ao_defaults::chosen_line_from(&engine.ao_settings, &recommended);
         let method = engine.ao.own_labels(engine.ao_settings.method);
         let method = method.map_or(engine.ao_settings.method.name(), |(name, _)| name);
         eprintln!(
@@ -255,7 +256,7 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
             "passes": engine.last_stats(),
             "bvh": engine.ao.bvh_stats(method),
             "accumulated_frames": engine.accumulated_frames(),
-            "ao_configuration": crate::scene::ao_defaults::chosen(&engine.ao_settings),
+            "ao_configuration": crate::scene::ao_defaults::chosen_from(&engine.ao_settings, &recommended),
         });
         crate::outln!("{json}");
     } else {

@@ -143,14 +143,16 @@ impl Panel {
                     ui.selectable_value(&mut p.method, m, m.name());
                 }
             });
+        // A method file in the chosen method's place recommends its own configuration.
+        let recommended = engine.ao.recommended(p.method);
         if p.method != before {
-            crate::scene::ao_defaults::apply(p);
+            crate::scene::ao_defaults::apply_from(p, &recommended);
             actions.sync_shader_constants = true;
         }
         ui.small(format!(
             "{}: {}",
             tr("panel.configuration"),
-            crate::scene::ao_defaults::chosen_line(p)
+            crate::scene::ao_defaults::chosen_line_from(p, &recommended)
         ))
         .on_hover_text(tr("panel.configuration_help"));
 

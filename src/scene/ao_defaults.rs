@@ -26,8 +26,9 @@ pub struct Recommended {
 }
 
 /// The struct's own defaults (`AoSettings::default()`): the lesson's SAO as the course teaches it,
-/// and what `rtao` (not tuned: its accuracy is its ray count) runs with.
-const PLAIN: Recommended = Recommended {
+/// what `rtao` (not tuned: its accuracy is its ray count) runs with, and what a method file
+/// recommends for the keys it leaves out.
+pub const PLAIN: Recommended = Recommended {
     quality: None,
     resolution: AoResolution::Half,
     normals: NormalSource::Depth,
@@ -85,7 +86,11 @@ pub fn recommended(method: AoMethod) -> Recommended {
 /// Sets every key of `s` that was not written to `s.method`'s recommended value (so switching
 /// the method also switches the unwritten keys).
 pub fn apply(s: &mut AoSettings) {
-    let r = recommended(s.method);
+    apply_from(s, &recommended(s.method));
+}
+
+/// `apply` with the recommendation `r` (a method file's, for one).
+pub fn apply_from(s: &mut AoSettings, r: &Recommended) {
     let w = s.written;
     if !w.quality {
         s.quality = r.quality;
@@ -119,7 +124,12 @@ pub struct ChosenKey {
 
 /// The configuration keys `s` runs with, for `render --stats` and the window's panel.
 pub fn chosen(s: &AoSettings) -> Vec<ChosenKey> {
-    let (w, r) = (s.written, recommended(s.method));
+    chosen_from(s, &recommended(s.method))
+}
+
+/// `chosen`, against the recommendation `r` (a method file's, for one).
+pub fn chosen_from(s: &AoSettings, r: &Recommended) -> Vec<ChosenKey> {
+    let w = s.written;
     let thickness = match s.thickness {
         None => format!("{}", s.thickness_metres()),
         Some(Thickness::Metres(m)) => format!("{m}"),
@@ -172,7 +182,12 @@ pub fn chosen(s: &AoSettings) -> Vec<ChosenKey> {
 /// `chosen` on one line: `quality = high, resolution = quarter, …`, a `*` after each value the
 /// scene file or a flag set.
 pub fn chosen_line(s: &AoSettings) -> String {
-    chosen(s)
+    chosen_line_from(s, &recommended(s.method))
+}
+
+/// `chosen_line`, against the recommendation `r`.
+pub fn chosen_line_from(s: &AoSettings, r: &Recommended) -> String {
+    chosen_from(s, r)
         .iter()
         .map(|c| {
             let mark = if c.recommended { "" } else { "*" };

@@ -3,6 +3,9 @@
 //! defaults, which reach the shader as `#define`s. The interface the shader sees is the one the
 //! engine's own methods see (`Res/ao/common.glsl`); `docs/method-file.md` describes both.
 
+use super::ao_defaults::Recommended;
+pub use super::method_inputs::MethodReads;
+use super::method_inputs::RawRecommended;
 use super::places::KeyPlaces;
 use anyhow::{anyhow, bail, Context as _, Result};
 use rust_i18n::t;
@@ -18,20 +21,6 @@ pub const MAX_PARAMETERS: usize = 32;
 /// GLSL preprocessor reserves: a parameter of the same name would be redefined or shadowed.
 const RESERVED_PREFIXES: [&str; 3] = ["AO_", "CAMERA_", "GL_"];
 const RESERVED_NAMES: [&str; 4] = ["LOG_MAX_OFFSET", "PI", "BLUR_REACH", "SAO_SAMPLES"];
-
-/// What the engine draws for a method, beyond the linear-depth chain every method gets.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct MethodReads {
-    /// The surface-normal pass (`texNormal`, `SurfaceNormal` in `common.glsl`) when the settings
-    /// ask for geometric normals.
-    pub normals: bool,
-    /// Back-face depth (`aoBackFaces`, binding 1) when the settings ask for it.
-    pub back_faces: bool,
-    /// A second depth layer (`aoLayers`) when the settings ask for it.
-    pub second_layer: bool,
-    /// The settings' thickness (`aoThickness`).
-    pub thickness: bool,
-}
 
 /// One of the two `aoCounts` numbers.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -75,6 +64,8 @@ pub struct MethodFile {
     pub reads: MethodReads,
     pub counts: [CountRule; 2],
     pub parameters: Vec<MethodParameter>,
+    /// What runs where neither the scene nor a flag sets a key (`[recommended]`).
+    pub recommended: Recommended,
 }
 
 #[derive(Deserialize)]
@@ -88,6 +79,8 @@ struct RawMethodFile {
     counts: Option<[RawCount; 2]>,
     #[serde(default, rename = "parameter")]
     parameters: Vec<RawParameter>,
+    #[serde(default)]
+    recommended: RawRecommended,
 }
 
 #[derive(Deserialize)]
@@ -205,6 +198,8 @@ impl MethodFile {
                 value: p.default as f32,
             });
         }
+        let recommended = super::method_inputs::check(&raw.recommended, &reads)
+            .map_err(|(key, why)| anyhow!("{}: {why}", at(&format!("recommended.{key}"))))?;
         Ok(MethodFile {
             path: path.to_path_buf(),
             name: raw.name,
@@ -212,6 +207,7 @@ impl MethodFile {
             reads,
             counts,
             parameters,
+            recommended,
         })
     }
 

@@ -13,6 +13,7 @@ pub mod framing;
 pub mod furniture;
 pub mod game_object;
 pub mod method_file;
+mod method_inputs;
 mod places;
 mod primitives;
 pub mod shapes;

@@ -1,5 +1,6 @@
 //! Method files: the engine's `hbao` written as one (docs/method-file/) renders exactly what the
-//! built-in method renders; its parameter reaches the shader; a broken shader or file is an error
+//! built-in method renders, in `render` and in `bench`; its parameter and its recommended
+//! configuration reach the engine; a broken shader or file is an error
 //! naming the file and line.
 
 use crate::common::{fails_with, run, stderr, temp_dir};
@@ -74,6 +75,30 @@ fn hbao_as_a_method_file_renders_what_the_engine_s_hbao_renders() {
             "flags {extra:?}: the method file's occlusion differs from hbao's"
         );
     }
+    // With no flag beyond the method, each runs its own recommendation: the file recommends what
+    // the engine's hbao does, so the two still agree (a scene key left unwritten either way).
+    let bare = |name: &str, method: &[&str]| {
+        let out = dir.join(format!("{name}.pfm"));
+        let mut args = vec!["render", "--width", "320", "--height", "180", "--view"];
+        args.extend_from_slice(&["ao-raw", "--out", out.to_str().unwrap()]);
+        args.extend_from_slice(method);
+        let o = run(&args);
+        assert!(o.status.success(), "{args:?}: {}", stderr(&o));
+        std::fs::read(&out).unwrap()
+    };
+    let builtin = bare("builtin-bare", &["--method", "hbao"]);
+    assert!(
+        builtin == bare("file-bare", &["--method-file", file]),
+        "without flags the method file's occlusion differs from hbao's"
+    );
+    // Without its `[recommended]` table the file runs without hbao's guard band: another picture
+    // (the recommendation is what made the two agree above).
+    let plain = edited_copy(&dir, |f| f, |t| t.replace("guard_band = \"auto\"", ""));
+    let plain = bare("file-plain", &["--method-file", plain.to_str().unwrap()]);
+    assert!(
+        builtin != plain,
+        "the recommended guard band changed nothing"
+    );
     // The parameter reaches the shader: another bias, another picture.
     let raised = edited_copy(
         &dir,
@@ -131,6 +156,28 @@ fn a_broken_method_shader_or_file_names_the_file_and_line() {
         ],
         &["my_hbao.toml:6:10", "colour"],
     );
+    // A recommendation asking for an input the method does not read: the key's line and column.
+    let unread = edited_copy(
+        &dir,
+        |f| f,
+        |t| t.replace("guard_band = \"auto\"", "layers = 2"),
+    );
+    let line = std::fs::read_to_string(&unread)
+        .unwrap()
+        .lines()
+        .position(|l| l.starts_with("layers = 2"))
+        .unwrap()
+        + 1;
+    fails_with(
+        &[
+            "render",
+            "--method-file",
+            unread.to_str().unwrap(),
+            "--out",
+            out,
+        ],
+        &[&format!("my_hbao.toml:{line}:10"), "second-layer"],
+    );
     // An include that climbs out of the folder is refused.
     let climbing = edited_copy(
         &dir,
@@ -186,6 +233,20 @@ fn the_bench_measures_a_method_file_beside_the_engine_s_methods() {
     assert_eq!(names, ["hbao", "my-hbao"]);
     let psnr = rows[1]["psnr"].as_f64().unwrap();
     assert!(psnr.is_finite() && psnr > 10.0, "{psnr}");
+    // The same occlusion as the engine's hbao: every camera's error, and every AO picture.
+    let cameras = |r: &serde_json::Value| r["cameras"].clone();
+    assert_eq!(cameras(&rows[0]), cameras(&rows[1]));
+    let pictures = |r: &serde_json::Value| -> Vec<Vec<u8>> {
+        let list = r["pictures"].as_array().unwrap();
+        assert!(!list.is_empty());
+        list.iter()
+            .map(|p| std::fs::read(dir.join(p["ao"].as_str().unwrap())).unwrap())
+            .collect()
+    };
+    assert!(
+        pictures(&rows[0]) == pictures(&rows[1]),
+        "the bench's AO pictures of hbao and my-hbao differ"
+    );
     let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
     assert!(page.contains("my-hbao"));
     assert!(dir

@@ -26,7 +26,7 @@ struct Timing {
 
 /// Measures `method` at setting `s` on the scene `sd` (the engine runs at the bench size).
 /// With `file`, the method file's method runs in `method`'s place (`user_method::HOST`), with the
-/// scene's settings narrowed to what the file reads instead of a recommended configuration.
+/// file's recommended configuration (`[recommended]`) narrowed to what the file reads.
 pub fn run_setting(
     engine: &mut Engine,
     sd: &SceneData,
