@@ -317,6 +317,13 @@ pub struct RenderArgs {
     /// second frame (the first compiles the shaders).
     #[arg(long)]
     pub stats: bool,
+    /// Draw this many frames along a camera path (after the `--accumulate` frames standing still):
+    /// orbiting the scene camera's target to the left while closing in, as `bench --camera-path`
+    /// moves; each frame is written beside `--out` with its number (out/frame-000.png, …), and an
+    /// accumulating method's history follows the motion.
+    #[arg(long, value_name = "FRAMES", conflicts_with = "stats",
+          value_parser = clap::value_parser!(u32).range(1..=100_000))]
+    pub camera_path: Option<u32>,
 }
 
 #[derive(Args, Debug)]

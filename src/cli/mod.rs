@@ -5,6 +5,7 @@ mod challenge;
 mod help_text;
 mod output;
 mod render_error;
+mod render_path;
 mod res_check;
 mod scene_args;
 mod usage_errors;
@@ -186,6 +187,7 @@ pub fn run() -> Result<()> {
                 error_range: crate::tools::error_map::DEFAULT_RANGE,
                 out: PathBuf::from("out/frame.png"),
                 stats: false,
+                camera_path: None,
             };
             render(&res, &args)
         }
@@ -195,6 +197,9 @@ pub fn run() -> Result<()> {
 /// Renders one frame headless per `args` and writes it.
 pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
     let view = match args.view {
+        RenderView::Error if args.camera_path.is_some() => {
+            bail!("{}", t!("render.path_not_error"))
+        }
         RenderView::Error => return render_error::run(res, args),
         RenderView::Engine(v) => v,
     };
@@ -220,6 +225,10 @@ pub fn render(res: &ResDirs, args: &RenderArgs) -> Result<()> {
         for _ in 0..earlier {
             engine.render_to_ao()?;
         }
+    }
+    if let Some(frames) = args.camera_path {
+        render_path::run(&mut engine, view, &args.out, frames)?;
+        return Ok(());
     }
     engine.collect_stats = args.stats;
     write_view(&mut engine, view, &args.out)?;

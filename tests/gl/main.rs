@@ -46,6 +46,7 @@ mod reference_backface;
 mod reference_inputs;
 mod reference_screen;
 mod reference_slabs;
+mod render_path;
 mod rtao;
 mod rtao_dense;
 mod sao_pipeline;

@@ -139,6 +139,10 @@ pub fn path(start: &Camera, still: u32, moving: u32) -> Vec<Camera> {
     (0..still + moving)
         .map(|i| {
             let k = i.saturating_sub(still) as f32;
+            if k == 0.0 {
+                // Exactly the start: `target + (eye - target)` may round to another eye.
+                return *start;
+            }
             let turn = Quat::from_rotation_y((-ORBIT_DEG_PER_FRAME * k).to_radians());
             let eye = start.target + turn * offset * (1.0 - DOLLY_PER_FRAME * k);
             Camera { eye, ..*start }
