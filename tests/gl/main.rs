@@ -55,6 +55,7 @@ mod shader_memory;
 mod surface_normals;
 mod temporal;
 mod tune;
+mod tune_method_file;
 mod vbao;
 mod vbao_convergence;
 mod vbao_slabs;

@@ -31,6 +31,7 @@ fn tiny_config(out: &Path, methods: Vec<AoMethod>) -> TuneConfig {
     TuneConfig {
         scenes: Vec::new(),
         methods,
+        method_files: Vec::new(),
         protocol: TINY,
         budget: None,
         passes: 1,
@@ -172,6 +173,7 @@ fn bad_inputs_are_refused_with_messages_that_name_them() {
     let args = |methods: &[&str]| TuneArgs {
         scenes: Vec::new(),
         methods: methods.iter().map(|m| m.to_string()).collect(),
+        method_files: Vec::new(),
         budget: None,
         full: false,
         passes: 2,

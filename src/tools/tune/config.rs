@@ -1,6 +1,7 @@
 //! What a `tune` run measures: the two protocols and the run's inputs.
 
 use crate::ao::AoMethod;
+use crate::scene::method_file::MethodFile;
 use crate::tools::bench::perf;
 use anyhow::{bail, Result};
 use std::path::PathBuf;
@@ -43,6 +44,8 @@ pub struct Protocol {
 pub struct TuneConfig {
     pub scenes: Vec<PathBuf>,
     pub methods: Vec<AoMethod>,
+    /// Methods of the user's own (`--method-file`), tuned after the engine's.
+    pub method_files: Vec<PathBuf>,
     pub protocol: Protocol,
     pub budget: Option<f64>,
     pub passes: u32,
@@ -54,7 +57,7 @@ pub struct TuneConfig {
 impl TuneConfig {
     /// `Err` naming the first input out of range.
     pub fn check(&self) -> Result<()> {
-        if self.methods.is_empty() {
+        if self.methods.is_empty() && self.method_files.is_empty() {
             bail!("{}", rust_i18n::t!("tune.no_method"));
         }
         if self.methods.iter().any(|m| !m.info().reads_depth_occluders) {
@@ -71,6 +74,23 @@ impl TuneConfig {
         self.perf_config(Vec::new()).check()
     }
 
+    /// The method files, read and checked (errors name the file, line and column); one with
+    /// nothing to search is refused: no parameter, and no budget to open the engine keys it reads.
+    pub fn read_method_files(&self) -> Result<Vec<MethodFile>> {
+        let mut files = Vec::new();
+        for path in &self.method_files {
+            let file = MethodFile::read(path)?;
+            if file.parameters.is_empty() && self.budget.is_none() {
+                bail!(
+                    "{}",
+                    rust_i18n::t!("tune.no_parameters", path = path.display())
+                );
+            }
+            files.push(file);
+        }
+        Ok(files)
+    }
+
     /// The bench's configuration for the same sizes, truth and timing (its references, views and
     /// timing take one).
     pub(crate) fn perf_config(&self, scaled: Vec<String>) -> perf::PerfConfig {
@@ -81,7 +101,13 @@ impl TuneConfig {
             width: p.width,
             height: p.height,
             out: self.out.clone(),
-            methods: self.methods.clone(),
+            // Method files alone: the bench's checks want a method, and the lesson chain is the
+            // one every run may time.
+            methods: if self.methods.is_empty() {
+                vec![AoMethod::SaoLesson]
+            } else {
+                self.methods.clone()
+            },
             samples: Vec::new(),
             radii: Vec::new(),
             qualities: Vec::new(),

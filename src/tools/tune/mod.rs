@@ -6,17 +6,21 @@
 //! test), its cached references, its AO view box-averaged to the reference's size, its PSNR on
 //! the reference's surface pixels, and its frame timing for `--budget`.
 //!
-//! Files: `space.rs` (which keys each method reads, and their values), `search.rs` (coordinate
-//! descent), `config.rs` (the protocols and a run's inputs), `evaluate.rs` (one scene and method on the engine), `output.rs` (TOML, markdown).
+//! Files: `space.rs` (which keys each method reads, and their values), `file_space.rs` (the same
+//! for a method file: its parameters, the engine keys it reads), `search.rs` (coordinate descent,
+//! generic over both), `config.rs` (the protocols and a run's inputs), `evaluate.rs` (one scene and
+//! method on the engine), `output.rs` and `method_text.rs` (TOML, markdown, the tuned method file).
 
 mod config;
 mod evaluate;
+pub mod file_space;
+pub mod method_text;
 mod output;
 pub mod search;
 pub mod space;
 
 pub use config::{Protocol, TuneConfig, FULL, QUICK};
-pub use evaluate::MethodResult;
+pub use evaluate::{FileResult, MethodResult, ParameterResult};
 
 use crate::ao::AoMethod;
 use crate::res::ResDirs;
@@ -30,9 +34,15 @@ pub struct TuneArgs {
     /// Scene files (default: the demo scene); each is tuned on its own training cameras.
     #[arg(long = "scene")]
     pub scenes: Vec<PathBuf>,
-    /// AO methods by name, comma-separated (default: every method but rtao).
+    /// AO methods by name, comma-separated (default: every method but rtao, or none with
+    /// --method-file).
     #[arg(long, value_delimiter = ',')]
     pub methods: Vec<String>,
+    /// A method of your own (see docs/method-file.md), repeatable: searches its [[parameter]]s
+    /// over their ranges (and with --budget the engine keys it reads); writes the method file with
+    /// the chosen defaults into --out.
+    #[arg(long = "method-file", value_name = "FILE.toml")]
+    pub method_files: Vec<PathBuf>,
     /// Only configurations whose AO chain costs at most RATIO times the lesson chain's
     /// (sao-lesson with the scene's [ao]), both timed in this run; opens the keys that cost
     /// (samples or preset, resolution, normals, guard band, layers, back faces).
@@ -58,7 +68,9 @@ pub struct TuneArgs {
 
 impl TuneArgs {
     pub fn config(&self) -> Result<TuneConfig> {
-        let methods = if self.methods.is_empty() {
+        let methods = if self.methods.is_empty() && !self.method_files.is_empty() {
+            Vec::new()
+        } else if self.methods.is_empty() {
             AoMethod::ALL
                 .into_iter()
                 // A ray-traced method has nothing to fit to the truth (`tune.rtao`).
@@ -77,6 +89,7 @@ impl TuneArgs {
         Ok(TuneConfig {
             scenes: self.scenes.clone(),
             methods,
+            method_files: self.method_files.clone(),
             protocol,
             budget: self.budget,
             passes: self.passes,
@@ -102,11 +115,23 @@ pub fn run_cli(res: &ResDirs, args: &TuneArgs) -> Result<()> {
     let results = run(res, &cfg)?;
     for r in &results {
         crate::outln!("{}", output::summary(r));
+        if r.file.is_some() {
+            crate::outln!("{}", output::parameter_lines(r));
+        }
         crate::outln!("{}", output::toml_table(r)?);
     }
     crate::outln!(
         "{}",
         rust_i18n::t!("tune.wrote", path = cfg.out.join("tune.md").display())
     );
+    for r in &results {
+        if let Some(f) = &r.file {
+            let tuned = cfg.out.join(output::tuned_file_name(r, f));
+            crate::outln!(
+                "{}",
+                rust_i18n::t!("tune.wrote_method_file", path = tuned.display())
+            );
+        }
+    }
     Ok(())
 }

@@ -1,5 +1,6 @@
 //! What `tune` hands back: each chosen `[ao]` table as TOML (the whole table, so that pasted over
-//! a scene's `[ao]` it reproduces the figure), a summary line per method, and `tune.md`.
+//! a scene's `[ao]` it reproduces the figure), a summary line per method, and `tune.md`; for a
+//! method file also the file with its parameters' defaults set to the chosen values.
 
 use super::config::TuneConfig;
 use super::evaluate::MethodResult;
@@ -33,11 +34,15 @@ fn shorten_floats(v: &mut toml::Value) {
 
 /// The chosen table with a comment of its figures, ready to paste into the scene file.
 pub fn toml_table(r: &MethodResult) -> Result<String> {
+    let which = match &r.file {
+        Some(f) => format!("--method-file {}", f.path.display()),
+        None => format!("--methods {}", r.method.name()),
+    };
     let mut s = format!(
-        "# opengl3d tune --scene {} --methods {}: training PSNR {:.2} dB (scene's own {:.2}), \
+        "# opengl3d tune --scene {} {}: training PSNR {:.2} dB (scene's own {:.2}), \
          test {:.2} dB (scene's own {:.2}); {}x{}, truth {} rays at 1/{}\n",
         r.scene_path.display(),
-        r.method.name(),
+        which,
         r.train_tuned,
         r.train_default,
         r.test_tuned,
@@ -57,7 +62,7 @@ pub fn summary(r: &MethodResult) -> String {
     let mut line = rust_i18n::t!(
         "tune.summary",
         scene = r.scene,
-        method = r.method.name(),
+        method = r.name(),
         train_default = format!("{:.2}", r.train_default),
         train_tuned = format!("{:.2}", r.train_tuned),
         test_default = format!("{:.2}", r.test_default),
@@ -72,10 +77,7 @@ pub fn summary(r: &MethodResult) -> String {
     .into_owned();
     if r.keys.is_empty() {
         line.push('\n');
-        line.push_str(&rust_i18n::t!(
-            "tune.nothing_free",
-            method = r.method.name()
-        ));
+        line.push_str(&rust_i18n::t!("tune.nothing_free", method = r.name()));
     }
     if let Some(c) = r.cost {
         line.push('\n');
@@ -90,8 +92,42 @@ pub fn summary(r: &MethodResult) -> String {
     line
 }
 
-/// The keys whose chosen value differs from the scene's, as `key = value`.
+/// A method file's parameters, default and chosen, one line each, for the terminal.
+pub fn parameter_lines(r: &MethodResult) -> String {
+    let Some(f) = &r.file else {
+        return String::new();
+    };
+    let lines: Vec<String> = f
+        .parameters
+        .iter()
+        .map(|p| {
+            rust_i18n::t!(
+                "tune.parameter",
+                name = p.name,
+                default = p.default,
+                tuned = p.tuned
+            )
+            .into_owned()
+        })
+        .collect();
+    lines.join("\n")
+}
+
+/// The keys whose chosen value differs from the scene's, as `key = value`; then a method file's
+/// parameters that changed.
 fn changed_keys(r: &MethodResult) -> Vec<String> {
+    let mut out = changed_ao_keys(r);
+    if let Some(f) = &r.file {
+        for p in &f.parameters {
+            if p.tuned != p.default {
+                out.push(format!("{} = {}", p.name, p.tuned));
+            }
+        }
+    }
+    out
+}
+
+fn changed_ao_keys(r: &MethodResult) -> Vec<String> {
     let (Ok(a), Ok(b)) = (
         toml::Value::try_from(r.default),
         toml::Value::try_from(r.tuned),
@@ -102,9 +138,13 @@ fn changed_keys(r: &MethodResult) -> Vec<String> {
         return Vec::new();
     };
     let mut out = Vec::new();
-    for key in r.keys.iter() {
-        let new = b.remove(*key);
-        if a.get(*key) != new.as_ref() {
+    let parameters: Vec<&str> = match &r.file {
+        Some(f) => f.parameters.iter().map(|p| p.name.as_str()).collect(),
+        None => Vec::new(),
+    };
+    for key in r.keys.iter().filter(|k| !parameters.contains(&k.as_str())) {
+        let new = b.remove(key.as_str());
+        if a.get(key.as_str()) != new.as_ref() {
             let mut shown = new.unwrap_or_else(|| toml::Value::String("(unset)".into()));
             shorten_floats(&mut shown);
             out.push(format!("{key} = {shown}"));
@@ -113,18 +153,31 @@ fn changed_keys(r: &MethodResult) -> Vec<String> {
     out
 }
 
-/// `SCENE-METHOD.toml` for every result and `tune.md` with all the figures.
+/// `SCENE-METHOD.toml` for every result (for a method file: `SCENE-NAME.toml`, the file with the
+/// chosen defaults, and `SCENE-NAME.ao.toml`, the `[ao]` table it was measured with) and `tune.md`
+/// with all the figures. Never the user's method file itself.
 pub fn write(results: &[MethodResult], cfg: &TuneConfig) -> Result<()> {
     std::fs::create_dir_all(&cfg.out)
         .with_context(|| format!("cannot create {}", cfg.out.display()))?;
     for r in results {
-        let path = cfg
-            .out
-            .join(format!("{}-{}.toml", r.scene, r.method.name()));
-        crate::io::write_file(&path, toml_table(r)?.as_bytes())?;
+        let table = match &r.file {
+            Some(f) => {
+                let tuned = cfg.out.join(tuned_file_name(r, f));
+                let text = super::method_text::tuned_method_file(r, f)?;
+                crate::io::write_file(&tuned, text.as_bytes())?;
+                format!("{}-{}.ao.toml", r.scene, f.name)
+            }
+            None => format!("{}-{}.toml", r.scene, r.method.name()),
+        };
+        crate::io::write_file(&cfg.out.join(table), toml_table(r)?.as_bytes())?;
     }
     crate::io::write_file(&cfg.out.join("tune.md"), markdown(results, cfg).as_bytes())?;
     Ok(())
+}
+
+/// Where `write` puts a method file with the chosen defaults.
+pub fn tuned_file_name(r: &MethodResult, f: &super::FileResult) -> String {
+    format!("{}-{}.toml", r.scene, f.name)
 }
 
 /// The run's figures as a markdown table.
@@ -164,7 +217,7 @@ fn markdown(results: &[MethodResult], cfg: &TuneConfig) -> String {
             s,
             "| {} | {} | {:.2} | {:.2} | {:.2} | {:.2} | {} | {} | {} |",
             r.scene,
-            r.method.name(),
+            r.name(),
             r.train_default,
             r.train_tuned,
             r.test_default,

@@ -7,6 +7,7 @@
 //! guard band, back-face pass, second layer, rays) are searched only with `--budget`, which bounds
 //! what they may spend. The radius is never searched: it defines the truth (rays of length R).
 
+use super::search::{self, Apply};
 use crate::ao::settings::{MethodInfo, NormalUse, TunedIntensity};
 use crate::ao::{
     AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
@@ -49,12 +50,14 @@ impl Choice {
     }
 }
 
-/// One `[ao]` key and the values the search tries, the start's own value first.
-#[derive(Clone, Debug)]
-pub struct Axis {
-    pub key: &'static str,
-    pub values: Vec<Choice>,
+impl Apply<AoSettings> for Choice {
+    fn apply_to(&self, ao: &AoSettings) -> AoSettings {
+        self.apply(ao)
+    }
 }
+
+/// One `[ao]` key and the values the search tries, the start's own value first.
+pub type Axis = search::Axis<Choice>;
 
 /// Bias (m, `BIAS_RANGE` 0–10): self-occlusion shows below a few millimetres, and beyond a
 /// decimetre the bias hides real creases at any radius the scenes use.
@@ -67,9 +70,9 @@ const RTAO_INTENSITIES: [f32; 5] = [3.0, 4.0, 5.0, 6.0, 7.5];
 /// sample count.
 const SPIRAL_TURNS: [u32; 6] = [1, 2, 3, 5, 7, 9];
 /// Slab thickness (`vbao`'s) as a fraction of the radius (`THICKNESS_RANGE` in metres).
-const THICKNESS_OF_RADIUS: [f32; 8] = [0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 1.5, 2.0];
+pub(super) const THICKNESS_OF_RADIUS: [f32; 8] = [0.125, 0.25, 0.375, 0.5, 0.75, 1.0, 1.5, 2.0];
 /// Sample counts of the methods without presets (`SAMPLES_RANGE`).
-const SAMPLES: [u32; 6] = [4, 8, 11, 16, 24, 32];
+pub(super) const SAMPLES: [u32; 6] = [4, 8, 11, 16, 24, 32];
 /// Rays per pixel and frame (`rtao`'s).
 const RAYS: [u32; 4] = [1, 2, 4, 8];
 
@@ -235,14 +238,12 @@ pub fn cost_signature(ao: &AoSettings) -> AoSettings {
 }
 
 /// An axis whose first value is the start's own, then `grid` without it.
-fn axis<const N: usize>(key: &'static str, start: Choice, grid: [Choice; N]) -> Axis {
-    axis_of(key, start, grid.to_vec())
+fn axis<const N: usize>(key: &str, start: Choice, grid: [Choice; N]) -> Axis {
+    Axis::new(key, start, grid)
 }
 
-fn axis_of(key: &'static str, start: Choice, grid: Vec<Choice>) -> Axis {
-    let mut values = vec![start];
-    values.extend(grid.into_iter().filter(|c| *c != start));
-    Axis { key, values }
+fn axis_of(key: &str, start: Choice, grid: Vec<Choice>) -> Axis {
+    Axis::new(key, start, grid)
 }
 
 #[cfg(test)]
@@ -285,7 +286,7 @@ mod tests {
             ..AoSettings::default()
         };
         let free = axes(AoMethod::Vbao, &start, false);
-        let keys: Vec<&str> = free.iter().map(|a| a.key).collect();
+        let keys: Vec<&str> = free.iter().map(|a| a.key.as_str()).collect();
         assert_eq!(keys, ["bias", "thickness"]);
         for a in &free {
             let first = a.values[0].apply(&start);
@@ -297,7 +298,7 @@ mod tests {
             .values
             .contains(&Choice::Thickness(Some(Thickness::Backface))));
         let budgeted = axes(AoMethod::Vbao, &start, true);
-        let keys: Vec<&str> = budgeted.iter().map(|a| a.key).collect();
+        let keys: Vec<&str> = budgeted.iter().map(|a| a.key.as_str()).collect();
         assert_eq!(
             keys,
             [
@@ -311,8 +312,8 @@ mod tests {
             ]
         );
         // The lesson reads bias, intensity and spiral turns; hbao reads none of them.
-        let lesson: Vec<&str> = axes(AoMethod::SaoLesson, &AoSettings::default(), false)
-            .iter()
+        let lesson: Vec<String> = axes(AoMethod::SaoLesson, &AoSettings::default(), false)
+            .into_iter()
             .map(|a| a.key)
             .collect();
         assert_eq!(lesson, ["bias", "intensity", "spiral_turns"]);
