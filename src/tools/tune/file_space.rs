@@ -233,6 +233,7 @@ mod tests {
                     value: default,
                 })
                 .collect(),
+            recommended: crate::scene::ao_defaults::PLAIN,
         }
     }
 
