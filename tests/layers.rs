@@ -1,6 +1,7 @@
 //! The crate's shape, checked from its source: no loops between files or between folders, every
 //! folder importing only the layers below it (the order `src/lib.rs` states), and no source file
-//! over 700 lines. Unit tests (`#[cfg(test)]` items) are left out: a test may build whatever it needs.
+//! over 700 lines; and every file that names every AO method is in the docs' list of a new
+//! method's files. Unit tests (`#[cfg(test)]` items) are left out: a test may build whatever it needs.
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
@@ -511,6 +512,40 @@ fn no_source_file_is_over_the_line_limit() {
         "over {MAX_LINES} lines: {}",
         long.join(", ")
     );
+}
+
+/// A file that names every AO method (`AoMethod::X` for each X: an exhaustive match, which the
+/// compiler makes a new method fill) is in the list of a new method's files that
+/// `docs/architecture.md` gives.
+#[test]
+fn every_file_that_names_every_ao_method_is_in_the_new_method_list() {
+    use opengl3d::ao::method::NEW_METHOD_FILES;
+    use opengl3d::ao::AoMethod;
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    rust_files(&src_dir(), &mut files);
+    let mut naming_all = Vec::new();
+    for f in files {
+        let text = std::fs::read_to_string(&f).unwrap();
+        let names_every = AoMethod::ALL.iter().all(|m| {
+            let path = format!("AoMethod::{m:?}");
+            text.match_indices(&path).any(|(i, _)| {
+                let next = text[i + path.len()..].chars().next();
+                !next.is_some_and(|c| c.is_alphanumeric() || c == '_')
+            })
+        });
+        if names_every {
+            let rel = f.strip_prefix(root).unwrap();
+            naming_all.push(rel.to_string_lossy().replace('\\', "/"));
+        }
+    }
+    assert!(naming_all.iter().any(|f| f == "src/ao/method/mod.rs"));
+    for f in &naming_all {
+        assert!(
+            NEW_METHOD_FILES.contains(&f.as_str()),
+            "{f} names every AO method but the list of a new method's files leaves it out"
+        );
+    }
 }
 
 #[test]
