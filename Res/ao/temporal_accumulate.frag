@@ -5,7 +5,9 @@
 // follows every pixel back into the previous frame through the two cameras, keeps that history only
 // where the previous frame saw the same surface there (its depth and normal agree), clamps it to the
 // range of the current occlusion around the pixel (so a shadow that moved does not linger), and
-// blends it with the current value as a running mean that stops growing at a set length.
+// blends it with the current value as a running mean that stops growing at a set length. For rtao
+// the clamp is opened wide (its occlusion belongs to the surface point, not to the view, and one
+// frame's few rays say little about the range).
 //
 // The history keeps, per AO texel: (occlusion, frames in the mean, linear depth, world normal code).
 
@@ -23,6 +25,9 @@ layout(location=258) uniform vec2 previousNdcToView; // the last frame's
 // normals, how far (in occlusion) the history may lie outside the neighbourhood's range)
 layout(location=259) uniform vec4 temporalInfo;
 layout(location=260) uniform int historyValid;  // 0: no usable history (first frame, resize, restart)
+// rtao: the exponent its intensity applied (intensity / 5), undone for the mean so that the frames
+// average the traced occlusion; 1: the values are averaged as they are.
+layout(location=261) uniform float temporalCurve;
 
 layout(location=0) out vec4 outHistory;
 
@@ -72,6 +77,14 @@ vec3 DecodeNormal(float code) {
   n.y += n.y >= 0.0 ? -fold : fold;
   float len2 = dot(n, n);
   return len2 > 1e-20 ? n * inversesqrt(len2) : vec3(0, 0, 1);
+}
+
+// The occlusion as traced from the value that went out, and back.
+float Uncurved(float v) {
+  return temporalCurve == 1.0 ? v : 1.0 - pow(clamp(1.0 - v, 1e-6, 1.0), 1.0 / temporalCurve);
+}
+float Curved(float v) {
+  return temporalCurve == 1.0 ? v : 1.0 - pow(clamp(1.0 - v, 1e-6, 1.0), temporalCurve);
 }
 
 void main()
@@ -134,7 +147,7 @@ void main()
 
   float history = clamp(previous, lo - temporalInfo.w, hi + temporalInfo.w);
   float n = min(frames + 1.0, max(temporalInfo.x, 1.0));
-  float blended = frames > 0.0 ? mix(history, current, 1.0 / n) : current;
+  float blended = frames > 0.0 ? Curved(mix(Uncurved(history), Uncurved(current), 1.0 / n)) : current;
   // A history that went wrong (NaN never compares true) is dropped for the current value.
   blended = blended >= 0.0 && blended <= 1.0 ? blended : current;
   outHistory = vec4(blended, n, z, EncodeNormal(nWorld));

@@ -48,6 +48,7 @@ mod reference_screen;
 mod reference_slabs;
 mod rtao;
 mod rtao_dense;
+mod rtao_temporal;
 mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;
