@@ -90,7 +90,9 @@ pub fn settings(
                 resolution,
                 rays,
                 blur,
-            } => out.extend(rows::rtao_rows(base, resolution, rays, blur, accumulate)),
+            } => out.extend(rows::rtao_rows(
+                base, RADIUS, resolution, rays, blur, accumulate,
+            )),
         }
     }
     out

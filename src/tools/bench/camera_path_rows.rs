@@ -1,7 +1,6 @@
 //! Which configurations `bench --camera-path` runs (`--path-rows`): `vbao`'s set, and `rtao` at a
 //! given size, rays per frame and blur, each one frame at a time and accumulated.
 
-use super::camera_path::RADIUS;
 use super::camera_path_score::PathSetting;
 use crate::ao::{AoMethod, AoResolution, AoSettings, GuardBand};
 use anyhow::{bail, Result};
@@ -47,9 +46,10 @@ impl PathRows {
     }
 }
 
-/// `rtao` rows: one frame at a time, then accumulated over `accumulate` frames.
+/// `rtao` rows at `radius`: one frame at a time, then accumulated over `accumulate` frames.
 pub fn rtao_rows(
     base: &AoSettings,
+    radius: f32,
     resolution: AoResolution,
     rays: u32,
     blur: bool,
@@ -62,7 +62,7 @@ pub fn rtao_rows(
         .map(|n| {
             let s = AoSettings {
                 method: AoMethod::Rtao,
-                radius: RADIUS,
+                radius,
                 enabled: true,
                 resolution,
                 rays,
@@ -121,7 +121,14 @@ mod tests {
 
     #[test]
     fn rtao_rows_come_one_frame_and_accumulated() {
-        let rows = rtao_rows(&AoSettings::default(), AoResolution::Quarter, 2, true, 16);
+        let rows = rtao_rows(
+            &AoSettings::default(),
+            1.0,
+            AoResolution::Quarter,
+            2,
+            true,
+            16,
+        );
         assert_eq!(rows.len(), 2);
         assert_eq!((rows[0].1.accumulate, rows[1].1.accumulate), (1, 16));
         assert!(rows.iter().all(|(p, s)| p.method == AoMethod::Rtao
