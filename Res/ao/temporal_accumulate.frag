@@ -16,6 +16,7 @@ layout(location=1) in vec2 inTexcoord;
 layout(binding=0) uniform sampler2D texCurrent; // this frame's occlusion (blurred when the blur runs)
 layout(binding=1) uniform sampler2D texDepth;   // linear depth (m) at the AO size, level 0
 layout(binding=2) uniform sampler2D texHistory; // the previous frame's history (RGBA32F)
+layout(binding=3) uniform sampler2D texRaw;     // this frame's occlusion before the blur
 
 layout(location=250) uniform mat4 currentToPrevious; // view space now -> view space of the last frame
 layout(location=254) uniform mat3 viewToWorld;       // normals: view space now -> world
@@ -28,6 +29,9 @@ layout(location=260) uniform int historyValid;  // 0: no usable history (first f
 // rtao: the exponent its intensity applied (intensity / 5), undone for the mean so that the frames
 // average the traced occlusion; 1: the values are averaged as they are.
 layout(location=261) uniform float temporalCurve;
+// rtao: frames of history from which the raw occlusion is blended instead of the blurred (a texel
+// that came into view starts from the blurred frame, as a single frame of few rays is); 0: never.
+layout(location=262) uniform float blurredFrames;
 
 layout(location=0) out vec4 outHistory;
 
@@ -145,6 +149,9 @@ void main()
   float frames = kept ? frameSum / weight : 0.0;
   float previous = kept ? sum / weight : current;
 
+  if (blurredFrames > 0.0 && frames >= blurredFrames) {
+    current = texelFetch(texRaw, pix, 0).x;
+  }
   float history = clamp(previous, lo - temporalInfo.w, hi + temporalInfo.w);
   float n = min(frames + 1.0, max(temporalInfo.x, 1.0));
   float blended = frames > 0.0 ? Curved(mix(Uncurved(history), Uncurved(current), 1.0 / n)) : current;

@@ -23,7 +23,7 @@ use crate::gl::{Texture, TextureDesc};
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::shader_interface::loc;
+use crate::shader_interface::{binding, loc};
 use anyhow::Result;
 use glam::{Mat3, Mat4};
 use glow::HasContext;
@@ -156,7 +156,10 @@ impl TemporalAccumulation {
     }
 
     /// Blends this frame's occlusion in `targets` (blurred or raw, as `blurred` says) with the
-    /// history and writes the result back there, for the up-sampling and the composite.
+    /// history and writes the result back there, for the up-sampling and the composite. Where a
+    /// texel's history holds `blurred_frames` frames or more, the raw occlusion is blended instead
+    /// of the blurred (`rtao`: the blur's bias outweighs the noise it removes); 0: never.
+    #[allow(clippy::too_many_arguments)]
     pub fn run(
         &self,
         gl: &Gl,
@@ -165,6 +168,7 @@ impl TemporalAccumulation {
         camera: &Camera,
         settings: &AoSettings,
         blurred: bool,
+        blurred_frames: u32,
     ) -> Result<()> {
         let size = targets.size();
         self.ensure_histories(gl, size)?;
@@ -201,6 +205,7 @@ impl TemporalAccumulation {
         );
         p.set_i32(loc::TEMPORAL_HISTORY_VALID, last.is_some() as i32);
         p.set_f32(loc::TEMPORAL_CURVE, curve(settings));
+        p.set_f32(loc::TEMPORAL_BLURRED_FRAMES, blurred_frames as f32);
         let out = &histories.fbo[write];
         out.bind();
         PassState::FULLSCREEN.apply(gl, None);
@@ -213,6 +218,7 @@ impl TemporalAccumulation {
             .color_texture()
             .expect("created with a colour texture");
         history_tex.bind(2);
+        targets.result_texture(false).bind(binding::TEMPORAL_RAW);
         meshes.draw_plane_xy();
         // The blend back into the target the rest of the frame reads (RGBA32F → R8: red only).
         let result = if blurred {

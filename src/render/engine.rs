@@ -657,10 +657,15 @@ impl Engine {
             self.temporal.restart();
         }
         let blurred = s.blur && view != View::AoRaw;
+        let raw_from = if rtao {
+            crate::ao::method::rtao::blurred_frames(s, blurred)
+        } else {
+            0
+        };
         let (gl, meshes) = (&self.gl, &self.meshes);
         self.pass("temporal accumulation", "ao", || {
             self.temporal
-                .run(gl, meshes, targets, &self.camera, s, blurred)
+                .run(gl, meshes, targets, &self.camera, s, blurred, raw_from)
         })
     }
 

@@ -55,6 +55,16 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
 /// the noise it removes).
 pub const UNBLURRED_FROM_RAYS: u32 = 16;
 
+/// Frames of a texel's history below which the accumulation takes the blurred frame instead of the
+/// raw one (the `UNBLURRED_FROM_RAYS` rule, per texel); 0 where nothing is blurred.
+pub fn blurred_frames(s: &AoSettings, blurred: bool) -> u32 {
+    if blurred {
+        UNBLURRED_FROM_RAYS.div_ceil(s.rays.max(1))
+    } else {
+        0
+    }
+}
+
 /// The BVH in storage buffers, and the objects it was built from.
 struct GpuBvh {
     key: u64,
@@ -268,7 +278,10 @@ impl AoMethodPass for RtaoMethod {
     }
     fn blur(&self, inputs: &AoInputs) -> Result<()> {
         let rays_so_far = self.accumulated_frames() * inputs.settings.rays.max(1);
-        if rays_so_far < UNBLURRED_FROM_RAYS {
+        // Accumulated, each texel's history holds its own count of frames (fewer where it came into
+        // view): the blurred frame is made every frame and `ao::temporal` takes it while a texel has
+        // fewer than `UNBLURRED_FROM_RAYS` rays (`blurred_frames`).
+        if inputs.settings.accumulate > 1 || rays_so_far < UNBLURRED_FROM_RAYS {
             return self.pass.blur(inputs);
         }
         let t = inputs.targets;
