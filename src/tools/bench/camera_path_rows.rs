@@ -6,7 +6,7 @@ use crate::ao::{AoMethod, AoResolution, AoSettings, GuardBand};
 use anyhow::{bail, Result};
 
 /// The rows without `--path-rows`.
-pub const DEFAULT_ROWS: &[&str] = &["vbao", "rtao-quarter-2"];
+pub const DEFAULT_ROWS: &[&str] = &["vbao", "rtao-quarter-4"];
 
 /// A row family: `vbao`, or `rtao-<full|half|quarter>-<rays>[-noblur]`.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -123,7 +123,7 @@ pub struct BenchArgs {
           value_parser = clap::value_parser!(u32).range(2..=4096))]
     pub accumulate: Option<u32>,
     /// With --camera-path: the configurations besides the lesson's, `vbao` and/or
-    /// `rtao-<full|half|quarter>-<rays>[-noblur]` (default vbao,rtao-quarter-2).
+    /// `rtao-<full|half|quarter>-<rays>[-noblur]` (default vbao,rtao-quarter-4).
     #[arg(long, requires = "camera_path", value_delimiter = ',')]
     pub path_rows: Vec<String>,
     /// With --camera-path: run the training cameras instead of the test cameras (to choose a
