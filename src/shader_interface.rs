@@ -71,7 +71,7 @@ pub mod loc {
     pub const BACK_DEPTH_BLOCK: i32 = 231;
     /// ao/second_layer.frag: how far (m) behind the first layer the second begins.
     pub const LAYER_SEPARATION: i32 = 232;
-    /// ao/rtao.frag: view → world matrix; (rays, first sample, frames in the history, sequence);
+    /// ao/rtao.frag: view → world matrix; (rays, first sample, unused, sequence);
     /// nodes in the BVH.
     pub const RTAO_VIEW_TO_WORLD: i32 = 240;
     pub const RTAO_FRAME: i32 = 241;
@@ -80,13 +80,16 @@ pub mod loc {
     pub const AO_FRAME_JITTER: i32 = 215;
     /// ao/temporal_accumulate.frag: view now → view last frame (a mat4: 250–253), view → world for
     /// normals (a mat3: 254–256), both frames' NDC → view, (length, depth tolerance, normal cosine,
-    /// clamp slack), whether a history exists.
+    /// clamp slack), whether a history exists, the intensity's exponent the mean undoes (`rtao`), the
+    /// history length from which the raw occlusion is blended instead of the blurred (`rtao`).
     pub const TEMPORAL_CURRENT_TO_PREVIOUS: i32 = 250;
     pub const TEMPORAL_VIEW_TO_WORLD: i32 = 254;
     pub const TEMPORAL_NDC_TO_VIEW: i32 = 257;
     pub const TEMPORAL_PREVIOUS_NDC_TO_VIEW: i32 = 258;
     pub const TEMPORAL_INFO: i32 = 259;
     pub const TEMPORAL_HISTORY_VALID: i32 = 260;
+    pub const TEMPORAL_CURVE: i32 = 261;
+    pub const TEMPORAL_BLURRED_FRAMES: i32 = 262;
     /// ao/composite_tint.frag, ao/composite_bilateral.frag: tint colour and power.
     pub const AO_TINT: i32 = 220;
     pub const AO_TINT_POWER: i32 = 221;
@@ -110,10 +113,10 @@ pub mod binding {
     pub const SECOND_LAYER: u32 = 3;
     /// ao/vbao.frag: `texSecondBackDepth`, the second layer's back faces at the AO size.
     pub const SECOND_LAYER_BACK: u32 = 4;
-    /// ao/rtao.frag: `texHistory`, the running mean of the frames so far.
-    pub const RTAO_HISTORY: u32 = 3;
     /// ao/vbao.frag: `texSlabs`, the slab hierarchy (`ao::slab_hierarchy`).
     pub const SLAB_HIERARCHY: u32 = 5;
+    /// ao/temporal_accumulate.frag: `texRaw`, the occlusion before the blur.
+    pub const TEMPORAL_RAW: u32 = 3;
 }
 
 /// Shader storage buffer bindings (`layout(std430, binding=N)`).
@@ -382,11 +385,14 @@ pub const PROGRAMS: &[ProgramInterface] = &[
             u("previousNdcToView", TEMPORAL_PREVIOUS_NDC_TO_VIEW),
             u("temporalInfo", TEMPORAL_INFO),
             u("historyValid", TEMPORAL_HISTORY_VALID),
+            u("temporalCurve", TEMPORAL_CURVE),
+            u("blurredFrames", TEMPORAL_BLURRED_FRAMES),
         ],
         &[
             s("texCurrent", INPUT),
             s("texDepth", SECOND_INPUT),
             s("texHistory", THIRD_INPUT),
+            s("texRaw", TEMPORAL_RAW),
         ],
     ),
 ];

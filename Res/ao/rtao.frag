@@ -7,21 +7,20 @@
 // occluders off screen and behind other surfaces count as they do there.
 //
 // Each frame takes the next rays of a low-discrepancy sequence (the R2 sequence, Roberts 2018, shifted
-// per pixel by a hash: Cranley-Patterson rotation); with accumulation the running mean of the frames so
-// far is kept in texHistory.
+// per pixel by a hash: Cranley-Patterson rotation); with accumulation the frames are averaged by the
+// temporal pass that follows (temporal_accumulate.frag), through the camera's motion.
 
 #include "common.glsl"
 
 #include "bvh.glsl"
 
 layout(location=240) uniform mat4 viewToWorld;
-// (rays this frame, index of the frame's first sample, frames already in the history (0: none),
+// (rays this frame, index of the frame's first sample, unused,
 // sequence: 0 = R2 over the frames, n > 0 = points first .. first + rays of one stratified lattice of
 // n points (the GPU reference, which may split a pixel's lattice over several passes))
 layout(location=241) uniform ivec4 rtaoFrame;
 // Nodes in the BVH (0: no triangles, every ray is open).
 layout(location=243) uniform int rtaoNodeCount;
-layout(binding=3) uniform sampler2D texHistory; // (mean occlusion, depth) of the frames so far
 // Pixels whose rays were not all traced to the end (zeroed before each pass, read back after it).
 // A driver may end long loops early: Mesa's llvmpipe stops every loop of a shader invocation once
 // all of them together have run 65535 iterations (LP_MAX_TGSI_LOOP_ITERATIONS), and a traversal cut
@@ -226,14 +225,5 @@ void main()
     atomicAdd(rtaoCutPixels, 1u);
   }
   float occlusion = traced > 0 ? float(blocked) / float(traced) : 0.0;
-  int history = rtaoFrame.z;
-  if (history > 0) {
-    // The history holds what went out, intensity applied: undone here (intensity 5 is the identity).
-    float previous = texelFetch(texHistory, pix, 0).x;
-    if (AO_INTENSITY > 0.0) {
-      previous = 1.0 - pow(clamp(1.0 - previous, 1e-6, 1.0), 5.0 / AO_INTENSITY);
-    }
-    occlusion = mix(previous, occlusion, 1.0 / float(history + 1));
-  }
   WriteOcclusion(ApplyIntensity(occlusion), z);
 }

@@ -5,7 +5,9 @@
 // follows every pixel back into the previous frame through the two cameras, keeps that history only
 // where the previous frame saw the same surface there (its depth and normal agree), clamps it to the
 // range of the current occlusion around the pixel (so a shadow that moved does not linger), and
-// blends it with the current value as a running mean that stops growing at a set length.
+// blends it with the current value as a running mean that stops growing at a set length. For rtao
+// the clamp is opened wide (its occlusion belongs to the surface point, not to the view, and one
+// frame's few rays say little about the range).
 //
 // The history keeps, per AO texel: (occlusion, frames in the mean, linear depth, world normal code).
 
@@ -14,6 +16,7 @@ layout(location=1) in vec2 inTexcoord;
 layout(binding=0) uniform sampler2D texCurrent; // this frame's occlusion (blurred when the blur runs)
 layout(binding=1) uniform sampler2D texDepth;   // linear depth (m) at the AO size, level 0
 layout(binding=2) uniform sampler2D texHistory; // the previous frame's history (RGBA32F)
+layout(binding=3) uniform sampler2D texRaw;     // this frame's occlusion before the blur
 
 layout(location=250) uniform mat4 currentToPrevious; // view space now -> view space of the last frame
 layout(location=254) uniform mat3 viewToWorld;       // normals: view space now -> world
@@ -23,6 +26,12 @@ layout(location=258) uniform vec2 previousNdcToView; // the last frame's
 // normals, how far (in occlusion) the history may lie outside the neighbourhood's range)
 layout(location=259) uniform vec4 temporalInfo;
 layout(location=260) uniform int historyValid;  // 0: no usable history (first frame, resize, restart)
+// rtao: the exponent its intensity applied (intensity / 5), undone for the mean so that the frames
+// average the traced occlusion; 1: the values are averaged as they are.
+layout(location=261) uniform float temporalCurve;
+// rtao: frames of history from which the raw occlusion is blended instead of the blurred (a texel
+// that came into view starts from the blurred frame, as a single frame of few rays is); 0: never.
+layout(location=262) uniform float blurredFrames;
 
 layout(location=0) out vec4 outHistory;
 
@@ -72,6 +81,14 @@ vec3 DecodeNormal(float code) {
   n.y += n.y >= 0.0 ? -fold : fold;
   float len2 = dot(n, n);
   return len2 > 1e-20 ? n * inversesqrt(len2) : vec3(0, 0, 1);
+}
+
+// The occlusion as traced from the value that went out, and back.
+float Uncurved(float v) {
+  return temporalCurve == 1.0 ? v : 1.0 - pow(clamp(1.0 - v, 1e-6, 1.0), 1.0 / temporalCurve);
+}
+float Curved(float v) {
+  return temporalCurve == 1.0 ? v : 1.0 - pow(clamp(1.0 - v, 1e-6, 1.0), temporalCurve);
 }
 
 void main()
@@ -132,9 +149,12 @@ void main()
   float frames = kept ? frameSum / weight : 0.0;
   float previous = kept ? sum / weight : current;
 
+  if (blurredFrames > 0.0 && frames >= blurredFrames) {
+    current = texelFetch(texRaw, pix, 0).x;
+  }
   float history = clamp(previous, lo - temporalInfo.w, hi + temporalInfo.w);
   float n = min(frames + 1.0, max(temporalInfo.x, 1.0));
-  float blended = frames > 0.0 ? mix(history, current, 1.0 / n) : current;
+  float blended = frames > 0.0 ? Curved(mix(Uncurved(history), Uncurved(current), 1.0 / n)) : current;
   // A history that went wrong (NaN never compares true) is dropped for the current value.
   blended = blended >= 0.0 && blended <= 1.0 ? blended : current;
   outHistory = vec4(blended, n, z, EncodeNormal(nWorld));

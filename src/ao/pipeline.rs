@@ -239,6 +239,13 @@ impl AoPipeline {
             .map_or(1, |m| m.accumulated_frames())
     }
 
+    /// Whether `method`'s last frame started its mean again (`RtaoMethod::restarted`; false for the
+    /// methods without one).
+    pub fn rtao_restarted(&self, method: AoMethod) -> bool {
+        self.pass_of::<RtaoMethod>(method)
+            .is_some_and(|m| m.restarted())
+    }
+
     /// Pixels of `method`'s last pass whose rays were cut short (`RtaoMethod::cut_pixels`).
     pub fn cut_pixels(&self, method: AoMethod) -> u32 {
         self.pass_of::<RtaoMethod>(method)

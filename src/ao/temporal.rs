@@ -7,8 +7,13 @@
 //! on as an exponential mean of that length. XeGTAO and other engines spread their samples over
 //! frames the same way and leave the reprojection to TAA; here the AO keeps its own history.
 //!
-//! On only with `accumulate` > 1 and a screen-space method (the lesson's SAO and `rtao` are left as
-//! they are): the single-frame outputs stay what they were.
+//! `rtao` accumulates through the same pass: its rays move on along its own sequence each frame,
+//! the neighbourhood clamp is off (a surface point's traced occlusion does not change with the
+//! view, and a few rays' neighbourhood says little about its range) and the mean undoes its
+//! intensity; the method restarts the history when an object moves (`RtaoMethod::restarted`).
+//!
+//! On only with `accumulate` > 1 and a method other than the lesson's SAO (left as it is): the
+//! single-frame outputs stay what they were.
 
 use super::settings::{AoMethod, AoSettings};
 use super::targets::AoTargets;
@@ -18,7 +23,7 @@ use crate::gl::{Texture, TextureDesc};
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
-use crate::shader_interface::loc;
+use crate::shader_interface::{binding, loc};
 use anyhow::Result;
 use glam::{Mat3, Mat4};
 use glow::HasContext;
@@ -36,11 +41,28 @@ pub const NORMAL_COSINE: f32 = 0.9;
 /// noise; this much lets it converge while a moved shadow still goes within a frame or two.
 pub const CLAMP_SLACK: f32 = 0.05;
 
-/// Whether `settings` accumulate a screen-space method over frames.
+/// Whether `settings` accumulate over frames (a screen-space method or `rtao`).
 pub fn applies(settings: &AoSettings) -> bool {
-    settings.enabled
-        && settings.accumulate > 1
-        && !matches!(settings.method, AoMethod::SaoLesson | AoMethod::Rtao)
+    settings.enabled && settings.accumulate > 1 && settings.method != AoMethod::SaoLesson
+}
+
+/// How far the history may lie outside the current 3×3 range: `CLAMP_SLACK`, or no clamp for `rtao`.
+pub fn clamp_slack(settings: &AoSettings) -> f32 {
+    if settings.method == AoMethod::Rtao {
+        1.0
+    } else {
+        CLAMP_SLACK
+    }
+}
+
+/// The exponent of the intensity curve the mean undoes: `rtao`'s (intensity / 5), else 1 (the
+/// screen-space methods average their output as it is).
+pub fn curve(settings: &AoSettings) -> f32 {
+    if settings.method == AoMethod::Rtao && settings.intensity > 0.0 {
+        settings.intensity / 5.0
+    } else {
+        1.0
+    }
 }
 
 /// Frame `index` of the R2 sequence (Roberts 2018, "The unreasonable effectiveness of
@@ -134,7 +156,10 @@ impl TemporalAccumulation {
     }
 
     /// Blends this frame's occlusion in `targets` (blurred or raw, as `blurred` says) with the
-    /// history and writes the result back there, for the up-sampling and the composite.
+    /// history and writes the result back there, for the up-sampling and the composite. Where a
+    /// texel's history holds `blurred_frames` frames or more, the raw occlusion is blended instead
+    /// of the blurred (`rtao`: the blur's bias outweighs the noise it removes); 0: never.
+    #[allow(clippy::too_many_arguments)]
     pub fn run(
         &self,
         gl: &Gl,
@@ -143,6 +168,7 @@ impl TemporalAccumulation {
         camera: &Camera,
         settings: &AoSettings,
         blurred: bool,
+        blurred_frames: u32,
     ) -> Result<()> {
         let size = targets.size();
         self.ensure_histories(gl, size)?;
@@ -174,10 +200,12 @@ impl TemporalAccumulation {
                 settings.accumulate as f32,
                 DEPTH_TOLERANCE,
                 NORMAL_COSINE,
-                CLAMP_SLACK,
+                clamp_slack(settings),
             ],
         );
         p.set_i32(loc::TEMPORAL_HISTORY_VALID, last.is_some() as i32);
+        p.set_f32(loc::TEMPORAL_CURVE, curve(settings));
+        p.set_f32(loc::TEMPORAL_BLURRED_FRAMES, blurred_frames as f32);
         let out = &histories.fbo[write];
         out.bind();
         PassState::FULLSCREEN.apply(gl, None);
@@ -190,6 +218,7 @@ impl TemporalAccumulation {
             .color_texture()
             .expect("created with a colour texture");
         history_tex.bind(2);
+        targets.result_texture(false).bind(binding::TEMPORAL_RAW);
         meshes.draw_plane_xy();
         // The blend back into the target the rest of the frame reads (RGBA32F → R8: red only).
         let result = if blurred {
@@ -267,7 +296,7 @@ mod tests {
     }
 
     #[test]
-    fn only_screen_space_methods_with_accumulate_above_one_accumulate() {
+    fn every_method_but_the_lesson_with_accumulate_above_one_accumulates() {
         let base = AoSettings {
             method: AoMethod::Vbao,
             accumulate: 8,
@@ -278,8 +307,26 @@ mod tests {
             accumulate: 1,
             ..base
         }));
-        for m in [AoMethod::SaoLesson, AoMethod::Rtao] {
-            assert!(!applies(&AoSettings { method: m, ..base }), "{}", m.name());
-        }
+        let lesson = AoSettings {
+            method: AoMethod::SaoLesson,
+            ..base
+        };
+        assert!(!applies(&lesson));
+        let rtao = AoSettings {
+            method: AoMethod::Rtao,
+            ..base
+        };
+        assert!(applies(&rtao));
+        // rtao's history is not clamped, and its intensity is undone for the mean.
+        assert_eq!(clamp_slack(&base), CLAMP_SLACK);
+        assert_eq!(clamp_slack(&rtao), 1.0);
+        assert_eq!(curve(&base), 1.0);
+        assert_eq!(
+            curve(&AoSettings {
+                intensity: 10.0,
+                ..rtao
+            }),
+            2.0
+        );
     }
 }

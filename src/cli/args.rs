@@ -248,9 +248,9 @@ pub struct SceneArgs {
     #[arg(long, allow_negative_numbers = true)]
     pub rays_per_pixel: Option<u32>,
     /// `rtao` and the screen-space methods: frames averaged (1 = none; `render` draws that many
-    /// frames and writes the last). `rtao` averages while the camera and the scene stand still;
-    /// the screen-space methods turn their samples each frame and blend the previous frames'
-    /// result reprojected through the camera's motion.
+    /// frames and writes the last). Each frame traces the next rays (`rtao`) or turns the samples
+    /// (the screen-space methods) and blends the previous frames' result reprojected through the
+    /// camera's motion; `rtao` starts again when an object moves.
     #[arg(long, allow_negative_numbers = true)]
     pub accumulate: Option<u32>,
     /// How AO reaches the picture: the lesson's blend, tinted, or on the ambient term only.

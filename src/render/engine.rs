@@ -13,7 +13,9 @@ use super::view::View;
 use crate::ao::guard_band::GuardTargets;
 use crate::ao::temporal::{self, TemporalAccumulation};
 use crate::ao::upsample::UpsampleInputs;
-use crate::ao::{composite, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode};
+use crate::ao::{
+    composite, AoMethod, AoPipeline, AoResolution, AoSettings, AoTargets, CompositeMode,
+};
 use crate::gl::clip_control::ClipControl;
 use crate::gl::mesh::MeshData;
 use crate::gl::readback::{flip_rows, read_rgba8};
@@ -642,15 +644,28 @@ impl Engine {
     }
 
     /// Blends the frame's occlusion with the previous frames' (`ao::temporal`) when the settings
-    /// accumulate a screen-space method; not in the raw and depth views, which show one pass.
+    /// accumulate; not in the depth views, nor in the raw view of a screen-space method, which shows
+    /// one pass (`rtao`'s raw view shows its unblurred mean, as the GPU reference reads it).
     fn accumulate_over_frames(&self, targets: &AoTargets, view: View) -> Result<()> {
-        if !temporal::applies(&self.ao_settings) || view == View::AoRaw || view.is_depth() {
+        let s = &self.ao_settings;
+        let rtao = s.method == AoMethod::Rtao;
+        if !temporal::applies(s) || view.is_depth() || (view == View::AoRaw && !rtao) {
             return Ok(());
         }
-        let (gl, meshes, s) = (&self.gl, &self.meshes, &self.ao_settings);
+        if rtao && self.ao.rtao_restarted(s.method) {
+            // An object moved or a setting changed: the occlusion of what stayed in view changed too.
+            self.temporal.restart();
+        }
+        let blurred = s.blur && view != View::AoRaw;
+        let raw_from = if rtao {
+            crate::ao::method::rtao::blurred_frames(s, blurred)
+        } else {
+            0
+        };
+        let (gl, meshes) = (&self.gl, &self.meshes);
         self.pass("temporal accumulation", "ao", || {
             self.temporal
-                .run(gl, meshes, targets, &self.camera, s, s.blur)
+                .run(gl, meshes, targets, &self.camera, s, blurred, raw_from)
         })
     }
 

@@ -193,7 +193,7 @@ pub struct AoSettings {
     pub slab_hierarchy: SlabHierarchy,
     /// `rtao`'s rays per pixel and frame (`--rays-per-pixel`).
     pub rays: u32,
-    /// `rtao`'s frames averaged while the camera and the scene stand still (`--accumulate`; 1 = none).
+    /// Frames averaged, the history reprojected as the camera moves (`--accumulate`; 1 = none).
     pub accumulate: u32,
     /// `rtao`: each pixel's rays as one stratified lattice, the CPU reference's sampling (`reference
     /// --gpu`), instead of a sequence that continues from frame to frame. Not a scene-file key.

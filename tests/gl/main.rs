@@ -49,6 +49,7 @@ mod reference_slabs;
 mod render_path;
 mod rtao;
 mod rtao_dense;
+mod rtao_temporal;
 mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;

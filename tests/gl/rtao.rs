@@ -15,8 +15,8 @@ use opengl3d::scene::{shapes, SceneDesc};
 use opengl3d::tools::reference::{render_reference, RefImage, RefParams, Scene};
 use std::path::Path;
 
-const W: u32 = 64;
-const H: u32 = 48;
+pub const W: u32 = 64;
+pub const H: u32 = 48;
 
 fn boxed(lo: Vec3, hi: Vec3) -> MeshData {
     let mut m = MeshData::default();
@@ -25,7 +25,7 @@ fn boxed(lo: Vec3, hi: Vec3) -> MeshData {
 }
 
 /// A floor and the given boxes, seen by `eye` → `target`, rtao at full AO size, unblurred.
-fn scene(dir: &Path, eye: Vec3, target: Vec3, boxes: &[(&str, Vec3, Vec3)]) -> SceneDesc {
+pub fn scene(dir: &Path, eye: Vec3, target: Vec3, boxes: &[(&str, Vec3, Vec3)]) -> SceneDesc {
     let meshes: Vec<(&str, MeshData)> = boxes
         .iter()
         .map(|(name, lo, hi)| (*name, boxed(*lo, *hi)))
@@ -52,7 +52,7 @@ fn rtao(ctx: &opengl3d::platform::HeadlessContext, s: &SceneDesc, rays: u32) -> 
     (eng, vis)
 }
 
-fn reference(eng: &Engine, rays: u32) -> RefImage {
+pub fn reference(eng: &Engine, rays: u32) -> RefImage {
     let bvh = Scene::new(eng.world_triangles()).unwrap();
     let params = RefParams {
         radius: eng.ao_settings.radius,
@@ -63,7 +63,7 @@ fn reference(eng: &Engine, rays: u32) -> RefImage {
     render_reference(&bvh, &eng.camera, W, H, &params)
 }
 
-fn rmse(a: &[f32], b: &[f32]) -> f64 {
+pub fn rmse(a: &[f32], b: &[f32]) -> f64 {
     let sum: f64 = a.iter().zip(b).map(|(x, y)| ((x - y) as f64).powi(2)).sum();
     (sum / a.len() as f64).sqrt()
 }
@@ -439,9 +439,12 @@ fn rtao_accumulated_frames_come_closer_to_the_reference_and_restart_on_change() 
     // 16 frames of 1 ray: a quarter of the noise of one (stratified across frames does better).
     assert!(e16 < e1 / 2.5, "1 frame {e1}, 16 frames {e16}");
 
-    // A moved camera, a restart (what the window does on any change of setting) and a resize
-    // each start the mean again.
+    // A moved camera keeps the mean (the history is reprojected: `rtao_temporal.rs`); a restart
+    // (what the window does on any change of setting) and a resize start it again.
     eng.camera.eye.x += 0.05;
+    eng.render_values(View::AoRaw).unwrap();
+    assert_eq!(eng.ao.accumulated_frames(AoMethod::Rtao), 16);
+    eng.ao.restart_accumulation();
     eng.render_values(View::AoRaw).unwrap();
     assert_eq!(eng.ao.accumulated_frames(AoMethod::Rtao), 1);
     eng.render_values(View::AoRaw).unwrap();

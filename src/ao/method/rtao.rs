@@ -3,13 +3,15 @@
 //! `Res/ao/rtao.frag` with a few cosine-weighted rays of length R. The result is the visibility the
 //! CPU reference measures, with Monte-Carlo noise instead of a screen-space model's bias: occluders
 //! off screen or behind other surfaces count. The noise is smoothed by the packed edge-aware blur and,
-//! while the camera and the scene stand still, by a running mean over `accumulate` frames; from
+//! with `accumulate` > 1, by the mean over frames of `ao::temporal`: each frame traces the next rays
+//! of the sequence, and the history follows the camera (a surface point's occlusion does not depend
+//! on the view), starting again only where an object moved or a setting changed; from
 //! `UNBLURRED_FROM_RAYS` rays per pixel on, the mean alone.
 
 use crate::ao::method_pass::{AoInputs, AoMethodPass, ShaderMethod};
 use crate::ao::method_row::MethodRow;
 use crate::ao::settings::{AoMethod, AoSettings};
-use crate::gl::{Gl, ProgramError, ProgramObject, StorageBuffer, Texture, TextureDesc};
+use crate::gl::{Gl, ProgramError, ProgramObject, StorageBuffer, Texture};
 use crate::math::Camera;
 use crate::res::ResDirs;
 use crate::scene::bvh::{BvhStats, FlatBvh};
@@ -40,7 +42,6 @@ const UNIFORMS: &[Uniform] = &[
 const SAMPLERS: &[Sampler] = &[
     s("texDepth", binding::INPUT),
     s("texNormal", binding::SURFACE_NORMALS),
-    s("texHistory", binding::RTAO_HISTORY),
 ];
 
 /// `aoCounts` = (rays per pixel and frame, unused).
@@ -54,6 +55,16 @@ pub fn counts(s: &AoSettings) -> [i32; 2] {
 /// the noise it removes).
 pub const UNBLURRED_FROM_RAYS: u32 = 16;
 
+/// Frames of a texel's history below which the accumulation takes the blurred frame instead of the
+/// raw one (the `UNBLURRED_FROM_RAYS` rule, per texel); 0 where nothing is blurred.
+pub fn blurred_frames(s: &AoSettings, blurred: bool) -> u32 {
+    if blurred {
+        UNBLURRED_FROM_RAYS.div_ceil(s.rays.max(1))
+    } else {
+        0
+    }
+}
+
 /// The BVH in storage buffers, and the objects it was built from.
 struct GpuBvh {
     key: u64,
@@ -62,7 +73,7 @@ struct GpuBvh {
     stats: BvhStats,
 }
 
-/// Frames since the camera, the scene or a setting last changed.
+/// Frames since the scene or a setting last changed (the camera may move: the history follows it).
 #[derive(Clone, Copy, Default)]
 struct Accumulation {
     key: u64,
@@ -78,8 +89,6 @@ pub struct RtaoMethod {
     bvh: RefCell<Option<GpuBvh>>,
     builds: Cell<u32>,
     accumulation: Cell<Accumulation>,
-    /// The running mean of the frames so far (RG32F, as the packed output it copies).
-    history: RefCell<Option<Rc<Texture>>>,
     /// The last pass's count of pixels whose rays the driver cut short (`RtaoStatus`).
     status: RefCell<Option<StorageBuffer>>,
 }
@@ -133,7 +142,6 @@ impl RtaoMethod {
             bvh: RefCell::new(None),
             builds: Cell::new(0),
             accumulation: Cell::new(Accumulation::default()),
-            history: RefCell::new(None),
             status: RefCell::new(None),
         })
     }
@@ -161,16 +169,13 @@ impl RtaoMethod {
         Ok(key)
     }
 
-    /// Frames already averaged into the history for this frame (0: start again).
+    /// Frames already averaged into the history for this frame (0: start again). The camera is not
+    /// in the key: `ao::temporal` reprojects the history through it.
     fn frames_before(&self, inputs: &AoInputs, bvh_key: u64) -> u32 {
         let s = inputs.settings;
         let mut h = DefaultHasher::new();
         bvh_key.hash(&mut h);
-        for v in inputs.camera.view().to_cols_array() {
-            v.to_bits().hash(&mut h);
-        }
-        let c = inputs.camera;
-        for v in [c.fov_y_deg, c.near, c.far, s.radius, s.intensity] {
+        for v in [s.radius, s.intensity] {
             v.to_bits().hash(&mut h);
         }
         (s.rays, s.accumulate, s.stratified, inputs.targets.size()).hash(&mut h);
@@ -178,20 +183,6 @@ impl RtaoMethod {
         let (next, frames) = next_accumulation(self.accumulation.get(), key, s.accumulate);
         self.accumulation.set(next);
         frames
-    }
-
-    /// The history texture at `size`, created (and the count reset) when missing or resized.
-    fn history(&self, size: (u32, u32)) -> Result<Rc<Texture>> {
-        let mut slot = self.history.borrow_mut();
-        if let Some(t) = slot.as_ref().filter(|t| (t.width(), t.height()) == size) {
-            return Ok(t.clone());
-        }
-        let t = Rc::new(Texture::new(
-            &self.gl,
-            TextureDesc::target("FBO(rtao history)", size.0, size.1, glow::RG32F),
-        )?);
-        *slot = Some(t.clone());
-        Ok(t)
     }
 }
 
@@ -201,9 +192,16 @@ impl RtaoMethod {
         self.bvh.borrow().as_ref().map(|b| b.stats)
     }
 
-    /// Frames averaged into its last output (`accumulate`); 1 without accumulation.
+    /// Frames averaged into its last output (`accumulate`) where the history was kept; 1 without
+    /// accumulation.
     pub fn accumulated_frames(&self) -> u32 {
         self.accumulation.get().averaged.max(1)
+    }
+
+    /// Whether its last frame started the mean again (the first frame, a moved object, a changed
+    /// setting, a restart): the engine then drops the reprojected history too.
+    pub fn restarted(&self) -> bool {
+        self.accumulation.get().frames <= 1
     }
 
     /// Pixels of its last pass whose rays the driver ended before they were all traced (a driver's
@@ -237,22 +235,14 @@ impl AoMethodPass for RtaoMethod {
     fn compute(&self, inputs: &AoInputs) -> Result<()> {
         let bvh_key = self.ensure_bvh(inputs)?;
         let s = inputs.settings;
-        let size = inputs.targets.size();
-        let accumulate = s.accumulate > 1;
-        let history = if accumulate {
-            Some(self.history(size)?)
-        } else {
-            *self.history.borrow_mut() = None;
-            None
-        };
-        let since_reset = if history.is_some() {
+        // The frames are averaged by `ao::temporal`; here they are only counted, so that each
+        // frame traces the next rays of the sequence.
+        let since_reset = if s.accumulate > 1 {
             self.frames_before(inputs, bvh_key)
         } else {
             self.accumulation.set(Accumulation::default());
             0
         };
-        // The mean's weight stops at 1 / accumulate: beyond, an exponential mean of that length.
-        let in_history = since_reset.min(s.accumulate.saturating_sub(1));
         let p = self.pass.program();
         p.set_mat4(loc::RTAO_VIEW_TO_WORLD, &inputs.camera.view().inverse());
         let rays = s.rays.max(1);
@@ -270,16 +260,13 @@ impl AoMethodPass for RtaoMethod {
                 Some(&location),
                 rays as i32,
                 first as i32,
-                in_history as i32,
+                0,
                 sequence as i32,
             )
         };
         let bvh = self.bvh.borrow();
         let bvh = bvh.as_ref().expect("built above");
         p.set_i32(loc::RTAO_NODE_COUNT, bvh.stats.nodes as i32);
-        if let Some(h) = &history {
-            h.bind(binding::RTAO_HISTORY);
-        }
         bvh.nodes.bind(storage::BVH_NODES);
         bvh.triangles.bind(storage::BVH_TRIANGLES);
         let status = StorageBuffer::new(inputs.gl, "rtao status", &[0])?;
@@ -287,33 +274,14 @@ impl AoMethodPass for RtaoMethod {
         *self.status.borrow_mut() = Some(status);
         // The skeleton's pass: common uniforms, targets, depth and normals, one draw.
         self.pass.compute(inputs)?;
-        if let (Some(h), Some(packed)) = (&history, self.pass.packed().packed_texture()) {
-            // SAFETY: copying between two live RG32F textures of the same size.
-            unsafe {
-                inputs.gl.copy_image_sub_data(
-                    packed.id(),
-                    glow::TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    0,
-                    h.id(),
-                    glow::TEXTURE_2D,
-                    0,
-                    0,
-                    0,
-                    0,
-                    size.0 as i32,
-                    size.1 as i32,
-                    1,
-                )
-            };
-        }
         Ok(())
     }
     fn blur(&self, inputs: &AoInputs) -> Result<()> {
         let rays_so_far = self.accumulated_frames() * inputs.settings.rays.max(1);
-        if rays_so_far < UNBLURRED_FROM_RAYS {
+        // Accumulated, each texel's history holds its own count of frames (fewer where it came into
+        // view): the blurred frame is made every frame and `ao::temporal` takes it while a texel has
+        // fewer than `UNBLURRED_FROM_RAYS` rays (`blurred_frames`).
+        if inputs.settings.accumulate > 1 || rays_so_far < UNBLURRED_FROM_RAYS {
             return self.pass.blur(inputs);
         }
         let t = inputs.targets;
@@ -339,13 +307,10 @@ impl AoMethodPass for RtaoMethod {
         Ok(())
     }
     fn textures(&self) -> Vec<Rc<Texture>> {
-        let mut t = self.pass.textures();
-        t.extend(self.history.borrow().iter().cloned());
-        t
+        self.pass.textures()
     }
     fn release_targets(&mut self) {
         self.pass.release_targets();
-        *self.history.get_mut() = None;
         self.accumulation.set(Accumulation::default());
     }
 }

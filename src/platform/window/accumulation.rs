@@ -1,10 +1,11 @@
-//! `rtao`'s running mean in the window: on by default, started again after any change of setting or
-//! window size. The method starts it again itself when the camera or an object moves (its inputs'
-//! key); settings it does not hash (the method, bias, normals, ...) are watched here.
+//! The running mean over frames in the window: on by default, started again after any change of
+//! setting or window size. A moving camera keeps it (`ao::temporal` reprojects it); `rtao` starts it
+//! again itself when an object moves (its inputs' key); settings it does not hash (the method, bias,
+//! normals, ...) are watched here.
 
 use crate::ao::AoSettings;
 
-/// Frames the window averages `rtao` over while nothing changes, unless `--accumulate` says otherwise.
+/// Frames the window averages over, unless `--accumulate` says otherwise.
 pub const WINDOW_ACCUMULATE: u32 = 256;
 
 /// The settings and size of the last frame.

@@ -12,7 +12,7 @@
 //! shown in the window (red, `file:line: message`, even with the panel hidden), in the title bar and on
 //! the console, and the last working program keeps running until the file compiles. When a `--res`
 //! shader is already broken at start-up, the project's own shaders run until it is fixed.
-//! `rtao` averages its frames while nothing changes (`accumulation.rs`).
+//! The AO is averaged over frames, through the camera's motion (`accumulation.rs`).
 
 pub mod accumulation;
 mod create;

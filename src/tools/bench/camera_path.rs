@@ -4,10 +4,12 @@
 //! (the history is reprojected). Every frame is scored against the ray-traced truth of its own
 //! camera (footprint means, cached like the bench's references); the frame-to-frame change where
 //! the truth stands still measures flicker, and the error in pixels the previous frame did not see
-//! measures ghosting. Costs are the AO passes' time per frame as a ratio to the lesson's chain in
+//! measures ghosting. `--path-rows` picks the configurations (`camera_path_rows`), `--path-train`
+//! runs the training cameras instead, to choose on. Costs are the AO passes' time per frame as a ratio to the lesson's chain in
 //! the same run. Writes `camera-path.json`, `camera-path.md` and a chart per scene.
 
 use super::camera_path_report as report;
+use super::camera_path_rows::{self as rows, PathRows};
 use super::camera_path_score::{self as score, FrameScore, PathReport, PathRun, PathSetting};
 use super::catalog;
 use crate::ao::{
@@ -39,6 +41,10 @@ pub struct CameraPathConfig {
     pub accumulate: u32,
     pub out: PathBuf,
     pub progress: bool,
+    /// The configurations besides the lesson's chain.
+    pub rows: Vec<PathRows>,
+    /// Run the training cameras instead of the test cameras.
+    pub train: bool,
 }
 
 /// Degrees the orbit turns per frame, and the share of the distance the dolly closes per frame.
@@ -70,16 +76,37 @@ fn vbao_settings(base: &AoSettings, quarter_high: bool) -> AoSettings {
     s
 }
 
-/// The configurations: the lesson's chain (the cost unit), `vbao` in two set-ups, each one frame at
-/// a time and accumulated, and the first accumulated without its blur.
-pub fn settings(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings)> {
+/// The configurations: the lesson's chain (the cost unit), then each of `families`.
+pub fn settings(
+    accumulate: u32,
+    base: &AoSettings,
+    families: &[PathRows],
+) -> Vec<(PathSetting, AoSettings)> {
+    let mut out = vec![lesson(base)];
+    for family in families {
+        match *family {
+            PathRows::Vbao => out.extend(vbao_rows(accumulate, base)),
+            PathRows::Rtao {
+                resolution,
+                rays,
+                blur,
+            } => out.extend(rows::rtao_rows(
+                base, RADIUS, resolution, rays, blur, accumulate,
+            )),
+        }
+    }
+    out
+}
+
+/// The lesson's chain, the cost unit.
+fn lesson(base: &AoSettings) -> (PathSetting, AoSettings) {
     let lesson = AoSettings {
         method: AoMethod::SaoLesson,
         radius: RADIUS,
         enabled: true,
         ..*base
     };
-    let mut out = vec![(
+    (
         PathSetting {
             label: "sao-lesson".into(),
             method: AoMethod::SaoLesson,
@@ -87,7 +114,13 @@ pub fn settings(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSetti
             settings: "n11, R 1 m".into(),
         },
         lesson,
-    )];
+    )
+}
+
+/// `vbao` in two set-ups, each one frame at a time and accumulated, and the first accumulated
+/// without its blur.
+fn vbao_rows(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings)> {
+    let mut out = Vec::new();
     for (quarter_high, what) in [
         (
             true,
@@ -189,7 +222,7 @@ pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
         let base = engine.ao_settings;
         for cam in catalog::camera_variants(&desc.camera)
             .iter()
-            .filter(|c| !c.train)
+            .filter(|c| c.train == cfg.train)
         {
             let cameras = path(&cam.camera(&desc.camera), cfg.frames, cfg.frames);
             let truths: Vec<RefImage> = cameras
@@ -208,7 +241,7 @@ pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
                 })
                 .collect();
             let fresh = score::disoccluded(&cameras, &truths);
-            for (setting, s) in settings(cfg.accumulate, &base) {
+            for (setting, s) in settings(cfg.accumulate, &base, &cfg.rows) {
                 if cfg.progress {
                     eprintln!("{name}/{} {}", cam.name, setting.label);
                 }
@@ -258,6 +291,7 @@ fn run_path(
     // One frame unscored and untimed: the first frame compiles the shaders and creates targets.
     engine.render_values(View::Ao)?;
     engine.temporal.restart();
+    engine.ao.restart_accumulation();
     engine.collect_stats = true;
     let mut out = Vec::new();
     let mut previous: Option<Vec<f32>> = None;
@@ -317,9 +351,14 @@ mod tests {
 
     #[test]
     fn every_vbao_setting_comes_one_frame_and_accumulated() {
-        let s = settings(16, &AoSettings::default());
+        let families = [PathRows::Vbao, PathRows::parse("rtao-quarter-2").unwrap()];
+        let s = settings(16, &AoSettings::default(), &families);
         assert_eq!(s[0].0.method, AoMethod::SaoLesson);
-        assert_eq!(s.iter().filter(|(p, _)| p.accumulate == 16).count(), 3);
+        assert_eq!(s.iter().filter(|(p, _)| p.accumulate == 16).count(), 4);
+        assert_eq!(
+            s.iter().filter(|(p, _)| p.method == AoMethod::Rtao).count(),
+            2
+        );
         assert!(s.iter().all(|(p, a)| p.accumulate == a.accumulate));
     }
 }

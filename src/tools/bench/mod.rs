@@ -11,6 +11,7 @@
 
 pub mod camera_path;
 mod camera_path_report;
+pub mod camera_path_rows;
 pub mod camera_path_score;
 pub mod catalog;
 pub mod depth_formats;
@@ -112,8 +113,8 @@ pub struct BenchArgs {
     /// With --stress: skip the 4096×4096 frame.
     #[arg(long)]
     pub no_large: bool,
-    /// Run `vbao` one frame at a time and accumulated over frames along a camera path per scene
-    /// and test camera instead (--frames still frames, then as many moving; truths per frame),
+    /// Run `vbao` and `rtao` one frame at a time and accumulated over frames along a camera path
+    /// per scene and test camera instead (--frames still frames, then as many moving; truths per frame),
     /// writing camera-path.json, camera-path.md and a chart per scene.
     #[arg(long, conflicts_with_all = ["stress", "skips"])]
     pub camera_path: bool,
@@ -121,6 +122,14 @@ pub struct BenchArgs {
     #[arg(long, requires = "camera_path",
           value_parser = clap::value_parser!(u32).range(2..=4096))]
     pub accumulate: Option<u32>,
+    /// With --camera-path: the configurations besides the lesson's, `vbao` and/or
+    /// `rtao-<full|half|quarter>-<rays>[-noblur]` (default vbao,rtao-quarter-4).
+    #[arg(long, requires = "camera_path", value_delimiter = ',')]
+    pub path_rows: Vec<String>,
+    /// With --camera-path: run the training cameras instead of the test cameras (to choose a
+    /// configuration on).
+    #[arg(long, requires = "camera_path")]
+    pub path_train: bool,
 }
 
 impl BenchArgs {
@@ -275,6 +284,15 @@ fn run_camera_path(res: &ResDirs, args: &BenchArgs) -> Result<()> {
         accumulate: args.accumulate.unwrap_or(16),
         out: args.out.clone(),
         progress: true,
+        rows: if args.path_rows.is_empty() {
+            camera_path_rows::DEFAULT_ROWS.to_vec()
+        } else {
+            args.path_rows.iter().map(String::as_str).collect()
+        }
+        .into_iter()
+        .map(camera_path_rows::PathRows::parse)
+        .collect::<Result<_>>()?,
+        train: args.path_train,
     };
     let report = camera_path::run(res, &cfg)?;
     crate::outln!(
