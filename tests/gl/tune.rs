@@ -18,7 +18,7 @@ fn temp_dir(name: &str) -> PathBuf {
     d
 }
 
-const TINY: Protocol = Protocol {
+pub(crate) const TINY: Protocol = Protocol {
     width: 96,
     height: 54,
     ref_scale: 1,
@@ -41,18 +41,22 @@ fn tiny_config(out: &Path, methods: Vec<AoMethod>) -> TuneConfig {
     }
 }
 
-/// The bench's mean raw PSNR of the training and of the test cameras for `method` on `scene` at
-/// the tiny protocol, at the settings' sample count and radius (the rest from the scene's `[ao]`).
-fn bench_figures(scene: &Path, ao: &AoSettings, out: &Path) -> (f64, f64) {
-    let cfg = perf::PerfConfig {
+/// The bench at the tiny protocol on `scene`, one method at one sample count and radius, writing
+/// under `out` (no charts, no pictures beyond the report's, no progress).
+pub(crate) fn tiny_bench(
+    scene: &Path,
+    (method, samples, radius): (AoMethod, u32, f32),
+    out: &Path,
+) -> perf::PerfConfig {
+    perf::PerfConfig {
         scenes: vec![scene.to_path_buf()],
         models: Vec::new(),
         width: TINY.width,
         height: TINY.height,
         out: out.join("bench"),
-        methods: vec![ao.method],
-        samples: vec![ao.samples],
-        radii: vec![ao.radius],
+        methods: vec![method],
+        samples: vec![samples],
+        radii: vec![radius],
         qualities: Vec::new(),
         ref_rays: TINY.ref_rays,
         screen_rays: 1,
@@ -66,7 +70,13 @@ fn bench_figures(scene: &Path, ao: &AoSettings, out: &Path) -> (f64, f64) {
         ceilings: false,
         grid: perf::Grid::Full,
         scaled: Vec::new(),
-    };
+    }
+}
+
+/// The bench's mean raw PSNR of the training and of the test cameras for `method` on `scene` at
+/// the tiny protocol, at the settings' sample count and radius (the rest from the scene's `[ao]`).
+fn bench_figures(scene: &Path, ao: &AoSettings, out: &Path) -> (f64, f64) {
+    let cfg = tiny_bench(scene, (ao.method, ao.samples, ao.radius), out);
     let report = perf::run(&ResDirs::default(), &cfg).expect("bench run");
     assert_eq!(report.rows.len(), 1);
     let mean = |train: bool| {

@@ -9,17 +9,10 @@ use opengl3d::ao::AoMethod;
 use opengl3d::res::ResDirs;
 use opengl3d::scene::method_file::MethodFile;
 use opengl3d::tools::bench::perf;
-use opengl3d::tools::tune::{self, file_space, Protocol, TuneConfig};
+use opengl3d::tools::tune::{self, file_space, TuneConfig};
 use std::path::{Path, PathBuf};
 
-const TINY: Protocol = Protocol {
-    width: 96,
-    height: 54,
-    ref_scale: 1,
-    ref_rays: 16,
-    warmup: 0,
-    frames: 1,
-};
+use crate::tune::{tiny_bench, TINY};
 
 /// Occlusion `OCCLUSION` on every surface pixel: the AO view is the constant `1 - OCCLUSION`.
 const CONSTANT_FRAG: &str = "#version 450
@@ -56,30 +49,8 @@ fn demo() -> PathBuf {
 
 /// The bench's per-training-camera MSE of `file` at the tiny protocol on the demo scene.
 fn training_mse(file: &MethodFile, radius: f32, out: &Path) -> Vec<f64> {
-    let cfg = perf::PerfConfig {
-        scenes: vec![demo()],
-        models: Vec::new(),
-        width: TINY.width,
-        height: TINY.height,
-        out: out.join("bench"),
-        // The bench runs an engine method beside the file (one it can run at 11 samples).
-        methods: vec![AoMethod::Hbao],
-        samples: vec![11],
-        radii: vec![radius],
-        qualities: Vec::new(),
-        ref_rays: TINY.ref_rays,
-        screen_rays: 1,
-        ref_scale: TINY.ref_scale,
-        cache: out.join("cache"),
-        warmup: 0,
-        frames: 1,
-        flip: false,
-        charts: false,
-        progress: false,
-        ceilings: false,
-        grid: perf::Grid::Full,
-        scaled: Vec::new(),
-    };
+    // The bench runs an engine method beside the file (one it can run at 11 samples).
+    let cfg = tiny_bench(&demo(), (AoMethod::Hbao, 11, radius), out);
     let report = perf::run_with_method_files(&ResDirs::default(), &cfg, std::slice::from_ref(file))
         .expect("bench run");
     assert_eq!(report.rows.len(), 2, "hbao's row, then the file's");
