@@ -12,6 +12,7 @@ use super::camera_path_report as report;
 use super::camera_path_rows::{self as rows, PathRows};
 use super::camera_path_score::{self as score, FrameScore, PathReport, PathRun, PathSetting};
 use super::catalog;
+use super::perf::references as perf_refs;
 use crate::ao::{
     AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
 };
@@ -19,8 +20,7 @@ use crate::math::Camera;
 use crate::platform::HeadlessContext;
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
-use crate::scene::SceneDesc;
-use crate::tools::reference::{load_or_render_cached, AoVariant, RefImage, RefParams, Scene};
+use crate::tools::reference::{load_or_render_cached, AoVariant, RefImage, RefParams};
 use anyhow::{Context as _, Result};
 use glam::Quat;
 use std::path::PathBuf;
@@ -29,6 +29,9 @@ use std::path::PathBuf;
 #[derive(Clone, Debug)]
 pub struct CameraPathConfig {
     pub scenes: Vec<PathBuf>,
+    /// Models (`--obj`), each a scene of its own framed from its bounds, the radius scaled by the
+    /// radius framing chose (as the bench's rows are).
+    pub models: Vec<PathBuf>,
     pub width: u32,
     pub height: u32,
     /// The truth is rendered at 1/`ref_scale` and the engine's output box-averaged to it.
@@ -56,10 +59,10 @@ pub const RADIUS: f32 = 1.0;
 /// `vbao` `high` at a quarter of the size with two layers, back faces, geometric normals and the
 /// guard band (the bench's accurate configuration at about the lesson's cost), or the scenes'
 /// defaults (`low`, half size).
-fn vbao_settings(base: &AoSettings, quarter_high: bool) -> AoSettings {
+fn vbao_settings(base: &AoSettings, quarter_high: bool, radius: f32) -> AoSettings {
     let mut s = AoSettings {
         method: AoMethod::Vbao,
-        radius: RADIUS,
+        radius,
         enabled: true,
         ..*base
     };
@@ -76,22 +79,24 @@ fn vbao_settings(base: &AoSettings, quarter_high: bool) -> AoSettings {
     s
 }
 
-/// The configurations: the lesson's chain (the cost unit), then each of `families`.
+/// The configurations at AO radius `radius`: the lesson's chain (the cost unit), then each of
+/// `families`.
 pub fn settings(
     accumulate: u32,
     base: &AoSettings,
     families: &[PathRows],
+    radius: f32,
 ) -> Vec<(PathSetting, AoSettings)> {
-    let mut out = vec![lesson(base)];
+    let mut out = vec![lesson(base, radius)];
     for family in families {
         match *family {
-            PathRows::Vbao => out.extend(vbao_rows(accumulate, base)),
+            PathRows::Vbao => out.extend(vbao_rows(accumulate, base, radius)),
             PathRows::Rtao {
                 resolution,
                 rays,
                 blur,
             } => out.extend(rows::rtao_rows(
-                base, RADIUS, resolution, rays, blur, accumulate,
+                base, radius, resolution, rays, blur, accumulate,
             )),
         }
     }
@@ -99,10 +104,10 @@ pub fn settings(
 }
 
 /// The lesson's chain, the cost unit.
-fn lesson(base: &AoSettings) -> (PathSetting, AoSettings) {
+fn lesson(base: &AoSettings, radius: f32) -> (PathSetting, AoSettings) {
     let lesson = AoSettings {
         method: AoMethod::SaoLesson,
-        radius: RADIUS,
+        radius,
         enabled: true,
         ..*base
     };
@@ -111,7 +116,7 @@ fn lesson(base: &AoSettings) -> (PathSetting, AoSettings) {
             label: "sao-lesson".into(),
             method: AoMethod::SaoLesson,
             accumulate: 1,
-            settings: "n11, R 1 m".into(),
+            settings: format!("n11, R {radius} m"),
         },
         lesson,
     )
@@ -119,7 +124,7 @@ fn lesson(base: &AoSettings) -> (PathSetting, AoSettings) {
 
 /// `vbao` in two set-ups, each one frame at a time and accumulated, and the first accumulated
 /// without its blur.
-fn vbao_rows(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings)> {
+fn vbao_rows(accumulate: u32, base: &AoSettings, radius: f32) -> Vec<(PathSetting, AoSettings)> {
     let mut out = Vec::new();
     for (quarter_high, what) in [
         (
@@ -131,7 +136,7 @@ fn vbao_rows(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings
         for n in [1, accumulate] {
             let s = AoSettings {
                 accumulate: n,
-                ..vbao_settings(base, quarter_high)
+                ..vbao_settings(base, quarter_high, radius)
             };
             let short = if quarter_high { "quarter high" } else { "low" };
             let label = if n > 1 {
@@ -153,7 +158,7 @@ fn vbao_rows(accumulate: u32, base: &AoSettings) -> Vec<(PathSetting, AoSettings
     let unblurred = AoSettings {
         accumulate,
         blur: false,
-        ..vbao_settings(base, true)
+        ..vbao_settings(base, true, radius)
     };
     let setting = PathSetting {
         label: format!("vbao quarter high ×{accumulate}, no blur"),
@@ -184,9 +189,9 @@ pub fn path(start: &Camera, still: u32, moving: u32) -> Vec<Camera> {
 }
 
 /// The truth's parameters: footprint means over the `ref_scale`² engine pixels, the bench's seed.
-fn truth_params(cfg: &CameraPathConfig) -> RefParams {
+fn truth_params(cfg: &CameraPathConfig, radius: f32) -> RefParams {
     RefParams {
-        radius: RADIUS,
+        radius,
         rays: cfg.ref_rays,
         variant: AoVariant::Visibility,
         seed: 1,
@@ -200,7 +205,8 @@ pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
     let t0 = std::time::Instant::now();
     std::fs::create_dir_all(&cfg.out)
         .with_context(|| format!("cannot create {}", cfg.out.display()))?;
-    let scenes: Vec<PathBuf> = if cfg.scenes.is_empty() {
+    // The demo scene when neither a scene nor a model is named.
+    let scenes: Vec<PathBuf> = if cfg.scenes.is_empty() && cfg.models.is_empty() {
         vec![res
             .find("scenes/demo.toml")
             .map_err(|e| anyhow::anyhow!("{e}"))?]
@@ -209,15 +215,18 @@ pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
     };
     let ctx = HeadlessContext::new()?;
     let (rw, rh) = (cfg.width / cfg.ref_scale, cfg.height / cfg.ref_scale);
+    let size = (cfg.width, cfg.height);
+    let files = scenes.iter().map(|f| (f, false));
+    let models = cfg.models.iter().map(|f| (f, true));
     let mut runs = Vec::new();
-    for path_file in &scenes {
-        let mut desc = SceneDesc::load(path_file)?;
-        desc.output.width = cfg.width;
-        desc.output.height = cfg.height;
-        let name = path_file
-            .file_stem()
-            .map_or_else(|| "scene".into(), |s| s.to_string_lossy().into_owned());
-        let bvh = Scene::new(desc.world_triangles(res)?)?;
+    for (path_file, is_model) in files.chain(models) {
+        let (sd, bvh) = if is_model {
+            perf_refs::model_scene(res, path_file, size, true)?
+        } else {
+            perf_refs::scene_at(res, path_file, size)?
+        };
+        let (name, desc) = (sd.name, sd.desc);
+        let radius = RADIUS * sd.radius_scale;
         let mut engine = Engine::new(&ctx.gl, res.clone(), &desc, cfg.width, cfg.height)?;
         let base = engine.ao_settings;
         for cam in catalog::camera_variants(&desc.camera)
@@ -237,11 +246,11 @@ pub fn run(res: &ResDirs, cfg: &CameraPathConfig) -> Result<PathReport> {
                             cameras.len()
                         );
                     }
-                    load_or_render_cached(&cfg.cache, &bvh, c, rw, rh, &truth_params(cfg))
+                    load_or_render_cached(&cfg.cache, &bvh, c, rw, rh, &truth_params(cfg, radius))
                 })
                 .collect();
             let fresh = score::disoccluded(&cameras, &truths);
-            for (setting, s) in settings(cfg.accumulate, &base, &cfg.rows) {
+            for (setting, s) in settings(cfg.accumulate, &base, &cfg.rows, radius) {
                 if cfg.progress {
                     eprintln!("{name}/{} {}", cam.name, setting.label);
                 }
@@ -352,7 +361,7 @@ mod tests {
     #[test]
     fn every_vbao_setting_comes_one_frame_and_accumulated() {
         let families = [PathRows::Vbao, PathRows::parse("rtao-quarter-2").unwrap()];
-        let s = settings(16, &AoSettings::default(), &families);
+        let s = settings(16, &AoSettings::default(), &families, RADIUS);
         assert_eq!(s[0].0.method, AoMethod::SaoLesson);
         assert_eq!(s.iter().filter(|(p, _)| p.accumulate == 16).count(), 4);
         assert_eq!(

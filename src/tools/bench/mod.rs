@@ -275,6 +275,7 @@ pub fn run(res: &ResDirs, args: &BenchArgs) -> Result<()> {
 fn run_camera_path(res: &ResDirs, args: &BenchArgs) -> Result<()> {
     let cfg = camera_path::CameraPathConfig {
         scenes: args.scenes.clone(),
+        models: args.models.clone(),
         width: args.width.unwrap_or(960).max(16),
         height: args.height.unwrap_or(540).max(16),
         ref_scale: args.ref_scale.unwrap_or(6),

@@ -101,9 +101,13 @@ fn screen_params(radius: f32, rays: u32, progress: bool) -> RefParams {
 /// Loads the scene at `path` at the bench size with its cameras, and its triangles for the ray
 /// tracer (the references come from [`trace_references`]).
 pub fn load_scene(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
+    scene_at(res, path, (cfg.width, cfg.height))
+}
+
+/// The scene file at `path` at `size`, with its cameras and triangles.
+pub fn scene_at(res: &ResDirs, path: &Path, size: (u32, u32)) -> Result<(SceneData, Scene)> {
     let mut desc = SceneDesc::load(path)?;
-    desc.output.width = cfg.width;
-    desc.output.height = cfg.height;
+    (desc.output.width, desc.output.height) = size;
     let name = path
         .file_stem()
         .map(|s| s.to_string_lossy().into_owned())
@@ -135,19 +139,29 @@ fn scene_data(
 /// `--radii` the settings' radii (in metres for the demo's scale) are multiplied by the radius
 /// framing chose, so that they follow the model's size.
 pub fn load_model(res: &ResDirs, path: &Path, cfg: &PerfConfig) -> Result<(SceneData, Scene)> {
+    model_scene(res, path, (cfg.width, cfg.height), cfg.radii.is_empty())
+}
+
+/// A model as the whole scene at `size` (see `load_model`); with `scale_radius` its radius scale
+/// is the radius framing chose, else 1.
+pub fn model_scene(
+    res: &ResDirs,
+    path: &Path,
+    size: (u32, u32),
+    scale_radius: bool,
+) -> Result<(SceneData, Scene)> {
     let found = path
         .canonicalize()
         .with_context(|| rust_i18n::t!("render.obj_not_found", path = path.display()))?;
     let data = crate::gl::mesh::MeshData::load_model(&found)?;
     let mut desc = SceneDesc::single_obj(&found);
-    desc.output.width = cfg.width;
-    desc.output.height = cfg.height;
+    (desc.output.width, desc.output.height) = size;
     let framed = match data.bounds() {
         Some((lo, hi)) => framing::frame_model(&mut desc, lo, hi, framing::Fixed::default()),
         None => None,
     };
     let scale = match framed {
-        Some(radius) if cfg.radii.is_empty() => radius,
+        Some(radius) if scale_radius => radius,
         _ => 1.0,
     };
     let name = path
