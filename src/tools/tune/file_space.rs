@@ -210,8 +210,8 @@ pub fn cost_signature(c: &FileConfig) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::*;
     use crate::scene::method_file::{MethodParameter, MethodReads};
+    use crate::tools::tune::file_space::*;
     use crate::tools::tune::search::search;
     use std::path::PathBuf;
 

@@ -249,7 +249,99 @@ fn axis_of(key: &str, start: Choice, grid: Vec<Choice>) -> Axis {
 #[cfg(test)]
 mod tests {
     use crate::ao::{AoMethod, AoResolution, AoSettings, NormalSource, SlicePreset, Thickness};
+    use crate::tools::tune::search::{max_evaluations, search};
     use crate::tools::tune::space::{axes, cost_signature, starts, Choice};
+
+    // The descent over the engine's keys (`search` is generic; these are its runs on `Choice`).
+    fn lesson() -> AoSettings {
+        AoSettings {
+            method: AoMethod::SaoLesson,
+            ..AoSettings::default()
+        }
+    }
+
+    /// A smooth score peaking at bias 0.025, intensity 8: separable, so one pass finds the grid's
+    /// best and a second changes nothing.
+    fn peak(ao: &AoSettings) -> f64 {
+        let (b, i) = (ao.bias as f64, ao.intensity as f64);
+        -((b - 0.025) * 100.0).powi(2) - (i - 8.0).powi(2)
+    }
+
+    #[test]
+    fn descent_finds_the_grid_optimum_and_never_ends_below_the_start() {
+        let start = lesson();
+        let space = axes(AoMethod::SaoLesson, &start, false);
+        let mut calls = 0;
+        let found = search(&[start], &space, 3, |ao| {
+            calls += 1;
+            Ok(Some(peak(ao)))
+        })
+        .unwrap();
+        assert_eq!((found.best.bias, found.best.intensity), (0.025, 8.0));
+        assert_eq!(
+            found.best.spiral_turns, start.spiral_turns,
+            "ties keep the start"
+        );
+        assert!(found.best_score >= found.start_score.unwrap());
+        assert_eq!(found.evaluated, calls, "each configuration scored once");
+        assert!(calls <= max_evaluations(1, &space, 3));
+        // A score the start already maximises leaves it unchanged.
+        let found = search(&[start], &space, 2, |ao| {
+            Ok(Some(-(ao.bias - 0.012).abs() as f64))
+        })
+        .unwrap();
+        assert_eq!(found.best, start);
+    }
+
+    #[test]
+    fn over_budget_configurations_are_skipped_and_an_empty_budget_is_an_error() {
+        let start = AoSettings {
+            method: AoMethod::Vbao,
+            ..AoSettings::default()
+        };
+        let space = axes(AoMethod::Vbao, &start, false);
+        // Thicker is better but above 0.4 m is "over budget", the start (0.5 m) too.
+        let score = |ao: &AoSettings| {
+            let t = ao.thickness_metres();
+            Ok((t <= 0.4).then_some(t as f64))
+        };
+        let found = search(&[start], &space, 2, score).unwrap();
+        assert_eq!(found.start_score, None);
+        assert_eq!(found.best.thickness, Some(Thickness::Metres(0.375)));
+        assert!(found.over_budget > 0);
+        assert!(search(&[start], &space, 2, |_| Ok(None)).is_err());
+        assert!(search(&[], &space, 2, |_| Ok(Some(0.0))).is_err());
+        assert_ne!(Choice::Bias(0.0), Choice::Bias(0.1));
+    }
+
+    /// A score that pays only when bias and intensity change together: one axis at a time from the
+    /// lesson's table never leaves it, a second start at the corner finds it and is kept.
+    #[test]
+    fn a_second_start_reaches_a_corner_one_axis_at_a_time_cannot() {
+        let start = lesson();
+        let space = axes(AoMethod::SaoLesson, &start, false);
+        let corner = |ao: &AoSettings| {
+            let both = ao.bias == 0.05 && ao.intensity == 8.0;
+            Ok(Some(if both { 1.0 } else { -(ao.bias as f64) }))
+        };
+        let alone = search(&[start], &space, 3, corner).unwrap();
+        assert_ne!((alone.best.bias, alone.best.intensity), (0.05, 8.0));
+        let seed = AoSettings {
+            bias: 0.05,
+            intensity: 8.0,
+            ..start
+        };
+        let both = search(&[start, seed], &space, 3, corner).unwrap();
+        assert_eq!((both.best.bias, both.best.intensity), (0.05, 8.0));
+        assert_eq!(both.best_score, 1.0);
+        assert_eq!(
+            both.start_score, alone.start_score,
+            "the first start's score"
+        );
+    }
+
+    /// The descent knows nothing of `AoSettings`: any configuration type with values that set one
+    /// key of it searches the same way, and an axis lists each value once, the start's first.
 
     #[test]
     fn a_budget_adds_the_start_that_knows_most_for_the_engines_methods_only() {
