@@ -96,6 +96,15 @@ void main()
   ivec2 pix = ivec2(gl_FragCoord.xy);
   float z = DepthAt(pix);
   float current = texelFetch(texCurrent, pix, 0).x;
+#ifdef TEMPORAL_SKY_PASS
+  // The first of the two draws (src/ao/temporal.rs): sky texels only, which need no history; the
+  // surface texels are left to the second draw, which the depth buffer this one leaves lets through.
+  if (z < CAMERA_FAR) {
+    discard;
+  }
+  outHistory = vec4(current, 0.0, z, 0.0);
+  return;
+#endif
   if (z >= CAMERA_FAR) {
     outHistory = vec4(current, 0.0, z, 0.0);
     return;

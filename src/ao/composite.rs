@@ -74,16 +74,22 @@ pub fn tinted(
     meshes.draw_plane_xy();
 }
 
-/// A blended full-screen quad that reaches only the pixels where a surface was drawn: the quad lies at
-/// the sky's depth (`sky_depth`) and `farther_func` passes where it is farther than the stored depth,
-/// so early depth testing drops the sky before the shader runs. Depth writes off.
+/// A blended full-screen quad that reaches only the pixels where a surface was drawn
+/// (`surface_pixels_test`).
 pub fn surface_pixels_only(sky_depth: f32, farther_func: u32) -> PassState {
+    surface_pixels_test(sky_depth, farther_func).with_blend(Blend::ALPHA)
+}
+
+/// A full-screen quad that reaches only the pixels where a surface was drawn: the quad lies at the
+/// sky's depth (`sky_depth`) and `farther_func` passes where it is farther than the stored depth, so
+/// early depth testing drops the sky before the shader runs. Depth writes off.
+pub fn surface_pixels_test(sky_depth: f32, farther_func: u32) -> PassState {
     PassState {
         depth: Depth::Test {
             func: farther_func,
             write: false,
         },
         depth_range: (sky_depth, sky_depth),
-        ..PassState::FULLSCREEN.with_blend(Blend::ALPHA)
+        ..PassState::FULLSCREEN
     }
 }

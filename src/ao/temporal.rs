@@ -17,6 +17,7 @@
 
 use super::settings::{AoMethod, AoSettings};
 use super::targets::AoTargets;
+use crate::gl::pass_state::Depth;
 use crate::gl::preprocess::glsl_float;
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramError, ProgramObject};
 use crate::gl::{Texture, TextureDesc};
@@ -31,6 +32,8 @@ use std::cell::{Cell, RefCell};
 use std::rc::Rc;
 
 pub const SHADER: &str = "ao/temporal_accumulate.frag";
+/// The same shader built for the sky texels alone (the first of the pass's two draws).
+pub const SKY_PASS_DEFINE: &str = "TEMPORAL_SKY_PASS";
 
 /// Depth the history may differ by and still be the same surface, as a fraction of the depth.
 pub const DEPTH_TOLERANCE: f32 = 0.02;
@@ -84,13 +87,19 @@ struct HistoryCamera {
     size: (u32, u32),
 }
 
-/// Two histories, written in turn.
+/// Two histories, written in turn, sharing one depth buffer that marks the sky texels.
 struct Histories {
     fbo: [FramebufferObject; 2],
 }
 
+/// The pass draws twice: the sky texels first, with a trivial build of the shader that leaves a
+/// depth of 0 where it wrote, then the full shader on the texels still at the cleared depth. A
+/// software rasteriser runs a shader's whole body for every block with one live pixel, so the
+/// full shader over the sky (a model under open sky leaves most texels there) costs as much as
+/// over surfaces; the depth test drops those blocks before the shader runs.
 pub struct TemporalAccumulation {
     program: ProgramObject,
+    sky_program: ProgramObject,
     histories: RefCell<Option<Histories>>,
     /// Frames accumulated since the last restart (the R2 index of the next frame).
     frame: Cell<u32>,
@@ -105,20 +114,24 @@ impl TemporalAccumulation {
         camera: &Camera,
     ) -> Result<TemporalAccumulation, ProgramError> {
         let program = ProgramObject::from_res(gl, res, "simple.vert", SHADER, &defines(camera))?;
+        let sky_program =
+            ProgramObject::from_res(gl, res, "simple.vert", SHADER, &sky_defines(camera))?;
         Ok(TemporalAccumulation {
             program,
+            sky_program,
             histories: RefCell::new(None),
             frame: Cell::new(0),
             last: Cell::new(None),
         })
     }
 
-    pub fn program_mut(&mut self) -> &mut ProgramObject {
-        &mut self.program
+    pub fn programs_mut(&mut self) -> [&mut ProgramObject; 2] {
+        [&mut self.program, &mut self.sky_program]
     }
 
     pub fn update_defines(&mut self, camera: &Camera) -> Result<(), ProgramError> {
-        self.program.set_defines(&defines(camera))
+        self.program.set_defines(&defines(camera))?;
+        self.sky_program.set_defines(&sky_defines(camera))
     }
 
     /// The rotation and step offset the method shaders add this frame ([0, 0] when off).
@@ -208,18 +221,42 @@ impl TemporalAccumulation {
         p.set_f32(loc::TEMPORAL_BLURRED_FRAMES, blurred_frames as f32);
         let out = &histories.fbo[write];
         out.bind();
-        PassState::FULLSCREEN.apply(gl, None);
         // SAFETY: a viewport of the target's own size.
         unsafe { gl.viewport(0, 0, size.0 as i32, size.1 as i32) };
-        p.use_program();
-        targets.result_texture(blurred).bind(0);
-        targets.tex_depth.bind(1);
         let history_tex = histories.fbo[1 - write]
             .color_texture()
             .expect("created with a colour texture");
+        targets.result_texture(blurred).bind(0);
+        targets.tex_depth.bind(1);
         history_tex.bind(2);
         targets.result_texture(false).bind(binding::TEMPORAL_RAW);
+        // Depth 1 everywhere, then 0 where the sky draw wrote; the full draw at 0.5 passes where
+        // the depth stayed 1.
+        let marks = PassState {
+            depth: Depth::Test {
+                func: glow::ALWAYS,
+                write: true,
+            },
+            depth_range: (0.0, 0.0),
+            ..PassState::FULLSCREEN
+        };
+        marks.apply(gl, None);
+        // SAFETY: the depth buffer of a complete framebuffer; one float as the call reads.
+        unsafe { gl.clear_named_framebuffer_f32_slice(Some(out.id()), glow::DEPTH, 0, &[1.0]) };
+        self.sky_program.use_program();
         meshes.draw_plane_xy();
+        PassState {
+            depth: Depth::Test {
+                func: glow::LESS,
+                write: false,
+            },
+            depth_range: (0.5, 0.5),
+            ..PassState::FULLSCREEN
+        }
+        .apply(gl, None);
+        p.use_program();
+        meshes.draw_plane_xy();
+        PassState::FULLSCREEN.apply(gl, None);
         // The blend back into the target the rest of the frame reads (RGBA32F → R8: red only).
         let result = if blurred {
             &targets.fbo_blur
@@ -258,9 +295,18 @@ impl TemporalAccumulation {
         if fits {
             return Ok(());
         }
+        let marks = Rc::new(Texture::new(
+            gl,
+            TextureDesc::target(
+                "ao history sky marks",
+                size.0,
+                size.1,
+                glow::DEPTH_COMPONENT32F,
+            ),
+        )?);
         let make = |name: &str| -> Result<FramebufferObject> {
             let tex = Texture::new(gl, TextureDesc::target(name, size.0, size.1, glow::RGBA32F))?;
-            FramebufferObject::new(gl, Some(Rc::new(tex)), None, 0, 0)
+            FramebufferObject::new(gl, Some(Rc::new(tex)), Some(marks.clone()), 0, 0)
         };
         *self.histories.borrow_mut() = Some(Histories {
             fbo: [make("FBO(ao history 0)")?, make("FBO(ao history 1)")?],
@@ -272,6 +318,12 @@ impl TemporalAccumulation {
 
 fn defines(camera: &Camera) -> Vec<(&'static str, String)> {
     vec![("CAMERA_FAR", glsl_float(camera.far))]
+}
+
+fn sky_defines(camera: &Camera) -> Vec<(&'static str, String)> {
+    let mut d = defines(camera);
+    d.push((SKY_PASS_DEFINE, "1".into()));
+    d
 }
 
 #[cfg(test)]

@@ -5,11 +5,13 @@
 //! views and the ambient-only lighting read an up-sampled texture (`Res/ao/upsample_bilateral.frag`).
 //! The lesson's `sao-lesson` keeps the course's linear filter.
 
-use super::blur::ao_size_target;
-use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
+use crate::gl::{
+    FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture, TextureDesc,
+};
 use crate::math::{Camera, DepthMode};
 use crate::shader_interface::{binding, loc};
 use anyhow::Result;
+use glow::HasContext;
 use std::cell::RefCell;
 use std::rc::Rc;
 
@@ -25,7 +27,7 @@ pub struct BilateralUpsample {
     pub composite_program: ProgramObject,
     /// The same with power 1.
     pub composite_power_one: ProgramObject,
-    /// Main-size R8 target, (re)created when the main size changes.
+    /// Main-size R8 target with the main depth buffer attached, (re)created when either changes.
     target: RefCell<Option<FramebufferObject>>,
 }
 
@@ -34,7 +36,8 @@ pub struct UpsampleInputs<'a> {
     pub occlusion: &'a Texture,
     /// Linear depth at the AO size.
     pub ao_depth: &'a Texture,
-    pub main_depth: &'a Texture,
+    /// Also attached to the up-sampling target as its depth buffer (tested, never written).
+    pub main_depth: &'a Rc<Texture>,
     pub camera: &'a Camera,
     pub mode: DepthMode,
 }
@@ -54,6 +57,10 @@ impl BilateralUpsample {
     }
 
     /// Up-samples `inputs.occlusion` to the main depth buffer's size; returns the result.
+    ///
+    /// Sky pixels hold 0: the target is cleared to it and the quad, at the sky's depth, is tested
+    /// against the main depth buffer (attached, not written), so only surface pixels run the shader,
+    /// as in `composite`.
     pub fn run(
         &self,
         gl: &Gl,
@@ -62,19 +69,38 @@ impl BilateralUpsample {
     ) -> Result<Rc<Texture>> {
         let size = (inputs.main_depth.width(), inputs.main_depth.height());
         let mut target = self.target.borrow_mut();
-        if target.as_ref().map(|f| (f.width(), f.height())) != Some(size) {
+        let fits = target.as_ref().is_some_and(|f| {
+            (f.width(), f.height()) == size
+                && f.depth_texture().map(|d| d.id()) == Some(inputs.main_depth.id())
+        });
+        if !fits {
             *target = None;
             // Nearest filtering (the default): the composite reads it texel for texel.
-            *target = Some(ao_size_target(gl, "FBO(ao upsampled)", size, glow::R8)?);
+            let tex = Rc::new(Texture::new(
+                gl,
+                TextureDesc::target("FBO(ao upsampled)", size.0, size.1, glow::R8),
+            )?);
+            *target = Some(FramebufferObject::new(
+                gl,
+                Some(tex),
+                Some(inputs.main_depth.clone()),
+                0,
+                0,
+            )?);
         }
         let fbo = target.as_ref().expect("created above");
+        fbo.bind();
         PassState::FULLSCREEN.apply(gl, None);
+        // SAFETY: colour buffer 0 of a complete framebuffer; four floats as the call reads.
+        unsafe { gl.clear_named_framebuffer_f32_slice(Some(fbo.id()), glow::COLOR, 0, &[0.0; 4]) };
+        super::composite::surface_pixels_test(inputs.mode.clear_value(), sky_farther(inputs.mode))
+            .apply(gl, None);
         self.program.use_program();
         self.program
             .set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
-        fbo.bind();
         bind_inputs(inputs);
         meshes.draw_plane_xy();
+        PassState::FULLSCREEN.apply(gl, None);
         fbo.color_texture()
             .cloned()
             .ok_or_else(|| anyhow::anyhow!("the up-sampling target has no colour texture"))
@@ -98,13 +124,8 @@ impl BilateralUpsample {
         tint: [f32; 3],
         power: f32,
     ) {
-        let sky = inputs.mode.clear_value();
-        let quad_farther = if inputs.mode.reversed() {
-            glow::LESS
-        } else {
-            glow::GREATER
-        };
-        super::composite::surface_pixels_only(sky, quad_farther).apply(gl, None);
+        super::composite::surface_pixels_only(inputs.mode.clear_value(), sky_farther(inputs.mode))
+            .apply(gl, None);
         let program = if power == 1.0 {
             &self.composite_power_one
         } else {
@@ -130,6 +151,15 @@ impl BilateralUpsample {
 
     pub fn release_targets(&self) {
         *self.target.borrow_mut() = None;
+    }
+}
+
+/// The depth test that passes where the sky's depth lies farther than the stored depth.
+fn sky_farther(mode: DepthMode) -> u32 {
+    if mode.reversed() {
+        glow::LESS
+    } else {
+        glow::GREATER
     }
 }
 

@@ -297,6 +297,7 @@ impl Engine {
     pub fn hot_reload(&mut self, force: bool) -> Vec<ProgramError> {
         let mut errors = self.ao.reload(force);
         let [b0, b1, b2] = self.bloom_pass.programs_mut();
+        let [t0, t1] = self.temporal.programs_mut();
         let mut programs = self.surface.programs_mut();
         programs.extend([
             &mut self.lit.standard,
@@ -304,7 +305,8 @@ impl Engine {
             &mut self.sky.program,
             &mut self.post.image,
             &mut self.post.debug,
-            self.temporal.program_mut(),
+            t0,
+            t1,
             b0,
             b1,
             b2,
