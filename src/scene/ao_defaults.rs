@@ -26,8 +26,7 @@ pub struct Recommended {
 }
 
 /// The struct's own defaults (`AoSettings::default()`): the lesson's SAO as the course teaches it,
-/// what `rtao` (not tuned: its accuracy is its ray count) runs with, and what a method file
-/// recommends for the keys it leaves out.
+/// and what a method file recommends for the keys it leaves out.
 pub const PLAIN: Recommended = Recommended {
     quality: None,
     resolution: AoResolution::Half,
@@ -40,7 +39,14 @@ pub const PLAIN: Recommended = Recommended {
 /// The recommended configuration of `method` (docs/bench/defaults.md has the runs behind each).
 pub fn recommended(method: AoMethod) -> Recommended {
     match method {
-        AoMethod::SaoLesson | AoMethod::Rtao => PLAIN,
+        AoMethod::SaoLesson => PLAIN,
+        AoMethod::Rtao => Recommended {
+            // The only size within the lesson's cost at the default two rays per pixel: at half
+            // size a frame cost about the lesson's chain on the bench's rooms and twice it on a
+            // lone model. Its other keys change nothing it traces.
+            resolution: AoResolution::Quarter,
+            ..PLAIN
+        },
         AoMethod::Vbao => Recommended {
             // 1 slice × 16 steps: chosen on two scenes of three; `ultra` (32 steps) scored higher
             // but cost 1.10–1.22× the lesson on thin things at 1920×1080.
