@@ -9,8 +9,8 @@
 //!
 //! `rtao` accumulates through the same pass: its rays move on along its own sequence each frame,
 //! the neighbourhood clamp is off (a surface point's traced occlusion does not change with the
-//! view, and a few rays' neighbourhood says little about its range) and the mean undoes its
-//! intensity; the method restarts the history when an object moves (`RtaoMethod::restarted`).
+//! view, and a few rays' neighbourhood says little about its range), only an opposite normal drops
+//! its history (`RTAO_NORMAL_COSINE`) and the mean undoes its intensity; the method restarts the history when an object moves (`RtaoMethod::restarted`).
 //!
 //! On only with `accumulate` > 1 and a method other than the lesson's SAO (left as it is): the
 //! single-frame outputs stay what they were.
@@ -39,6 +39,11 @@ pub const SKY_PASS_DEFINE: &str = "TEMPORAL_SKY_PASS";
 pub const DEPTH_TOLERANCE: f32 = 0.02;
 /// Least cosine between the history's normal and the current one (about 25°).
 pub const NORMAL_COSINE: f32 = 0.9;
+/// `rtao`'s: only a normal facing the other way (the far side of a thin sheet) drops the history.
+/// A traced point's occlusion does not depend on the view, the depth test already finds the same
+/// surface, and at a quarter of the size the normal rebuilt from neighbouring texels turns at every
+/// small feature of a detailed model, dropping history that still holds.
+pub const RTAO_NORMAL_COSINE: f32 = 0.0;
 /// How far (in occlusion) the history may lie outside the current 3×3 range: the range of a
 /// blurred, noisy frame is narrow, and a clamp exactly to it would hold the mean at each frame's
 /// noise; this much lets it converge while a moved shadow still goes within a frame or two.
@@ -55,6 +60,15 @@ pub fn clamp_slack(settings: &AoSettings) -> f32 {
         1.0
     } else {
         CLAMP_SLACK
+    }
+}
+
+/// The least cosine between the history's normal and the current one that keeps the history.
+pub fn normal_cosine(settings: &AoSettings) -> f32 {
+    if settings.method == AoMethod::Rtao {
+        RTAO_NORMAL_COSINE
+    } else {
+        NORMAL_COSINE
     }
 }
 
@@ -212,7 +226,7 @@ impl TemporalAccumulation {
             [
                 settings.accumulate as f32,
                 DEPTH_TOLERANCE,
-                NORMAL_COSINE,
+                normal_cosine(settings),
                 clamp_slack(settings),
             ],
         );
