@@ -15,6 +15,13 @@ out float outColor;
 
 void main()
 {
+#ifdef RESTORE_ONE_TEXEL
+  // Drawn at the AO size (the engine's AO chain: a block of one texel), the texel's own depth. Built
+  // apart (src/render/passes/ao_size_restore.rs): a software rasteriser pays for the general loop's
+  // bookkeeping even when it runs once.
+  outColor = LinearDepth(texelFetch(texDepth, ivec2(gl_FragCoord.xy), 0).x);
+  return;
+#endif
   ivec2 maxUV = textureSize(texDepth, 0) - 1;
   ivec2 base = ivec2(gl_FragCoord.xy) * blockSize;
   float nearestFront = 1e30;

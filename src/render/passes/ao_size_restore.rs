@@ -5,8 +5,9 @@
 //! read-backs of the layers draw them at the main size.
 
 use crate::ao::blur::ao_size_target;
-use crate::gl::{FramebufferObject, PassState, ProgramObject, Texture, TextureDesc};
+use crate::gl::{FramebufferObject, Gl, PassState, ProgramObject, Texture, TextureDesc};
 use crate::render::frame::Frame;
+use crate::res::ResDirs;
 use crate::shader_interface::{binding, loc};
 use anyhow::{anyhow, Result};
 use std::cell::RefCell;
@@ -37,6 +38,44 @@ pub fn restore_at_ao_size(
         .color_texture()
         .cloned()
         .ok_or_else(|| anyhow!("the AO-size target has no colour texture"))
+}
+
+/// `ao/restore_back_depth.frag` built twice: for any block size, and for a block of one texel (the
+/// pass drawn at the AO size, as the engine's AO chain draws it), where the texel's own depth is the
+/// answer and the general loop's bookkeeping would cost as much as the rest of the pass.
+pub struct LayerRestore {
+    general: ProgramObject,
+    one_texel: ProgramObject,
+}
+
+/// The shader that linearises a depth layer at the AO size (back faces, second layer).
+pub const RESTORE_SHADER: &str = "ao/restore_back_depth.frag";
+
+/// The define that builds the one-texel restore.
+pub const ONE_TEXEL_DEFINE: &str = "RESTORE_ONE_TEXEL";
+
+impl LayerRestore {
+    pub fn new(gl: &Gl, res: &ResDirs) -> Result<LayerRestore> {
+        let shader = RESTORE_SHADER;
+        let one = [(ONE_TEXEL_DEFINE, "1".to_string())];
+        Ok(LayerRestore {
+            general: ProgramObject::from_res(gl, res, "simple.vert", shader, &[])?,
+            one_texel: ProgramObject::from_res(gl, res, "simple.vert", shader, &one)?,
+        })
+    }
+
+    pub fn programs_mut(&mut self) -> [&mut ProgramObject; 2] {
+        [&mut self.general, &mut self.one_texel]
+    }
+
+    /// The build for `target` drawn from a pass of `f`'s size.
+    fn for_target(&self, f: &Frame, target: &FramebufferObject) -> &ProgramObject {
+        if f.size == (target.width(), target.height()) {
+            &self.one_texel
+        } else {
+            &self.general
+        }
+    }
 }
 
 /// The targets of a depth pass over the geometry whose result is restored to the AO size (the back
@@ -101,7 +140,7 @@ impl DepthLayer {
     pub fn finish(
         &self,
         f: &Frame,
-        restore: &ProgramObject,
+        restore: &LayerRestore,
         front_depth: &Texture,
     ) -> Result<Rc<Texture>> {
         f.apply(PassState::FULLSCREEN);
@@ -113,7 +152,8 @@ impl DepthLayer {
             .depth
             .depth_texture()
             .ok_or_else(|| anyhow!("the {} FBO has no depth texture", self.name))?;
-        restore_at_ao_size(f, restore, &t.linear, depth, front_depth)
+        let program = restore.for_target(f, &t.linear);
+        restore_at_ao_size(f, program, &t.linear, depth, front_depth)
     }
 
     /// The main-size depth buffer the last frame drew (window depth).

@@ -2,7 +2,7 @@
 //! depth with front faces culled, linearised at the AO buffers' size. Runs only when the settings
 //! ask for it (`AoSettings::uses_back_faces`).
 
-use super::ao_size_restore::DepthLayer;
+use super::ao_size_restore::{DepthLayer, LayerRestore};
 use crate::gl::pass_state::Cull;
 use crate::gl::{Gl, PassState, ProgramObject, Texture};
 use crate::render::frame::Frame;
@@ -11,23 +11,21 @@ use crate::shader_interface::loc;
 use anyhow::Result;
 use std::rc::Rc;
 
-pub const RESTORE_SHADER: &str = "ao/restore_back_depth.frag";
-
 pub struct BackFacePass {
-    restore: ProgramObject,
+    restore: LayerRestore,
     layer: DepthLayer,
 }
 
 impl BackFacePass {
     pub fn new(gl: &Gl, res: &ResDirs) -> Result<BackFacePass> {
         Ok(BackFacePass {
-            restore: ProgramObject::from_res(gl, res, "simple.vert", RESTORE_SHADER, &[])?,
+            restore: LayerRestore::new(gl, res)?,
             layer: DepthLayer::new("back-face"),
         })
     }
 
-    pub fn program_mut(&mut self) -> &mut ProgramObject {
-        &mut self.restore
+    pub fn programs_mut(&mut self) -> [&mut ProgramObject; 2] {
+        self.restore.programs_mut()
     }
 
     /// Draws the back faces with `depth_only` (the shadow program: position only) and returns the

@@ -4,7 +4,7 @@
 //! that layer's front. Runs only when the settings ask for it (`AoSettings::uses_second_layer`,
 //! `AoSettings::uses_second_layer_back_faces`).
 
-use super::ao_size_restore::DepthLayer;
+use super::ao_size_restore::{DepthLayer, LayerRestore};
 use crate::gl::pass_state::Cull;
 use crate::gl::{Gl, PassState, ProgramObject, Texture};
 use crate::render::frame::Frame;
@@ -16,11 +16,10 @@ use std::rc::Rc;
 pub const LAYER_SHADER: &str = "ao/second_layer.frag";
 /// The restore keeps, per AO texel, the layer behind the texel the front restore keeps: the same
 /// rule as the back faces', so one shader serves both.
-pub const RESTORE_SHADER: &str = super::back_faces::RESTORE_SHADER;
 
 pub struct SecondLayerPass {
     program: ProgramObject,
-    restore: ProgramObject,
+    restore: LayerRestore,
     layer: DepthLayer,
     back: DepthLayer,
 }
@@ -29,14 +28,15 @@ impl SecondLayerPass {
     pub fn new(gl: &Gl, res: &ResDirs) -> Result<SecondLayerPass> {
         Ok(SecondLayerPass {
             program: ProgramObject::from_res(gl, res, "shadow.vert", LAYER_SHADER, &[])?,
-            restore: ProgramObject::from_res(gl, res, "simple.vert", RESTORE_SHADER, &[])?,
+            restore: LayerRestore::new(gl, res)?,
             layer: DepthLayer::new("second layer"),
             back: DepthLayer::new("second layer back-face"),
         })
     }
 
-    pub fn programs_mut(&mut self) -> [&mut ProgramObject; 2] {
-        [&mut self.program, &mut self.restore]
+    pub fn programs_mut(&mut self) -> [&mut ProgramObject; 3] {
+        let [a, b] = self.restore.programs_mut();
+        [&mut self.program, a, b]
     }
 
     /// Draws the front faces at least `separation` metres behind `front_depth` (the main depth

@@ -38,8 +38,9 @@ impl SurfacePasses {
 
     pub fn programs_mut(&mut self) -> Vec<&mut ProgramObject> {
         let [a, b] = self.normals.programs_mut();
-        let [c, d] = self.second_layer.programs_mut();
-        vec![self.back_faces.program_mut(), a, b, c, d]
+        let [c, d, e] = self.second_layer.programs_mut();
+        let [g, h] = self.back_faces.programs_mut();
+        vec![g, h, a, b, c, d, e]
     }
 
     pub fn textures(&self) -> Vec<Rc<Texture>> {
