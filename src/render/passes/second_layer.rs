@@ -14,11 +14,10 @@ use anyhow::{anyhow, Result};
 use std::rc::Rc;
 
 pub const LAYER_SHADER: &str = "ao/second_layer.frag";
-/// The restore keeps, per AO texel, the layer behind the texel the front restore keeps: the same
-/// rule as the back faces', so one shader serves both.
-
 pub struct SecondLayerPass {
     program: ProgramObject,
+    /// Keeps, per AO texel, the layer behind the texel the front restore keeps: the same rule as the
+    /// back faces', so one shader serves both.
     restore: LayerRestore,
     layer: DepthLayer,
     back: DepthLayer,
