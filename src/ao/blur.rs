@@ -3,6 +3,7 @@
 //! (occlusion, depth) from one texture per tap (`ao/blur_packed.frag`, used by every engine method:
 //! `packed.rs`).
 
+use super::sky_skip::{draw_texels, SkyValues, Texels};
 use super::targets::AoTargets;
 use crate::gl::{
     FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture, TextureDesc,
@@ -98,7 +99,7 @@ impl SeparableBlur {
 }
 
 /// The packed blur: `packed` (RG32F: occlusion, depth) → `tmp` (RG32F) → the targets' blur target,
-/// within `region` when given (`AoInputs::region`).
+/// shading `texels` (`AoInputs::texels`).
 pub fn packed_blur(
     gl: &Gl,
     program: &ProgramObject,
@@ -106,20 +107,28 @@ pub fn packed_blur(
     tmp: &FramebufferObject,
     targets: &AoTargets,
     meshes: &MeshBuffer,
-    region: Option<[i32; 4]>,
+    texels: Texels,
 ) {
-    PassState::FULLSCREEN.with_scissor(region).apply(gl, None);
+    // A sky texel passes its (0, far) pair on, then 0 into the R8 target.
+    let far = texels.sky_far();
     program.use_program();
     set_axis(gl, program, [1, 0]);
-    tmp.bind();
     packed.bind(binding::INPUT);
-    meshes.draw_plane_xy();
+    let pair = [[0.0, far, 0.0, 0.0]];
+    let horizontal = SkyValues {
+        fbo: tmp,
+        per_draw_buffer: &pair,
+    };
+    draw_texels(gl, texels, horizontal, || meshes.draw_plane_xy());
     set_axis(gl, program, [0, 1]);
-    targets.fbo_blur.bind();
     tmp.color_texture()
         .expect("created with a colour texture")
         .bind(binding::INPUT);
-    meshes.draw_plane_xy();
+    let vertical = SkyValues {
+        fbo: &targets.fbo_blur,
+        per_draw_buffer: &[[0.0; 4]],
+    };
+    draw_texels(gl, texels, vertical, || meshes.draw_plane_xy());
 }
 
 /// A one-level colour target of the AO size (`size`: half, full or quarter of the main image).

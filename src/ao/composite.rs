@@ -4,6 +4,7 @@
 
 use crate::gl::pass_state::{Blend, Depth};
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, PassState, ProgramObject, Texture};
+use crate::math::DepthMode;
 use crate::shader_interface::{binding, loc};
 
 /// Darkens the main image: colour × (1 − occlusion), by blending a texture whose RGB reads 0 and A
@@ -91,5 +92,15 @@ pub fn surface_pixels_test(sky_depth: f32, farther_func: u32) -> PassState {
         },
         depth_range: (sky_depth, sky_depth),
         ..PassState::FULLSCREEN
+    }
+}
+
+/// The depth test that passes where the sky's depth (`mode.clear_value()`) lies farther than the
+/// stored depth.
+pub fn sky_farther(mode: DepthMode) -> u32 {
+    if mode.reversed() {
+        glow::LESS
+    } else {
+        glow::GREATER
     }
 }

@@ -4,9 +4,10 @@
 use super::blur::BLUR_REACH;
 use super::packed::{PackedOutput, PACKED_BLUR_SHADER};
 use super::settings::{AoMethod, AoSettings};
+use super::sky_skip::{AoSizeDepth, Texels};
 use super::targets::{AoTargets, SAO_DEPTH_LEVELS};
 use crate::gl::preprocess::glsl_float;
-use crate::gl::{Gl, MeshBuffer, PassState, ProgramError, ProgramObject, Texture};
+use crate::gl::{Gl, MeshBuffer, ProgramError, ProgramObject, Texture};
 use crate::math::camera::fov_scale;
 use crate::math::Camera;
 use crate::res::ResDirs;
@@ -38,15 +39,22 @@ pub struct AoInputs<'a> {
     /// draw: inside a guard band, the view and the blur's reach around it
     /// (`guard_band::read_region`). `None`: all of them.
     pub region: Option<[i32; 4]>,
+    /// The window depth the chain drew at the AO size, when it drew one (`sky_skip`): the engine's
+    /// methods and their blur shade only its surface texels.
+    pub ao_size_depth: Option<AoSizeDepth<'a>>,
     /// This frame's (rotation, step offset) in [0, 1) for `common.glsl`'s `aoFrameJitter`: the
     /// temporal accumulation's sequence (`ao/temporal.rs`), [0, 0] when frames are not accumulated.
     pub frame_jitter: [f32; 2],
 }
 
-impl AoInputs<'_> {
-    /// The full-screen state of a method's pass, drawing only `region`.
-    pub fn pass_state(&self) -> PassState {
-        PassState::FULLSCREEN.with_scissor(self.region)
+impl<'a> AoInputs<'a> {
+    /// The texels a method's pass and its blur shade: `region`, and with `sky_skip` (where the
+    /// method's shader allows it) only the surface texels of `ao_size_depth`.
+    pub fn texels(&self, sky_skip: bool) -> Texels<'a> {
+        Texels {
+            region: self.region,
+            depth: self.ao_size_depth.filter(|_| sky_skip),
+        }
     }
 
     /// Binds the surface normals (when the frame has them) where `common.glsl` reads them.
@@ -173,6 +181,10 @@ pub struct ShaderMethod {
     packed: PackedOutput,
     /// (first, second) of `aoCounts` from the settings.
     counts: CountsFn,
+    /// Whether its shader writes `WriteOcclusion(0.0, z)` for every sky texel and nothing else, so
+    /// that its pass and blur may skip the sky (`sky_skip`): the engine's own shaders do; a method
+    /// file's shader may write anything there.
+    skips_sky: bool,
 }
 
 /// How a method turns the settings into `aoCounts`.
@@ -190,7 +202,10 @@ impl ShaderMethod {
         let defines = method_defines(camera);
         let shader = method.info().shader;
         let program = ProgramObject::from_res(gl, res, "simple.vert", shader, &defines)?;
-        ShaderMethod::with_program(method, program, Box::new(counts), gl, res, camera)
+        let mut built =
+            ShaderMethod::with_program(method, program, Box::new(counts), gl, res, camera)?;
+        built.skips_sky = true;
+        Ok(built)
     }
 
     /// A method whose occlusion program is already built (a method file's shader, outside `Res/`).
@@ -210,6 +225,7 @@ impl ShaderMethod {
             blur,
             packed: PackedOutput::default(),
             counts,
+            skips_sky: false,
         })
     }
 
@@ -256,9 +272,7 @@ impl AoMethodPass for ShaderMethod {
             inputs,
             (self.counts)(inputs.settings),
         );
-        inputs.pass_state().apply(inputs.gl, None);
         self.program.use_program();
-        self.packed.bind_for_method(inputs.gl, inputs.targets)?;
         inputs.targets.tex_depth.bind(binding::INPUT);
         if let Some(back) = inputs.back_depth {
             back.bind(binding::SECOND_INPUT);
@@ -270,8 +284,12 @@ impl AoMethodPass for ShaderMethod {
             back.bind(binding::SECOND_LAYER_BACK);
         }
         inputs.bind_normals();
-        inputs.meshes.draw_plane_xy();
-        Ok(())
+        self.packed.draw_method(
+            inputs.gl,
+            inputs.targets,
+            inputs.texels(self.skips_sky),
+            || inputs.meshes.draw_plane_xy(),
+        )
     }
     fn blur(&self, inputs: &AoInputs) -> Result<()> {
         self.packed.blur(
@@ -279,7 +297,7 @@ impl AoMethodPass for ShaderMethod {
             inputs.targets,
             inputs.meshes,
             &self.blur,
-            inputs.region,
+            inputs.texels(self.skips_sky),
         )
     }
     fn textures(&self) -> Vec<Rc<Texture>> {

@@ -15,6 +15,7 @@ pub mod pipeline;
 pub use crate::scene::ao_resolution as resolution;
 /// The settings live with the scene that carries them (its `[ao]` table), below this layer.
 pub use crate::scene::ao_settings as settings;
+pub mod sky_skip;
 pub mod slab_hierarchy;
 pub mod targets;
 pub mod temporal;

@@ -4,6 +4,7 @@
 //! is one fetch instead of two (McGuire packs the blur key beside the AO value the same way).
 
 use super::blur::{ao_size_target, packed_blur};
+use super::sky_skip::{draw_texels, SkyValues, Texels};
 use super::targets::AoTargets;
 use crate::gl::{FramebufferObject, Gl, MeshBuffer, ProgramObject, Texture};
 use anyhow::{bail, Result};
@@ -67,8 +68,16 @@ pub struct PackedOutput {
 }
 
 impl PackedOutput {
-    /// Binds the framebuffer the method's pass draws into (both outputs), creating it if needed.
-    pub fn bind_for_method(&self, gl: &Gl, shared_targets: &AoTargets) -> Result<()> {
+    /// Draws the method's pass (`draw`, its program and inputs bound) into both outputs, shading
+    /// `texels`, creating the targets if needed; where the sky is skipped its texels receive what
+    /// every engine method writes there (`sky_skip`).
+    pub fn draw_method(
+        &self,
+        gl: &Gl,
+        shared_targets: &AoTargets,
+        texels: Texels,
+        draw: impl FnOnce(),
+    ) -> Result<()> {
         let shared = shared_targets.sao_texture();
         let current = self
             .targets
@@ -80,23 +89,26 @@ impl PackedOutput {
             *self.targets.borrow_mut() = Some(PackedTargets::new(gl, shared)?);
         }
         let targets = self.targets.borrow();
-        targets
-            .as_ref()
-            .expect("created above")
-            .fbo_sao_and_packed
-            .bind();
+        let fbo = &targets.as_ref().expect("created above").fbo_sao_and_packed;
+        // Draw buffer 0 is the occlusion, 1 the (occlusion, linear depth) pair.
+        let sky = [[0.0; 4], [0.0, texels.sky_far(), 0.0, 0.0]];
+        let target = SkyValues {
+            fbo,
+            per_draw_buffer: &sky,
+        };
+        draw_texels(gl, texels, target, draw);
         Ok(())
     }
 
-    /// The packed blur into the shared blur target (`program`: `ao/blur_packed.frag`).
-    /// Within `region` when given (`AoInputs::region`).
+    /// The packed blur into the shared blur target (`program`: `ao/blur_packed.frag`), shading
+    /// `texels` (`AoInputs::texels`).
     pub fn blur(
         &self,
         gl: &Gl,
         shared_targets: &AoTargets,
         meshes: &MeshBuffer,
         program: &ProgramObject,
-        region: Option<[i32; 4]>,
+        texels: Texels,
     ) -> Result<()> {
         let targets = self.targets.borrow();
         let Some(t) = targets
@@ -112,7 +124,7 @@ impl PackedOutput {
             &t.fbo_tmp,
             shared_targets,
             meshes,
-            region,
+            texels,
         );
         Ok(())
     }

@@ -93,8 +93,11 @@ impl BilateralUpsample {
         PassState::FULLSCREEN.apply(gl, None);
         // SAFETY: colour buffer 0 of a complete framebuffer; four floats as the call reads.
         unsafe { gl.clear_named_framebuffer_f32_slice(Some(fbo.id()), glow::COLOR, 0, &[0.0; 4]) };
-        super::composite::surface_pixels_test(inputs.mode.clear_value(), sky_farther(inputs.mode))
-            .apply(gl, None);
+        super::composite::surface_pixels_test(
+            inputs.mode.clear_value(),
+            super::composite::sky_farther(inputs.mode),
+        )
+        .apply(gl, None);
         self.program.use_program();
         self.program
             .set_vec3(loc::UPSAMPLE_DEPTH_PLANES, depth_planes(inputs));
@@ -124,8 +127,11 @@ impl BilateralUpsample {
         tint: [f32; 3],
         power: f32,
     ) {
-        super::composite::surface_pixels_only(inputs.mode.clear_value(), sky_farther(inputs.mode))
-            .apply(gl, None);
+        super::composite::surface_pixels_only(
+            inputs.mode.clear_value(),
+            super::composite::sky_farther(inputs.mode),
+        )
+        .apply(gl, None);
         let program = if power == 1.0 {
             &self.composite_power_one
         } else {
@@ -151,15 +157,6 @@ impl BilateralUpsample {
 
     pub fn release_targets(&self) {
         *self.target.borrow_mut() = None;
-    }
-}
-
-/// The depth test that passes where the sky's depth lies farther than the stored depth.
-fn sky_farther(mode: DepthMode) -> u32 {
-    if mode.reversed() {
-        glow::LESS
-    } else {
-        glow::GREATER
     }
 }
 

@@ -331,6 +331,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
             second_back_depth: None,
             objects: &[],
             region: None,
+            ao_size_depth: None,
             frame_jitter: [0.0; 2],
         };
         sao.compute(&inputs).unwrap();

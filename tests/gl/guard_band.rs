@@ -193,6 +193,7 @@ fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
             second_back_depth: None,
             objects: &[],
             region,
+            ao_size_depth: None,
             frame_jitter: [0.0; 2],
         };
         sao.compute(&inputs).unwrap();

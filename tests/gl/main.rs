@@ -53,6 +53,7 @@ mod rtao_temporal;
 mod sao_pipeline;
 mod shader_interface;
 mod shader_memory;
+mod sky_skip;
 mod surface_normals;
 mod temporal;
 mod tune;

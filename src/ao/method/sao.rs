@@ -48,6 +48,11 @@ impl SaoMethod {
         let pass = ShaderMethod::build(AoMethod::Sao, counts, gl, res, camera)?;
         Ok(SaoMethod { pass })
     }
+
+    /// The skeleton it runs (its packed target, for tests and tools that read the pair).
+    pub fn pass(&self) -> &ShaderMethod {
+        &self.pass
+    }
 }
 
 impl AoMethodPass for SaoMethod {

@@ -3,6 +3,7 @@
 
 use super::Engine;
 use crate::ao::method_pass::AoInputs;
+use crate::ao::sky_skip::AoSizeDepth;
 use crate::ao::{AoResolution, AoTargets};
 use crate::gl::{PassState, Texture};
 use crate::math::Camera;
@@ -114,6 +115,11 @@ impl Engine {
             second_back_depth: surface.second_back_depth.as_deref(),
             objects: &self.objects,
             region,
+            ao_size_depth: surface.window_depth.as_ref().map(|texture| AoSizeDepth {
+                texture,
+                mode: self.depth_mode,
+                far: camera.far,
+            }),
             frame_jitter: self.temporal.frame_jitter(&self.ao_settings),
         };
         let info = method.info();

@@ -74,7 +74,9 @@ impl Engine {
         if self.finish_depth_view(&at_ao_size, &depth, work.size(), view)? {
             return Ok(());
         }
-        let surface = self.run_surface_passes(&at_ao_size, &depth, work.size(), Some(normals))?;
+        let mut surface =
+            self.run_surface_passes(&at_ao_size, &depth, work.size(), Some(normals))?;
+        surface.window_depth = Some(depth);
         let offset = guard.map(|g| ao_offset(g.pixels, resolution));
         // With a margin, AO only where the view's AO and its blur read it.
         let region = offset.map(|o| read_region(work.size(), targets.size(), o));

@@ -25,6 +25,8 @@ pub struct SurfaceInputs {
     pub second_depth: Option<Rc<Texture>>,
     /// Linear depth of the second layer's back faces.
     pub second_back_depth: Option<Rc<Texture>>,
+    /// The window depth itself, when the chain drew it at the AO size (`ao::sky_skip`).
+    pub window_depth: Option<Rc<Texture>>,
 }
 
 impl SurfacePasses {
