@@ -51,18 +51,29 @@ pub struct SkyValues<'a> {
 /// the sky's texels receive `target.per_draw_buffer`.
 pub fn draw_texels(gl: &Gl, texels: Texels, target: SkyValues, draw: impl FnOnce()) {
     let state = PassState::FULLSCREEN.with_scissor(texels.region);
-    let Some(depth) = texels.depth else {
+    let id = Some(target.fbo.id());
+    let depth = texels.depth.filter(|d| {
+        let fits = d.texture.size_at(0) == (target.fbo.width(), target.fbo.height());
+        // SAFETY: attaching a live depth texture to a framebuffer the caller owns; detached again
+        // below (or at once when the framebuffer will not take it), so the framebuffer never holds
+        // a texture it does not own.
+        fits && unsafe {
+            gl.named_framebuffer_texture(id, glow::DEPTH_ATTACHMENT, Some(d.texture.id()), 0);
+            let complete = gl.check_named_framebuffer_status(id, glow::FRAMEBUFFER)
+                == glow::FRAMEBUFFER_COMPLETE;
+            if !complete {
+                gl.named_framebuffer_texture(id, glow::DEPTH_ATTACHMENT, None, 0);
+            }
+            complete
+        }
+    });
+    let Some(depth) = depth else {
+        // Every texel shaded: the same result, only slower.
         state.apply(gl, None);
         target.fbo.bind();
         draw();
         return;
     };
-    let id = Some(target.fbo.id());
-    // SAFETY: attaching a live depth texture of the target's size to a framebuffer the caller owns;
-    // detached again below, so the framebuffer never holds a texture it does not own.
-    unsafe {
-        gl.named_framebuffer_texture(id, glow::DEPTH_ATTACHMENT, Some(depth.texture.id()), 0);
-    }
     // The clear honours the scissor, so it reaches exactly the texels the draw may reach.
     state.apply(gl, None);
     for (i, value) in target.per_draw_buffer.iter().enumerate() {

@@ -37,6 +37,15 @@ struct Outputs {
 /// The method's pass and blur over the rectangle, shading the surface texels of a window depth whose
 /// surface is `marked` (texel centre → surface?) when `marked` is given, every texel otherwise.
 fn run(mode: DepthMode, marked: Option<&dyn Fn(f32, f32) -> bool>) -> Outputs {
+    run_with_window(mode, marked, (W, H))
+}
+
+/// `run` with a window depth of `size` (the AO size: W×H).
+fn run_with_window(
+    mode: DepthMode,
+    marked: Option<&dyn Fn(f32, f32) -> bool>,
+    (ww, wh): (u32, u32),
+) -> Outputs {
     let ctx = common::context();
     let cam = Camera::default();
     let settings = AoSettings {
@@ -61,11 +70,11 @@ fn run(mode: DepthMode, marked: Option<&dyn Fn(f32, f32) -> bool>) -> Outputs {
         targets.tex_depth.upload_f32(l, 1, &v).unwrap();
     }
     let window = marked.map(|surface| {
-        let desc = TextureDesc::target("window depth", W, H, mode.internal_format());
+        let desc = TextureDesc::target("window depth", ww, wh, mode.internal_format());
         let tex = Rc::new(Texture::new(&ctx.gl, desc).unwrap());
-        let v: Vec<f32> = (0..W * H)
+        let v: Vec<f32> = (0..ww * wh)
             .map(|i| {
-                let (x, y) = ((i % W) as f32 + 0.5, (i / W) as f32 + 0.5);
+                let (x, y) = ((i % ww) as f32 + 0.5, (i / ww) as f32 + 0.5);
                 if surface(x, y) {
                     0.5
                 } else {
@@ -169,4 +178,14 @@ fn texels_the_window_depth_calls_sky_are_not_shaded() {
             "{mode:?}: the right half should have occlusion when shaded ({occluded_right} texels)"
         );
     }
+}
+
+#[test]
+fn a_window_depth_of_another_size_is_not_used() {
+    // Marking only the left half would change the right half's texels if it were used.
+    let left = |x: f32, y: f32| on_surface(x, y) && x < 24.0;
+    let all = run(DepthMode::D32, None);
+    let other = run_with_window(DepthMode::D32, Some(&left), (W + 1, H));
+    assert_eq!(bits(&all.raw), bits(&other.raw));
+    assert_eq!(bits(&all.blurred), bits(&other.blurred));
 }
