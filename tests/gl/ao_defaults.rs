@@ -24,7 +24,7 @@ fn ao_view(dir: &Path, name: &str, flags: &[&str]) -> Vec<u8> {
 /// The flags that write vbao's recommended configuration out, spelled here, not read from the table.
 const VBAO_WRITTEN_OUT: [&str; 12] = [
     "--quality",
-    "high",
+    "ultra",
     "--ao-resolution",
     "quarter",
     "--normals",
@@ -40,7 +40,7 @@ const VBAO_WRITTEN_OUT: [&str; 12] = [
 #[test]
 fn vbao_alone_runs_the_configuration_the_table_gives() {
     let r = recommended(AoMethod::Vbao);
-    assert_eq!(r.quality, Some(SlicePreset::High));
+    assert_eq!(r.quality, Some(SlicePreset::Ultra));
     assert_eq!(r.resolution, AoResolution::Quarter);
     assert_eq!(r.normals, NormalSource::Geometric);
     assert_eq!(r.guard_band, GuardBand::Auto);
@@ -159,7 +159,7 @@ fn render_stats_names_the_configuration() {
     assert!(o.status.success(), "{}", stderr(&o));
     let e = stderr(&o);
     assert!(
-        e.contains("quality = high, resolution = quarter") && e.contains("layers = 1*"),
+        e.contains("quality = ultra, resolution = quarter") && e.contains("layers = 1*"),
         "{e}"
     );
     let json: serde_json::Value = serde_json::from_slice(&o.stdout).unwrap();
