@@ -191,3 +191,56 @@ pub fn fails_with<S: AsRef<std::ffi::OsStr>>(args: &[S], needles: &[&str]) -> St
 pub fn mean_over(img: &opengl3d::tools::reference::RefImage, pixels: &[usize]) -> f64 {
     pixels.iter().map(|i| img.ao[*i] as f64).sum::<f64>() / pixels.len().max(1) as f64
 }
+
+/// The engine's `sao` at `radius` m and `intensity` (blurred or not), and what its passes draw
+/// with: for the tests that drive one method's passes on synthetic depth.
+pub fn sao_pass(
+    ctx: &HeadlessContext,
+    radius: f32,
+    intensity: f32,
+    blur: bool,
+) -> (
+    opengl3d::ao::AoSettings,
+    opengl3d::gl::MeshBuffer,
+    opengl3d::ao::method::sao::SaoMethod,
+) {
+    let settings = opengl3d::ao::AoSettings {
+        method: opengl3d::ao::AoMethod::Sao,
+        radius,
+        intensity,
+        blur,
+        ..Default::default()
+    };
+    let meshes = opengl3d::gl::MeshBuffer::new(&ctx.gl).unwrap();
+    let camera = opengl3d::math::Camera::default();
+    let sao =
+        opengl3d::ao::method::sao::SaoMethod::build(&ctx.gl, &ResDirs::default(), &camera).unwrap();
+    (settings, meshes, sao)
+}
+
+/// A method's inputs with nothing but the depth chain in `targets` (no surface passes, no sky
+/// skip, no jitter), over `region`.
+pub fn depth_only_inputs<'a>(
+    ctx: &'a HeadlessContext,
+    meshes: &'a opengl3d::gl::MeshBuffer,
+    targets: &'a opengl3d::ao::AoTargets,
+    camera: &'a opengl3d::math::Camera,
+    settings: &'a opengl3d::ao::AoSettings,
+    region: Option<[i32; 4]>,
+) -> opengl3d::ao::method_pass::AoInputs<'a> {
+    opengl3d::ao::method_pass::AoInputs {
+        gl: &ctx.gl,
+        meshes,
+        targets,
+        camera,
+        settings,
+        back_depth: None,
+        normals: None,
+        second_depth: None,
+        second_back_depth: None,
+        objects: &[],
+        region,
+        ao_size_depth: None,
+        frame_jitter: [0.0; 2],
+    }
+}

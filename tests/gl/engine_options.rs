@@ -241,12 +241,9 @@ fn levels_for_radius(radius_px: f64) -> u32 {
 
 #[test]
 fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level() {
-    use opengl3d::ao::method::sao::SaoMethod;
-    use opengl3d::ao::method_pass::{AoInputs, AoMethodPass};
-    use opengl3d::ao::{AoMethod, AoSettings, AoTargets};
-    use opengl3d::gl::MeshBuffer;
+    use opengl3d::ao::method_pass::AoMethodPass;
+    use opengl3d::ao::{AoMethod, AoTargets};
     use opengl3d::math::Camera;
-    use opengl3d::res::ResDirs;
     let ctx = common::context();
     let (w, h) = (1280u32, 720u32);
     let hw = w / 2;
@@ -298,16 +295,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
     // The shader really reads the top level: levels 0–3 hold a wall facing the camera at 3 m (no
     // occlusion), level 4 claims it 0.5 m closer. Only samples farther than 2^(4+3) = 128 px read it.
     let cam = Camera::default();
-    let params = AoSettings {
-        method: AoMethod::Sao,
-        radius: 2.0,
-        intensity: 1000.0,
-        blur: false,
-        ..Default::default()
-    };
-    let res = ResDirs::default();
-    let meshes = MeshBuffer::new(&ctx.gl).unwrap();
-    let sao = SaoMethod::build(&ctx.gl, &res, &cam).unwrap();
+    let (params, meshes, sao) = common::sao_pass(&ctx, 2.0, 1000.0, false);
     let mean_occlusion = |levels: u32, top: f32| {
         let targets = AoTargets::new(&ctx.gl, w, h, levels).unwrap();
         assert_eq!(targets.tex_depth.levels(), levels);
@@ -319,21 +307,7 @@ fn engine_sao_sizes_its_depth_chain_for_the_largest_disc_and_reads_the_top_level
                 .upload_f32(l, 1, &vec![v; (lw * lh) as usize])
                 .unwrap();
         }
-        let inputs = AoInputs {
-            gl: &ctx.gl,
-            meshes: &meshes,
-            targets: &targets,
-            camera: &cam,
-            settings: &params,
-            back_depth: None,
-            normals: None,
-            second_depth: None,
-            second_back_depth: None,
-            objects: &[],
-            region: None,
-            ao_size_depth: None,
-            frame_jitter: [0.0; 2],
-        };
+        let inputs = common::depth_only_inputs(&ctx, &meshes, &targets, &cam, &params, None);
         sao.compute(&inputs).unwrap();
         let occ = targets.sao_texture().read_f32(0, 1);
         common::assert_finite("sao on synthetic levels", &occ);

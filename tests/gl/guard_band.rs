@@ -147,28 +147,16 @@ fn assert_depths_agree(a: &[f32], b: &[f32]) {
 fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
     use opengl3d::ao::blur::BLUR_REACH;
     use opengl3d::ao::guard_band::read_region;
-    use opengl3d::ao::method::sao::SaoMethod;
-    use opengl3d::ao::method_pass::{AoInputs, AoMethodPass};
-    use opengl3d::ao::{AoSettings, AoTargets};
-    use opengl3d::gl::MeshBuffer;
+    use opengl3d::ao::method_pass::AoMethodPass;
+    use opengl3d::ao::AoTargets;
     use opengl3d::math::Camera;
-    use opengl3d::res::ResDirs;
 
     let ctx = common::context();
     let (w, h) = (96u32, 64u32);
     let (guarded, offset) = ((w / 2, h / 2), 6u32);
     let view = (guarded.0 - 2 * offset, guarded.1 - 2 * offset);
     let cam = Camera::default();
-    let settings = AoSettings {
-        method: AoMethod::Sao,
-        radius: 1.0,
-        intensity: 4.0,
-        blur: true,
-        ..Default::default()
-    };
-    let meshes = MeshBuffer::new(&ctx.gl).unwrap();
-    let res = ResDirs::default();
-    let sao = SaoMethod::build(&ctx.gl, &res, &cam).unwrap();
+    let (settings, meshes, sao) = common::sao_pass(&ctx, 1.0, 4.0, true);
     // A bumpy surface 2–4 m away: occlusion that varies from texel to texel, which the blur mixes.
     let depth_at = |x: f32, y: f32| 3.0 + 0.6 * (x * 0.7).sin() * (y * 0.5).cos();
     let blurred = |region: Option<[i32; 4]>| {
@@ -181,21 +169,7 @@ fn drawing_only_the_read_region_leaves_the_blurred_view_unchanged() {
                 .collect();
             targets.tex_depth.upload_f32(l, 1, &v).unwrap();
         }
-        let inputs = AoInputs {
-            gl: &ctx.gl,
-            meshes: &meshes,
-            targets: &targets,
-            camera: &cam,
-            settings: &settings,
-            back_depth: None,
-            normals: None,
-            second_depth: None,
-            second_back_depth: None,
-            objects: &[],
-            region,
-            ao_size_depth: None,
-            frame_jitter: [0.0; 2],
-        };
+        let inputs = common::depth_only_inputs(&ctx, &meshes, &targets, &cam, &settings, region);
         sao.compute(&inputs).unwrap();
         sao.blur(&inputs).unwrap();
         targets.result_texture(true).read_f32(0, 1)

@@ -3,13 +3,11 @@
 //! depth conventions, and texels the depth marks as sky really are skipped.
 
 use super::common;
-use opengl3d::ao::method::sao::SaoMethod;
 use opengl3d::ao::method_pass::{AoInputs, AoMethodPass};
 use opengl3d::ao::sky_skip::AoSizeDepth;
-use opengl3d::ao::{AoMethod, AoSettings, AoTargets};
-use opengl3d::gl::{MeshBuffer, Texture, TextureDesc};
+use opengl3d::ao::AoTargets;
+use opengl3d::gl::{Texture, TextureDesc};
 use opengl3d::math::{Camera, DepthMode};
-use opengl3d::res::ResDirs;
 use std::rc::Rc;
 
 const W: u32 = 48;
@@ -48,15 +46,7 @@ fn run_with_window(
 ) -> Outputs {
     let ctx = common::context();
     let cam = Camera::default();
-    let settings = AoSettings {
-        method: AoMethod::Sao,
-        radius: 1.0,
-        intensity: 4.0,
-        blur: true,
-        ..Default::default()
-    };
-    let meshes = MeshBuffer::new(&ctx.gl).unwrap();
-    let sao = SaoMethod::build(&ctx.gl, &ResDirs::default(), &cam).unwrap();
+    let (settings, meshes, sao) = common::sao_pass(&ctx, 1.0, 4.0, true);
     let targets = AoTargets::new(&ctx.gl, 2 * W, 2 * H, 3).unwrap();
     for l in 0..3 {
         let (lw, lh) = targets.tex_depth.size_at(l);
@@ -86,23 +76,12 @@ fn run_with_window(
         tex
     });
     let inputs = AoInputs {
-        gl: &ctx.gl,
-        meshes: &meshes,
-        targets: &targets,
-        camera: &cam,
-        settings: &settings,
-        back_depth: None,
-        normals: None,
-        second_depth: None,
-        second_back_depth: None,
-        objects: &[],
-        region: None,
         ao_size_depth: window.as_ref().map(|texture| AoSizeDepth {
             texture,
             mode,
             far: cam.far,
         }),
-        frame_jitter: [0.0; 2],
+        ..common::depth_only_inputs(&ctx, &meshes, &targets, &cam, &settings, None)
     };
     // Stale values from an earlier frame must not show through where the pass skips.
     for fbo in [&targets.fbo_sao, &targets.fbo_blur] {
