@@ -13,13 +13,12 @@ use super::camera_path_rows::{self as rows, PathRows};
 use super::camera_path_score::{self as score, FrameScore, PathReport, PathRun, PathSetting};
 use super::catalog;
 use super::perf::references as perf_refs;
-use crate::ao::{
-    AoMethod, AoResolution, AoSettings, GuardBand, NormalSource, SlicePreset, Thickness,
-};
+use crate::ao::{AoMethod, AoSettings, SlicePreset};
 use crate::math::Camera;
 use crate::platform::HeadlessContext;
 use crate::render::{Engine, View};
 use crate::res::ResDirs;
+use crate::scene::ao_defaults::{self, WrittenKeys};
 use crate::tools::reference::{load_or_render_cached, AoVariant, RefImage, RefParams};
 use anyhow::{Context as _, Result};
 use glam::Quat;
@@ -56,24 +55,21 @@ pub const DOLLY_PER_FRAME: f32 = 0.004;
 /// The AO radius every configuration uses (m), the bench's default.
 pub const RADIUS: f32 = 1.0;
 
-/// `vbao` `high` at a quarter of the size with two layers, back faces, geometric normals and the
-/// guard band (the bench's accurate configuration at about the lesson's cost), or the scenes'
-/// defaults (`low`, half size).
-fn vbao_settings(base: &AoSettings, quarter_high: bool, radius: f32) -> AoSettings {
+/// `vbao` as a user gets it with `--method vbao` (the recommendation, the scene's written keys
+/// kept), or the lesson's set-up with the cheapest preset (`low`, half size, one layer, normals
+/// from depth, no guard band).
+fn vbao_settings(base: &AoSettings, recommended: bool, radius: f32) -> AoSettings {
     let mut s = AoSettings {
         method: AoMethod::Vbao,
         radius,
         enabled: true,
         ..*base
     };
-    if quarter_high {
-        s.quality = Some(SlicePreset::High);
-        s.resolution = AoResolution::Quarter;
-        s.layers = 2;
-        s.thickness = Some(Thickness::Backface);
-        s.normals = NormalSource::Geometric;
-        s.guard_band = GuardBand::Auto;
+    if recommended {
+        ao_defaults::apply(&mut s);
     } else {
+        s.written = WrittenKeys::default();
+        ao_defaults::apply_from(&mut s, &ao_defaults::PLAIN);
         s.quality = Some(SlicePreset::Low);
     }
     s
@@ -122,35 +118,33 @@ fn lesson(base: &AoSettings, radius: f32) -> (PathSetting, AoSettings) {
     )
 }
 
-/// `vbao` in two set-ups, each one frame at a time and accumulated, and the first accumulated
-/// without its blur.
+/// `vbao` in two set-ups, each one frame at a time and accumulated, and the recommended one
+/// accumulated without its blur.
 fn vbao_rows(accumulate: u32, base: &AoSettings, radius: f32) -> Vec<(PathSetting, AoSettings)> {
     let mut out = Vec::new();
-    for (quarter_high, what) in [
-        (
-            true,
-            "high, quarter size, 2 layers, back faces, geometric normals, guard band",
-        ),
-        (false, "low, half size (the scenes' defaults)"),
-    ] {
+    let mut push = |short: &str, s: AoSettings| {
+        let frames = match s.accumulate {
+            1 => String::new(),
+            n => format!(" ×{n}"),
+        };
+        let unblurred = if s.blur { "" } else { ", no blur" };
+        let label = format!("vbao {short}{frames}{unblurred}");
+        let what = format!("{}{unblurred}", ao_defaults::chosen_line(&s));
+        let setting = PathSetting {
+            label,
+            method: AoMethod::Vbao,
+            accumulate: s.accumulate,
+            settings: what,
+        };
+        out.push((setting, s));
+    };
+    for (recommended, short) in [(true, "default"), (false, "low")] {
         for n in [1, accumulate] {
             let s = AoSettings {
                 accumulate: n,
-                ..vbao_settings(base, quarter_high, radius)
+                ..vbao_settings(base, recommended, radius)
             };
-            let short = if quarter_high { "quarter high" } else { "low" };
-            let label = if n > 1 {
-                format!("vbao {short} ×{n}")
-            } else {
-                format!("vbao {short}")
-            };
-            let setting = PathSetting {
-                label,
-                method: AoMethod::Vbao,
-                accumulate: n,
-                settings: what.into(),
-            };
-            out.push((setting, s));
+            push(short, s);
         }
     }
     // Accumulated without the blur: the frames average the noise the blur would, without its
@@ -160,13 +154,7 @@ fn vbao_rows(accumulate: u32, base: &AoSettings, radius: f32) -> Vec<(PathSettin
         blur: false,
         ..vbao_settings(base, true, radius)
     };
-    let setting = PathSetting {
-        label: format!("vbao quarter high ×{accumulate}, no blur"),
-        method: AoMethod::Vbao,
-        accumulate,
-        settings: "as vbao quarter high, without the blur".into(),
-    };
-    out.push((setting, unblurred));
+    push("default", unblurred);
     out
 }
 
@@ -369,5 +357,44 @@ mod tests {
             2
         );
         assert!(s.iter().all(|(p, a)| p.accumulate == a.accumulate));
+    }
+
+    #[test]
+    fn the_vbao_default_row_runs_what_method_vbao_gets() {
+        let s = settings(16, &AoSettings::default(), &[PathRows::Vbao], RADIUS);
+        let (row, a) = &s[1];
+        assert_eq!(row.label, "vbao default");
+        let r = ao_defaults::recommended(AoMethod::Vbao);
+        assert_eq!(
+            (
+                a.quality,
+                a.resolution,
+                a.normals,
+                a.guard_band,
+                a.layers,
+                a.thickness
+            ),
+            (
+                r.quality,
+                r.resolution,
+                r.normals,
+                r.guard_band,
+                r.layers,
+                r.thickness
+            )
+        );
+        // A key the scene file wrote is kept, as `render --method vbao` keeps it.
+        let base = AoSettings {
+            layers: 1,
+            written: WrittenKeys {
+                layers: true,
+                ..WrittenKeys::default()
+            },
+            ..AoSettings::default()
+        };
+        let s = settings(16, &base, &[PathRows::Vbao], RADIUS);
+        assert_eq!(s[1].1.layers, 1);
+        let low = s.iter().find(|(p, _)| p.label == "vbao low").unwrap();
+        assert_eq!(low.1.quality, Some(SlicePreset::Low));
     }
 }
