@@ -210,9 +210,7 @@ pub(crate) fn spawn_confined(mut cmd: Command) -> std::io::Result<std::process::
             cmd.pre_exec(move || confine_step(grader));
         }
     }
-    let child = cmd.spawn()?;
-    super::interrupt::register_group(child.id());
-    Ok(child)
+    super::interrupt::spawn_registered(&mut cmd)
 }
 
 /// Waits for `child` until `timeout` after `started`, killing its process tree then: its exit

@@ -130,8 +130,7 @@ impl Unpacked {
         if dir.exists() {
             std::fs::remove_dir_all(&dir)?;
         }
-        super::interrupt::register(&dir);
-        std::fs::create_dir_all(&dir)?;
+        super::interrupt::create_registered(&dir)?;
         Ok(Unpacked(dir))
     }
 }

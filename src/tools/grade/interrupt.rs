@@ -6,14 +6,17 @@
 use std::path::{Path, PathBuf};
 use std::sync::{Mutex, MutexGuard, Once};
 
-/// Folders to remove if the grader is interrupted. Registered before they are created, so that
+/// Folders to remove if the grader is interrupted. Registered and created under this lock, so that
 /// none exists unregistered; the handler keeps the lock until the process ends, so that no thread
-/// registers (and then creates) another one meanwhile.
+/// creates another one meanwhile (a folder created just after the handler looked would outlive it).
 static FOLDERS: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
 /// A step's process group, named by its leader's process id.
 type GroupId = i32;
 
-/// Process groups of the running step processes (each step leads its own group).
+/// Process groups of the running step processes (each step leads its own group). Steps start and
+/// register under this lock, which the handler also keeps until the end: a step starting while the
+/// handler runs is either killed with the others or never starts (it would write into a folder
+/// after its removal).
 static GROUPS: Mutex<Vec<GroupId>> = Mutex::new(Vec::new());
 
 /// How many times the handler removes the folders while something still writes into them (20 ms
@@ -51,7 +54,8 @@ fn install() {
         // folders are only removed on drop.
         let _ = ctrlc::set_handler(|| {
             let folders = lock(&FOLDERS);
-            for &group in lock(&GROUPS).iter() {
+            let groups = lock(&GROUPS);
+            for &group in groups.iter() {
                 kill_group(group);
             }
             // A killed step dies a moment after the signal, and the grader's own threads may be
@@ -78,10 +82,12 @@ fn install() {
     });
 }
 
-/// Registers `dir` for removal on interruption (call it before creating the folder).
-pub fn register(dir: &Path) {
+/// Creates `dir` (and its parents), registered for removal on interruption.
+pub fn create_registered(dir: &Path) -> std::io::Result<()> {
     install();
-    lock(&FOLDERS).push(dir.to_path_buf());
+    let mut folders = lock(&FOLDERS);
+    folders.push(dir.to_path_buf());
+    std::fs::create_dir_all(dir)
 }
 
 /// Forgets `dir` (its owner removed it).
@@ -89,10 +95,14 @@ pub fn unregister(dir: &Path) {
     lock(&FOLDERS).retain(|d| d != dir);
 }
 
-/// Registers the process group a step leads, to be killed on interruption.
-pub fn register_group(leader: u32) {
+/// Starts `cmd` (a step leading its own process group) and registers the group, to be killed on
+/// interruption.
+pub fn spawn_registered(cmd: &mut std::process::Command) -> std::io::Result<std::process::Child> {
     install();
-    lock(&GROUPS).push(leader as i32);
+    let mut groups = lock(&GROUPS);
+    let child = cmd.spawn()?;
+    groups.push(child.id() as i32);
+    Ok(child)
 }
 
 /// Forgets a step's group (the step was reaped).

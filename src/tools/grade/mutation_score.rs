@@ -161,8 +161,7 @@ fn scratch() -> Result<Scratch> {
         .map(|d| d.as_nanos())
         .unwrap_or(0);
     let dir = std::env::temp_dir().join(format!("opengl3d-mutants-{}-{nanos}", std::process::id()));
-    super::interrupt::register(&dir);
-    std::fs::create_dir_all(&dir)
+    super::interrupt::create_registered(&dir)
         .with_context(|| format!("cannot create folder {}", dir.display()))?;
     Ok(Scratch(dir))
 }

@@ -41,8 +41,7 @@ fn work_dir() -> Result<WorkDir> {
         .unwrap_or(0);
     let work =
         std::env::temp_dir().join(format!("opengl3d-grade-{}-{n}-{nanos}", std::process::id()));
-    super::interrupt::register(&work);
-    std::fs::create_dir_all(&work)
+    super::interrupt::create_registered(&work)
         .with_context(|| format!("cannot create folder {}", work.display()))?;
     Ok(WorkDir(work))
 }
