@@ -244,7 +244,7 @@ pub struct SceneArgs {
     /// backface`, the default), on, off.
     #[arg(long, value_parser = choice(&SlabHierarchy::ALL, SlabHierarchy::name))]
     pub slab_hierarchy: Option<SlabHierarchy>,
-    /// `rtao`: rays per pixel and frame (1 to 1024; default 2).
+    /// `rtao`: rays per pixel and frame (1 to 1024; default: the method's recommended configuration, 4).
     #[arg(long, allow_negative_numbers = true)]
     pub rays_per_pixel: Option<u32>,
     /// `rtao` and the screen-space methods: frames averaged (1 = none; `render` draws that many

@@ -198,6 +198,7 @@ fn apply_flags(args: &SceneArgs, desc: &mut SceneDesc) -> Result<FlagKeys> {
             bail!("{}", t!("render.bad_rays", n = n, max = hi));
         }
         desc.ao.rays = n;
+        desc.ao.written.rays = true;
     }
     if let Some(n) = args.accumulate {
         let (lo, hi) = crate::ao::settings::ACCUMULATE_RANGE;

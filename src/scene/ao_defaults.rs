@@ -6,7 +6,7 @@
 //!
 //! The keys covered are the ones that change what a method knows of the scene (where normals come
 //! from, how many depth layers, how thick a surface is, what lies beyond the view), the size it
-//! runs at and the preset of the methods that have one. The lesson's SAO keeps the struct's own
+//! runs at, the preset of the methods that have one and the rays per pixel of the one that traces. The lesson's SAO keeps the struct's own
 //! defaults: it is the course's, and ignores these keys anyway.
 
 use super::ao_settings::{
@@ -23,6 +23,9 @@ pub struct Recommended {
     pub guard_band: GuardBand,
     pub layers: u32,
     pub thickness: Option<Thickness>,
+    /// Rays per pixel and frame, for a method that traces rays (`None`: the key means nothing to it
+    /// and is left as it is).
+    pub rays: Option<u32>,
 }
 
 /// The struct's own defaults (`AoSettings::default()`): the lesson's SAO as the course teaches it,
@@ -34,6 +37,7 @@ pub const PLAIN: Recommended = Recommended {
     guard_band: GuardBand::Off,
     layers: 1,
     thickness: None,
+    rays: None,
 };
 
 /// The recommended configuration of `method` (docs/bench/defaults.md has the runs behind each).
@@ -45,6 +49,10 @@ pub fn recommended(method: AoMethod) -> Recommended {
             // size a frame cost about the lesson's chain on the bench's rooms and twice it on a
             // lone model. Its other keys change nothing it traces.
             resolution: AoResolution::Quarter,
+            // The most rays within the lesson's cost on every training camera (two lone models
+            // among them); eight went over it on half of them. Accumulated over frames, the same
+            // count reaches 32 dB standing still on the bench scenes.
+            rays: Some(4),
             ..PLAIN
         },
         AoMethod::Vbao => Recommended {
@@ -62,6 +70,7 @@ pub fn recommended(method: AoMethod) -> Recommended {
             layers: 2,
             // Each pixel's own thickness, from the back faces: chair legs stay thin, walls stay walls.
             thickness: Some(Thickness::Backface),
+            rays: None,
         },
         // The methods below: each key the quick protocol's search chose on at least two of the
         // three scenes (docs/bench/defaults.md); their sample counts stay the scene's `samples`.
@@ -116,6 +125,9 @@ pub fn apply_from(s: &mut AoSettings, r: &Recommended) {
     if !w.thickness {
         s.thickness = r.thickness;
     }
+    if let (false, Some(rays)) = (w.rays, r.rays) {
+        s.rays = rays;
+    }
 }
 
 /// One key of the configuration a frame runs with, and where its value came from.
@@ -150,7 +162,7 @@ pub fn chosen_from(s: &AoSettings, r: &Recommended) -> Vec<ChosenKey> {
         value,
         recommended: !written && same,
     };
-    vec![
+    let mut keys = vec![
         key("quality", quality, w.quality, s.quality == r.quality),
         key(
             "resolution",
@@ -182,7 +194,12 @@ pub fn chosen_from(s: &AoSettings, r: &Recommended) -> Vec<ChosenKey> {
             w.thickness,
             s.thickness == r.thickness,
         ),
-    ]
+    ];
+    // Only a method that traces rays recommends a count.
+    if let Some(rays) = r.rays {
+        keys.push(key("rays", s.rays.to_string(), w.rays, s.rays == rays));
+    }
+    keys
 }
 
 /// `chosen` on one line: `quality = ultra, resolution = quarter, …`, a `*` after each value the
@@ -233,5 +250,33 @@ mod tests {
         s.method = AoMethod::SaoLesson;
         apply(&mut s);
         assert_eq!((s.layers, s.thickness, s.quality), (1, None, None));
+    }
+
+    #[test]
+    fn rtao_recommends_its_rays_unless_they_were_written() {
+        let mut s = AoSettings {
+            method: AoMethod::Rtao,
+            ..Default::default()
+        };
+        apply(&mut s);
+        assert_eq!(Some(s.rays), recommended(AoMethod::Rtao).rays);
+        assert_ne!(s.rays, AoSettings::default().rays);
+        assert!(chosen_line(&s).contains(&format!("rays = {}", s.rays)));
+        let mut written = AoSettings {
+            method: AoMethod::Rtao,
+            rays: 7,
+            written: WrittenKeys {
+                rays: true,
+                ..Default::default()
+            },
+            ..Default::default()
+        };
+        apply(&mut written);
+        assert_eq!(written.rays, 7);
+        assert!(chosen_line(&written).contains("rays = 7*"));
+        // A method that does not trace lists no rays.
+        s.method = AoMethod::Vbao;
+        apply(&mut s);
+        assert!(!chosen_line(&s).contains("rays"));
     }
 }

@@ -12,6 +12,8 @@ pub struct WrittenKeys {
     pub guard_band: bool,
     pub layers: bool,
     pub thickness: bool,
+    /// `rays`; also set by `--rays-per-pixel`.
+    pub rays: bool,
 }
 
 impl WrittenKeys {
@@ -31,6 +33,7 @@ impl WrittenKeys {
             guard_band: ao.contains_key("guard_band"),
             layers: ao.contains_key("layers"),
             thickness: ao.contains_key("thickness"),
+            rays: ao.contains_key("rays"),
         }
     }
 }

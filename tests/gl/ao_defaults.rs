@@ -168,3 +168,21 @@ fn render_stats_names_the_configuration() {
     assert_eq!(layers["value"], "1");
     assert_eq!(layers["recommended"], false);
 }
+
+#[test]
+fn rtao_alone_traces_its_recommended_rays() {
+    assert_eq!(recommended(AoMethod::Rtao).rays, Some(4));
+    let dir = common::temp_dir("ao-defaults-rtao");
+    let alone = ao_view(&dir, "alone", &["--method", "rtao"]);
+    let four = ao_view(&dir, "four", &["--method", "rtao", "--rays-per-pixel", "4"]);
+    assert!(alone == four);
+    let two = ao_view(&dir, "two", &["--method", "rtao", "--rays-per-pixel", "2"]);
+    assert!(alone != two);
+    // The same key in the scene file's [ao] table wins as the flag does.
+    let demo = opengl3d::res::project_res_dir().join("scenes/demo.toml");
+    let text = std::fs::read_to_string(&demo).unwrap();
+    let text = text.replace("[ao]\n", "[ao]\nmethod = \"rtao\"\nrays = 2\n");
+    let scene: PathBuf = dir.join("two-rays.toml");
+    std::fs::write(&scene, text).unwrap();
+    assert!(two == ao_view(&dir, "keyed", &["--scene", scene.to_str().unwrap()]));
+}

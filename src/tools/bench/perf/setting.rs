@@ -51,6 +51,8 @@ pub fn run_setting(
         None => {
             let written = engine.ao_settings.written;
             engine.ao_settings.written.quality = true;
+            // rtao's grid sets its rays, as the others' set their count.
+            engine.ao_settings.written.rays |= method == AoMethod::Rtao;
             crate::scene::ao_defaults::apply(&mut engine.ao_settings);
             engine.ao_settings.written = written;
         }
