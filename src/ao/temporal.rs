@@ -157,7 +157,8 @@ impl TemporalAccumulation {
         }
     }
 
-    /// Frames in the mean the last frame wrote, at most `accumulate` (0 before any frame).
+    /// Frames drawn since the history started (0 before any frame); the mean holds at most
+    /// `accumulate` of them.
     pub fn frames(&self) -> u32 {
         self.frame.get()
     }

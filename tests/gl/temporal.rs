@@ -187,6 +187,8 @@ fn many_frames_on_a_moving_camera_stay_finite_and_in_range() {
         );
     }
     assert_eq!(eng.temporal.frames(), 96);
+    // The mean holds at most `accumulate` frames, as `render --stats` reports it.
+    assert_eq!(eng.accumulated_frames(), 64);
 }
 
 #[test]

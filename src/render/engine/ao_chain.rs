@@ -21,7 +21,11 @@ impl Engine {
             return self.ao.accumulated_frames(method);
         }
         if crate::ao::temporal::applies(&self.ao_settings) {
-            return self.temporal.frames().max(1);
+            // The mean stops growing at `accumulate` frames (then an exponential mean of that length).
+            return self
+                .temporal
+                .frames()
+                .clamp(1, self.ao_settings.accumulate.max(1));
         }
         1
     }
