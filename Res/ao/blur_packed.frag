@@ -10,12 +10,17 @@ layout(binding=0) uniform sampler2D texPacked; // r = occlusion, g = linear dept
 layout(location=210) uniform ivec2 axis;       // (1,0) then (0,1)
 
 // CAMERA_FAR and BLUR_REACH (texels read on either side) are injected by the engine
-// (`ao::method_pass::method_defines`); the Gaussian table holds BLUR_REACH + 1 weights.
+// (`ao::method_pass::method_defines`); the Gaussian table holds BLUR_REACH + 1 weights, the
+// centre's first. A method whose noise wants a narrower Gaussian has the engine inject its own
+// table as BLUR_WEIGHTS (`ao::blur::weights_define`).
 #include "blur_edge.glsl"
 
 layout(location=0) out vec2 outColor;
 
-const float gaussian[BLUR_REACH + 1] = float[](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
+#ifndef BLUR_WEIGHTS
+#define BLUR_WEIGHTS 0.153170, 0.144893, 0.122649, 0.092902, 0.062970
+#endif
+const float gaussian[BLUR_REACH + 1] = float[](BLUR_WEIGHTS);
 
 void main()
 {

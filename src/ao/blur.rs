@@ -29,6 +29,19 @@ pub fn lesson_blur(gl: &Gl, program: &ProgramObject, targets: &AoTargets, meshes
 /// needs.
 pub const BLUR_REACH: u32 = 4;
 
+/// `BLUR_WEIGHTS` for `blur_packed.frag` when the method's row names a Gaussian of its own
+/// (`MethodInfo::blur_sigma`, in AO texels): the BLUR_REACH + 1 weights from the centre out, six
+/// decimals; `None` keeps the shader's own table.
+pub fn weights_define(sigma: Option<f32>) -> Option<(&'static str, String)> {
+    let sigma = f64::from(sigma?);
+    let w: Vec<f64> = (0..=BLUR_REACH)
+        .map(|r| (-f64::from(r * r) / (2.0 * sigma * sigma)).exp())
+        .collect();
+    let total = w[0] + 2.0 * w[1..].iter().sum::<f64>();
+    let table = w.iter().map(|x| format!("{:.6}", x / total));
+    Some(("BLUR_WEIGHTS", table.collect::<Vec<_>>().join(", ")))
+}
+
 fn set_axis(gl: &Gl, program: &ProgramObject, axis: [i32; 2]) {
     let location = glow::NativeUniformLocation(loc::BLUR_AXIS as u32);
     // SAFETY: an ivec2 uniform at a location the interface test checks.
@@ -144,6 +157,23 @@ pub fn ao_size_target(
 
 #[cfg(test)]
 mod tests {
+    use super::weights_define;
+    use crate::ao::AoMethod;
+
+    #[test]
+    fn a_methods_gaussian_is_written_out_from_its_sigma() {
+        assert_eq!(weights_define(None), None);
+        let (name, table) = weights_define(Some(1.0)).unwrap();
+        assert_eq!(name, "BLUR_WEIGHTS");
+        // 1 / (1 + 2 (e^-1/2 + e^-2 + e^-9/2 + e^-8)), then each weight's share.
+        assert_eq!(table, "0.398943, 0.241971, 0.053991, 0.004432, 0.000134");
+        // rtao's narrows as its rays per frame add up; vbao's is fixed; the others keep the table.
+        let rtao = AoMethod::Rtao.info().blur_sigma.unwrap();
+        assert_eq!((rtao(1), rtao(4), rtao(16)), (3.0, 1.5, 0.75));
+        assert_eq!(AoMethod::Vbao.info().blur_sigma.map(|f| f(4)), Some(1.0));
+        assert!(AoMethod::Sao.info().blur_sigma.is_none());
+    }
+
     #[test]
     fn the_blurs_read_their_reach_from_the_injected_define_only() {
         for shader in ["blur_separable.frag", "blur_packed.frag"] {

@@ -181,6 +181,9 @@ pub struct ShaderMethod {
     packed: PackedOutput,
     /// (first, second) of `aoCounts` from the settings.
     counts: CountsFn,
+    /// The method's own Gaussian for its blur (`MethodInfo::blur_sigma`); `None` for a method
+    /// file's shader, which keeps the shared one.
+    blur_sigma: Option<fn(u32) -> f32>,
     /// Whether its shader writes `WriteOcclusion(0.0, z)` for every sky texel and nothing else, so
     /// that its pass and blur may skip the sky (`sky_skip`): the engine's own shaders do; a method
     /// file's shader may write anything there.
@@ -189,6 +192,8 @@ pub struct ShaderMethod {
 
 /// How a method turns the settings into `aoCounts`.
 pub type CountsFn = Box<dyn Fn(&AoSettings) -> [i32; 2]>;
+
+type Defines = Vec<(&'static str, String)>;
 
 impl ShaderMethod {
     /// `method`'s shader (`MethodInfo::shader`) and the packed blur, with `counts` for `aoCounts`.
@@ -202,8 +207,16 @@ impl ShaderMethod {
         let defines = method_defines(camera);
         let shader = method.info().shader;
         let program = ProgramObject::from_res(gl, res, "simple.vert", shader, &defines)?;
-        let mut built =
-            ShaderMethod::with_program(method, program, Box::new(counts), gl, res, camera)?;
+        let blur_sigma = method.info().blur_sigma;
+        let mut built = ShaderMethod::assemble(
+            method,
+            program,
+            Box::new(counts),
+            blur_sigma,
+            gl,
+            res,
+            camera,
+        )?;
         built.skips_sky = true;
         Ok(built)
     }
@@ -217,7 +230,21 @@ impl ShaderMethod {
         res: &ResDirs,
         camera: &Camera,
     ) -> Result<ShaderMethod, ProgramError> {
-        let defines = method_defines(camera);
+        ShaderMethod::assemble(method, program, counts, None, gl, res, camera)
+    }
+
+    /// `program` with the packed blur, compiled with the method's own Gaussian if it has one (for
+    /// the default settings until `update_defines_with` brings the frame's).
+    fn assemble(
+        method: AoMethod,
+        program: ProgramObject,
+        counts: CountsFn,
+        blur_sigma: Option<fn(u32) -> f32>,
+        gl: &Gl,
+        res: &ResDirs,
+        camera: &Camera,
+    ) -> Result<ShaderMethod, ProgramError> {
+        let defines = ShaderMethod::blur_defines(camera, blur_sigma, &AoSettings::default());
         let blur = ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &defines)?;
         Ok(ShaderMethod {
             method,
@@ -225,8 +252,23 @@ impl ShaderMethod {
             blur,
             packed: PackedOutput::default(),
             counts,
+            blur_sigma,
             skips_sky: false,
         })
+    }
+
+    /// The blur's defines: the shared ones and the method's own Gaussian under `settings`, if it
+    /// has one.
+    fn blur_defines(
+        camera: &Camera,
+        blur_sigma: Option<fn(u32) -> f32>,
+        settings: &AoSettings,
+    ) -> Defines {
+        let mut defines = method_defines(camera);
+        defines.extend(super::blur::weights_define(
+            blur_sigma.map(|f| f(settings.rays)),
+        ));
+        defines
     }
 
     /// Follows `camera` and `settings`, with `extra` compile-time choices of the method's own.
@@ -241,7 +283,8 @@ impl ShaderMethod {
         own.push(normal_source_define(settings));
         own.extend(extra.iter().cloned());
         self.program.set_defines(&own)?;
-        self.blur.set_defines(&defines)
+        let blur = ShaderMethod::blur_defines(camera, self.blur_sigma, settings);
+        self.blur.set_defines(&blur)
     }
 
     /// The occlusion program (for a method that sets uniforms of its own before `compute`).

@@ -64,6 +64,9 @@ pub struct MethodInfo {
     /// The lesson's linear blend leaves the sky out (the pixels at the far plane keep their colour),
     /// where the method's occlusion is not up-sampled as it blends.
     pub blend_leaves_sky: bool,
+    /// The σ (AO texels) of its packed blur's Gaussian, given the rays per pixel and frame (which
+    /// only a method that traces rays reads); `None`: the blur's own table (σ about 3).
+    pub blur_sigma: Option<fn(u32) -> f32>,
     /// Its occlusion pass and its blur in the frame's statistics (`render --stats`, the panel).
     pub pass_label: &'static str,
     pub blur_label: &'static str,
@@ -90,6 +93,7 @@ const PLAIN: MethodInfo = MethodInfo {
     rays: false,
     tuned_intensity: None,
     blend_leaves_sky: false,
+    blur_sigma: None,
     pass_label: "",
     blur_label: "",
     composite_label: "",
@@ -187,6 +191,9 @@ const VBAO: MethodInfo = MethodInfo {
     presets: Some(SlicePreset::vbao_slices_steps),
     // Every preset: the report shows the cheapest one that reaches a given accuracy.
     bench_presets: &SlicePreset::ALL,
+    // Its recommended configuration leaves little noise per texel, and a quarter-size texel is
+    // wide: the shared blur smoothed away more than the noise (docs/bench/blur.md).
+    blur_sigma: Some(|_| 1.0),
     ..PLAIN
 };
 const RTAO: MethodInfo = MethodInfo {
@@ -200,6 +207,10 @@ const RTAO: MethodInfo = MethodInfo {
     normals: NormalUse::Always,
     rays: true,
     tuned_intensity: Some(TunedIntensity::Exponent),
+    // The noise of n rays falls as 1/√n, and so does the width that removes it: 3 texels at one
+    // ray (the shared blur's), 1.5 at four; each the best of those tried at 1, 2, 4 and 11 rays
+    // (docs/bench/blur.md).
+    blur_sigma: Some(|rays| 3.0 / (rays.max(1) as f32).sqrt()),
     ..PLAIN
 };
 
