@@ -17,7 +17,11 @@ layout(location=210) uniform ivec2 axis;      // (1,0) then (0,1)
 
 out float outColor;
 
-const float gaussian[BLUR_REACH + 1] = float[](0.153170, 0.144893, 0.122649, 0.092902, 0.062970);
+// A method's own Gaussian, as blur_packed.frag takes it.
+#ifndef BLUR_WEIGHTS
+#define BLUR_WEIGHTS 0.153170, 0.144893, 0.122649, 0.092902, 0.062970
+#endif
+const float gaussian[BLUR_REACH + 1] = float[](BLUR_WEIGHTS);
 
 void main()
 {

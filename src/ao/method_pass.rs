@@ -127,6 +127,20 @@ pub fn method_defines(camera: &Camera) -> Vec<(&'static str, String)> {
     ]
 }
 
+/// The blurs' defines: `method_defines` and, for a method with a Gaussian of its own
+/// (`MethodInfo::blur_sigma`), its `BLUR_WEIGHTS` under `settings`.
+pub fn blur_defines(
+    camera: &Camera,
+    blur_sigma: Option<fn(u32) -> f32>,
+    settings: &AoSettings,
+) -> Vec<(&'static str, String)> {
+    let mut defines = method_defines(camera);
+    defines.extend(super::blur::weights_define(
+        blur_sigma.map(|f| f(settings.rays)),
+    ));
+    defines
+}
+
 /// `common.glsl`'s compile-time choice of where the normal comes from (`AO_SURFACE_NORMALS`): one
 /// path compiled instead of both behind a uniform, which a software rasteriser would run both of.
 /// The engine draws the surface normals exactly when `uses_surface_normals` says so.
@@ -193,8 +207,6 @@ pub struct ShaderMethod {
 /// How a method turns the settings into `aoCounts`.
 pub type CountsFn = Box<dyn Fn(&AoSettings) -> [i32; 2]>;
 
-type Defines = Vec<(&'static str, String)>;
-
 impl ShaderMethod {
     /// `method`'s shader (`MethodInfo::shader`) and the packed blur, with `counts` for `aoCounts`.
     pub fn build(
@@ -244,7 +256,7 @@ impl ShaderMethod {
         res: &ResDirs,
         camera: &Camera,
     ) -> Result<ShaderMethod, ProgramError> {
-        let defines = ShaderMethod::blur_defines(camera, blur_sigma, &AoSettings::default());
+        let defines = blur_defines(camera, blur_sigma, &AoSettings::default());
         let blur = ProgramObject::from_res(gl, res, "simple.vert", PACKED_BLUR_SHADER, &defines)?;
         Ok(ShaderMethod {
             method,
@@ -255,20 +267,6 @@ impl ShaderMethod {
             blur_sigma,
             skips_sky: false,
         })
-    }
-
-    /// The blur's defines: the shared ones and the method's own Gaussian under `settings`, if it
-    /// has one.
-    fn blur_defines(
-        camera: &Camera,
-        blur_sigma: Option<fn(u32) -> f32>,
-        settings: &AoSettings,
-    ) -> Defines {
-        let mut defines = method_defines(camera);
-        defines.extend(super::blur::weights_define(
-            blur_sigma.map(|f| f(settings.rays)),
-        ));
-        defines
     }
 
     /// Follows `camera` and `settings`, with `extra` compile-time choices of the method's own.
@@ -283,7 +281,7 @@ impl ShaderMethod {
         own.push(normal_source_define(settings));
         own.extend(extra.iter().cloned());
         self.program.set_defines(&own)?;
-        let blur = ShaderMethod::blur_defines(camera, self.blur_sigma, settings);
+        let blur = blur_defines(camera, self.blur_sigma, settings);
         self.blur.set_defines(&blur)
     }
 

@@ -424,7 +424,12 @@ fn packed_blur_equals_the_separable_blur(method: opengl3d::ao::AoMethod) {
             &opengl3d::res::ResDirs::default(),
             "simple.vert",
             "ao/blur_separable.frag",
-            &opengl3d::ao::method_pass::method_defines(&eng.camera),
+            // The method's own Gaussian, if it has one: the two blurs must weigh alike.
+            &opengl3d::ao::method_pass::blur_defines(
+                &eng.camera,
+                method.info().blur_sigma,
+                &eng.ao_settings,
+            ),
         )
         .unwrap(),
     );
